@@ -1,0 +1,120 @@
+# pointseg: build, test and run.
+#
+#   make            build/pointseg (command-line tool) and build/pointsegd (daemon)
+#   make run        install missing packages, build, start the daemon (or, until
+#                   it exists, segment a sample)
+#   make test       install missing packages, build, run every test
+#   make bench-quality / bench-speed     print the benchmark figures
+#   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
+#
+# Sources are found by wildcard: a new core/*.c or api/*.c joins its library,
+# a new tests/unit/test_*.c becomes a test binary, with no edit here.
+
+BUILD ?= build
+SAN ?= 0
+CC ?= cc
+PKGS := lapacke libmicrohttpd libcjson libcurl zlib
+
+OPT ?= -O2
+CFLAGS ?= $(OPT) -g
+WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -pthread $(WARN) $(CFLAGS) \
+             -Icore -Iapi -Iserver -Iclients/c -Itests/unit \
+             $(shell pkg-config --cflags libcjson 2>/dev/null) -MMD -MP
+LDLIBS := -lflann $(shell pkg-config --libs $(PKGS) 2>/dev/null) -larpack -lopenblas -lm -pthread
+
+ifeq ($(SAN),1)
+ALL_CFLAGS += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+LDFLAGS += -fsanitize=address,undefined
+endif
+
+CORE_SRC := $(wildcard core/*.c)
+API_SRC := $(wildcard api/*.c)
+SERVER_SRC := $(wildcard server/*.c)
+CLI_SRC := $(wildcard clients/cli/*.c)
+CCLIENT_SRC := $(wildcard clients/c/*.c)
+TESTLIB_SRC := $(filter-out tests/unit/test_%.c,$(wildcard tests/unit/*.c))
+UNIT_SRC := $(wildcard tests/unit/test_*.c)
+INTEG_SRC := $(wildcard tests/integration/test_*.c)
+BENCH_SRC := $(wildcard tests/bench/*.c)
+
+obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
+CORE_LIB := $(BUILD)/libpointseg.a
+API_LIB := $(BUILD)/libpointseg_api.a
+CCLIENT_LIB := $(if $(CCLIENT_SRC),$(BUILD)/libpointseg_client.a)
+TESTLIB_OBJ := $(call obj,$(TESTLIB_SRC))
+UNIT_BIN := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRC))
+INTEG_BIN := $(patsubst tests/integration/%.c,$(BUILD)/itests/%,$(INTEG_SRC))
+BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
+PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
+
+.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed clean tests-build
+.DEFAULT_GOAL := all
+
+all: $(PROGRAMS)
+
+deps:
+	@scripts/install-deps.sh
+deps-test:
+	@scripts/install-deps.sh --test
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(CORE_LIB): $(call obj,$(CORE_SRC))
+	@rm -f $@; ar rcs $@ $^
+$(API_LIB): $(call obj,$(API_SRC))
+	@rm -f $@; ar rcs $@ $^
+$(BUILD)/libpointseg_client.a: $(call obj,$(CCLIENT_SRC))
+	@rm -f $@; ar rcs $@ $^
+
+$(BUILD)/pointseg: $(call obj,$(CLI_SRC)) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+$(BUILD)/pointsegd: $(call obj,$(SERVER_SRC)) $(API_LIB) $(CORE_LIB)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+$(BUILD)/itests/%: $(BUILD)/obj/tests/integration/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+$(BUILD)/bench/%: $(BUILD)/obj/tests/bench/%.o $(TESTLIB_OBJ) $(API_LIB) $(CORE_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+tests-build: $(PROGRAMS) $(UNIT_BIN) $(INTEG_BIN)
+
+# ---- running --------------------------------------------------------------
+
+run: deps
+	@$(MAKE) --no-print-directory all
+	@scripts/run.sh $(BUILD)
+
+# The whole suite: unit tests in a plain and a sanitized build, then the
+# integration tests (daemon over HTTP) and short fuzz runs.  The last line
+# is "N passed, N failed".
+test: deps-test
+	@$(MAKE) --no-print-directory tests-build
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san SAN=1 tests-build
+	@tests/run.sh $(BUILD)
+
+unit: tests-build
+	@tests/run.sh --unit-only $(BUILD)
+
+fuzz: deps-test
+	@tests/fuzz/run.sh $(BUILD) long
+
+bench-quality: deps
+	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BUILD)/pointseg
+	@$(BUILD)/bench/bench_quality $(BENCH_ARGS)
+
+bench-speed: deps
+	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BUILD)/pointseg
+	@$(BUILD)/bench/bench_speed $(BENCH_ARGS)
+
+clean:
+	rm -rf $(BUILD)
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

@@ -1,0 +1,30 @@
+/*
+ * pointset.h: a decoded point set, what every decoder produces and the
+ * encoders echo back: coordinates, optional normals and faces, and the
+ * parameters a request body carried.
+ */
+#ifndef PS_POINTSET_H
+#define PS_POINTSET_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct ps_param_pair {
+    char *name;
+    char *value;  /* as text: "7", "approx", "true", "0.25" */
+} ps_param_pair;
+
+typedef struct ps_pointset {
+    size_t n;              /* #P */
+    int dim;               /* coordinates per point */
+    double *points;        /* #P by dim */
+    double *normals;       /* #P by dim, or NULL */
+    size_t n_faces;        /* #F */
+    uint32_t *faces;       /* #F by 3 (polygons fan-triangulated), or NULL */
+    size_t n_params;
+    ps_param_pair *params; /* parameters given inside the body (JSON "params") */
+} ps_pointset;
+
+void ps_pointset_free(ps_pointset *ps); /* frees the arrays, zeroes *ps */
+
+#endif

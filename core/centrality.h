@@ -1,0 +1,28 @@
+/*
+ * centrality.h: the paper's centrality f(p) = mean geodesic distance from p
+ * to the points of its connected component.
+ *
+ * exact:  Dijkstra from every vertex (O(n^2 log n); small inputs, checks).
+ * approx: farthest-point samples per component (start at the component's
+ *         lowest vertex, add the vertex farthest from all samples so far),
+ *         f = mean distance to the samples.  samples = S in total, shared
+ *         among components in proportion to their sizes (at least 1 each).
+ * Uses `threads` workers; the result is bit-identical for any thread count
+ * (per-vertex sums are accumulated in 64-bit fixed point).  A single-vertex
+ * component gets f = 0.
+ */
+#ifndef PS_CENTRALITY_H
+#define PS_CENTRALITY_H
+
+#include "knn_graph.h"
+
+/* component #P from ps_graph_components.  mode is EXACT or APPROX (the
+ * caller resolves AUTO).  f #P out.  sample_ids, if not NULL, receives a
+ * malloc'ed list of the sample vertices (#samples_used).  Checks ctl->cancel
+ * between Dijkstra runs and reports progress through ctl. */
+ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
+                        ps_centrality_mode mode, int samples, int threads,
+                        const ps_control *ctl, double *f, uint32_t **sample_ids,
+                        int *samples_used, ps_error *err);
+
+#endif

@@ -1,0 +1,203 @@
+/*
+ * pointseg.h: the one public header of the pointseg core library.
+ *
+ * The core splits a point-sampled surface (or any point set in R^d, d >= 2)
+ * into its natural parts, after "Segmenting Point Sets" (Yamazaki,
+ * Natarajan, Bai, Hamann):
+ *   1. features:   kNN graph, centrality f (mean geodesic distance), steepest
+ *                  ascent flow of f to its sinks; one supernode per sink;
+ *   2. hierarchy:  recursive normalized-cut bisection of the supernodes;
+ *   3. refinement: segments with a small feature size merge into a
+ *                  neighbour.
+ * It knows no file format, no socket and no daemon thread: points in,
+ * a ps_result out.  Everything here is reentrant; one call may use several
+ * threads of its own (params.threads).
+ */
+#ifndef POINTSEG_H
+#define POINTSEG_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PS_VERSION "0.1.0"
+#define PS_MAX_DIM 64 /* largest supported point dimension */
+
+/* ---- status and errors ------------------------------------------------ */
+
+typedef enum ps_status {
+    PS_OK = 0,
+    PS_ERR_INVALID,   /* the input or a parameter is unusable (message says why) */
+    PS_ERR_NOMEM,     /* an allocation failed */
+    PS_ERR_CANCELLED, /* the caller's cancel flag was raised */
+    PS_ERR_INTERNAL   /* a library call failed (FLANN, LAPACK): a bug, report it */
+} ps_status;
+
+typedef struct ps_error {
+    ps_status status;
+    char message[256]; /* human readable, names the problem */
+} ps_error;
+
+/* Sets err (if not NULL) and returns status: the idiom for failing. */
+ps_status ps_fail(ps_error *err, ps_status status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+const char *ps_status_name(ps_status status);
+
+/* ---- parameters -------------------------------------------------------- */
+
+typedef enum ps_centrality_mode {
+    PS_CENTRALITY_AUTO = 0, /* exact when n <= PS_EXACT_AUTO_LIMIT, else approx */
+    PS_CENTRALITY_EXACT,    /* Dijkstra from every point: O(n^2 log n) time */
+    PS_CENTRALITY_APPROX    /* farthest-point samples, S Dijkstras */
+} ps_centrality_mode;
+
+#define PS_EXACT_AUTO_LIMIT 4096
+
+typedef struct ps_params {
+    int k;                    /* neighbours per point in the kNN graph (default 7) */
+    ps_centrality_mode centrality;
+    int samples;              /* approx centrality samples; 0 = ceil(sqrt(n)) */
+    double ncut_threshold;    /* stop bisecting when NCut exceeds this */
+    double feature_threshold; /* merge segments whose feature size is below this
+                                 fraction of the range of f */
+    int use_minima;           /* also make supernodes of the minima of f */
+    int use_f2;               /* second function: distance to own sink */
+    int threads;              /* worker threads; 0 = all cores */
+} ps_params;
+
+/* Fills p with the defaults (the ones the README documents). */
+void ps_params_default(ps_params *p);
+
+/* Checks every field's range; returns PS_OK or PS_ERR_INVALID naming it. */
+ps_status ps_params_check(const ps_params *p, ps_error *err);
+
+const char *ps_centrality_name(ps_centrality_mode mode);
+
+/* ---- input ------------------------------------------------------------- */
+
+typedef struct ps_input {
+    const double *points;  /* #P by dim, row major */
+    size_t n;              /* #P */
+    int dim;               /* 2 <= dim <= PS_MAX_DIM */
+    const double *normals; /* optional #P by dim, row major; NULL if absent */
+} ps_input;
+
+/* ---- progress and cancellation ------------------------------------------ */
+
+typedef enum ps_phase {
+    PS_PHASE_KNN = 0,
+    PS_PHASE_CENTRALITY,
+    PS_PHASE_SUPERNODES,
+    PS_PHASE_HIERARCHY,
+    PS_PHASE_REFINE,
+    PS_PHASE_COUNT
+} ps_phase;
+
+const char *ps_phase_name(ps_phase phase); /* "knn", "centrality", ... */
+
+/* Called from the calling thread or a worker of the call, never concurrently
+ * with itself; fraction in [0, 1] within the phase. */
+typedef void (*ps_progress_fn)(void *user, ps_phase phase, double fraction);
+
+typedef struct ps_control {
+    ps_progress_fn progress;     /* may be NULL */
+    void *user;                  /* passed to progress */
+    const volatile int *cancel;  /* may be NULL; nonzero = stop soon
+                                    (read with relaxed atomics) */
+} ps_control;
+
+/* ---- result ------------------------------------------------------------ */
+
+typedef struct ps_supernode {
+    size_t sink;       /* index of the sink point (a local max of f, or min) */
+    size_t size;       /* points that flow to it */
+    double centrality; /* f at the sink */
+    int is_minimum;    /* 1 when the sink is a minimum of f (use_minima) */
+    int segment;       /* final segment id */
+} ps_supernode;
+
+typedef struct ps_tree_node {
+    int id;            /* index in ps_result.tree; the root is 0 */
+    int parent;        /* -1 for the root */
+    int children[2];   /* -1, -1 for a leaf */
+    int n_supernodes;
+    int *supernodes;   /* #n_supernodes supernode ids */
+    double ncut;       /* NCut of this node's split; for a leaf, of the split
+                          that was refused (or -1 when none was possible) */
+} ps_tree_node;
+
+typedef struct ps_segment {
+    size_t size;          /* points */
+    double feature_size;  /* max f - min f over its points */
+    int n_supernodes;
+    int *supernodes;      /* #n_supernodes supernode ids, increasing */
+    int tree_node;        /* the hierarchy leaf it grew from */
+} ps_segment;
+
+typedef struct ps_merge {
+    int segment;          /* hierarchy leaf (tree node id) merged away */
+    int into;             /* hierarchy leaf (tree node id) it merged into */
+    double feature_size;  /* feature size of the merged segment, in f units */
+} ps_merge;
+
+typedef struct ps_timings {
+    double ms[PS_PHASE_COUNT]; /* wall time per phase, milliseconds */
+    double total_ms;
+} ps_timings;
+
+typedef struct ps_result {
+    size_t n_points;
+    int dim;
+    int *labels;           /* #P final segment per point, 0..n_segments-1,
+                              numbered by decreasing size (ties: lowest point) */
+    int *point_supernode;  /* #P supernode per point */
+    double *centrality;    /* #P f per point (input units) */
+    int n_components;      /* connected components of the kNN graph */
+
+    int n_supernodes;
+    ps_supernode *supernodes;  /* #n_supernodes */
+
+    int n_tree_nodes;
+    ps_tree_node *tree;        /* #n_tree_nodes, tree[0] is the root */
+
+    int n_segments;
+    ps_segment *segments;      /* #n_segments, index = label */
+
+    int n_merges;
+    ps_merge *merges;          /* #n_merges in the order they happened */
+
+    ps_params params;          /* effective parameters (samples resolved, ...) */
+    ps_timings timings;
+} ps_result;
+
+/* Segments in.  On PS_OK *out holds a result the caller frees with
+ * ps_result_free.  On failure *out is NULL and err says why.  ctl may be
+ * NULL.  The output depends only on the input and params, never on
+ * params.threads or timing. */
+ps_status ps_segment(const ps_input *in, const ps_params *params,
+                     const ps_control *ctl, ps_result **out, ps_error *err);
+
+void ps_result_free(ps_result *r);
+
+/* ---- scoring (Princeton Segmentation Benchmark conventions) ------------ */
+
+/* Rand Index error 1 - RI between two labellings of the same n items.
+ * Labels are arbitrary non-negative ints.  O(n + distinct pairs) time. */
+double ps_rand_index_error(const int *a, const int *b, size_t n);
+
+/* Face labels from vertex labels: the majority label of the 3 vertices, or
+ * the first vertex's when all differ.  faces is #F by 3. */
+void ps_face_labels_from_vertices(const int *vertex_labels,
+                                  const uint32_t *faces, size_t n_faces,
+                                  int *face_labels);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,60 @@
+#!/bin/sh
+# run.sh: runs every test binary of a build and prints the count CI reads.
+#   tests/run.sh BUILD             unit tests (plain and BUILD/san), integration
+#                                  tests, short fuzz runs, extra suites
+#   tests/run.sh --unit-only BUILD unit tests of BUILD only
+# Each test prints PASS/FAIL/SKIP lines (tests/unit/testlib.h); a binary that
+# dies without saying FAIL counts as one failure.  The last line is
+# "N passed, N failed, N skipped".
+set -u
+unit_only=0
+[ "${1:-}" = "--unit-only" ] && { unit_only=1; shift; }
+BUILD=${1:-build}
+log=$(mktemp -d)
+trap 'rm -rf "$log"' EXIT
+passed=0 failed=0 skipped=0
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+
+run_one() { # label command...
+    label=$1; shift
+    out="$log/out"
+    "$@" >"$out" 2>"$log/err"
+    rc=$?
+    p=$(grep -c '^PASS ' "$out") f=$(grep -c '^FAIL ' "$out") s=$(grep -c '^SKIP ' "$out")
+    grep -E '^(FAIL|SKIP) ' "$out"
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+        echo "FAIL $label: exited with status $rc"
+        tail -n 20 "$log/err" | sed 's/^/    /'
+        f=$((f + 1))
+    elif [ "$f" -ne 0 ]; then
+        sed 's/^/    /' "$log/err" | tail -n 40
+    fi
+    if [ "$p" -eq 0 ] && [ "$f" -eq 0 ] && [ "$s" -eq 0 ]; then
+        echo "FAIL $label: ran no test"
+        f=1
+    fi
+    echo "  $label: $p passed, $f failed, $s skipped"
+    passed=$((passed + p)) failed=$((failed + f)) skipped=$((skipped + s))
+}
+
+run_dir() { # title dir
+    [ -d "$2" ] || return 0
+    echo "== $1"
+    for t in "$2"/*; do
+        [ -x "$t" ] && [ -f "$t" ] && run_one "$1/$(basename "$t")" "$t"
+    done
+}
+
+run_dir "unit" "$BUILD/tests"
+if [ "$unit_only" = 0 ]; then
+    run_dir "unit (asan+ubsan)" "$BUILD/san/tests"
+    run_dir "integration" "$BUILD/itests"
+    for suite in tests/integration/*.sh tests/fuzz/run.sh; do
+        [ -x "$suite" ] || continue
+        echo "== $suite"
+        run_one "$suite" "$suite" "$BUILD"
+    done
+fi
+echo "$passed passed, $failed failed, $skipped skipped"
+[ "$failed" -eq 0 ]
