@@ -132,13 +132,13 @@ typedef struct ps_tree_node {
                           that was refused (or -1 when none was possible) */
 } ps_tree_node;
 
-typedef struct ps_segment {
+typedef struct ps_segment_info {
     size_t size;          /* points */
     double feature_size;  /* max f - min f over its points */
     int n_supernodes;
     int *supernodes;      /* #n_supernodes supernode ids, increasing */
     int tree_node;        /* the hierarchy leaf it grew from */
-} ps_segment;
+} ps_segment_info;
 
 typedef struct ps_merge {
     int segment;          /* hierarchy leaf (tree node id) merged away */
@@ -167,7 +167,7 @@ typedef struct ps_result {
     ps_tree_node *tree;        /* #n_tree_nodes, tree[0] is the root */
 
     int n_segments;
-    ps_segment *segments;      /* #n_segments, index = label */
+    ps_segment_info *segments;      /* #n_segments, index = label */
 
     int n_merges;
     ps_merge *merges;          /* #n_merges in the order they happened */
