@@ -1,0 +1,13 @@
+/*
+ * commands.h: the subcommands of the `pointseg` tool, one file each.
+ * Each takes the arguments after the subcommand name (argv[0] is the
+ * subcommand) and returns the exit status: 0 ok, 1 failure, 2 bad input or
+ * usage.
+ */
+#ifndef PS_CLI_COMMANDS_H
+#define PS_CLI_COMMANDS_H
+
+int cli_segment(int argc, char **argv); /* segment.c: segment a file */
+int cli_score(int argc, char **argv);   /* score.c: Rand Index error of labels */
+
+#endif
