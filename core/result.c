@@ -1,0 +1,185 @@
+/*
+ * result.c: builds the public ps_result.  Final segments are the groups the
+ * refinement left (hierarchy leaves and what merged into them), numbered by
+ * decreasing size in input points, ties by their lowest input point, so the
+ * labels do not depend on the order the phases visited anything.
+ */
+#include "result.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct group_order {
+    int group;           /* surviving leaf id */
+    size_t size;         /* input points */
+    size_t first_point;  /* lowest input index */
+} group_order;
+
+static int by_size_then_first(const void *a, const void *b) {
+    const group_order *x = a, *y = b;
+    if (x->size != y->size) return x->size > y->size ? -1 : 1;
+    return (x->first_point > y->first_point) - (x->first_point < y->first_point);
+}
+
+/* segment_of_leaf #n_tree: final label of each leaf's group (-1 inner). */
+static int number_segments(const ps_result_parts *pp, const int *leaf_of_supernode,
+                           int *segment_of_leaf) {
+    int n_tree = pp->n_tree;
+    group_order *order = calloc((size_t)n_tree, sizeof *order);
+    int *slot = malloc((size_t)n_tree * sizeof *slot);
+    if (!order || !slot) {
+        free(order);
+        free(slot);
+        return -1;
+    }
+    for (int t = 0; t < n_tree; t++) {
+        slot[t] = -1;
+        order[t] = (group_order){.group = t, .size = 0, .first_point = SIZE_MAX};
+    }
+    for (size_t i = 0; i < pp->n_input; i++) {
+        int leaf = leaf_of_supernode[pp->supernode_of[pp->unique_of[i]]];
+        group_order *g = &order[pp->group_of_leaf[leaf]];
+        if (g->size++ == 0) g->first_point = i;
+    }
+    qsort(order, (size_t)n_tree, sizeof *order, by_size_then_first);
+    int n_segments = 0;
+    while (n_segments < n_tree && order[n_segments].size > 0) {
+        slot[order[n_segments].group] = n_segments;
+        n_segments++;
+    }
+    for (int t = 0; t < n_tree; t++)
+        segment_of_leaf[t] = pp->group_of_leaf[t] >= 0 ? slot[pp->group_of_leaf[t]] : -1;
+    free(order);
+    free(slot);
+    return n_segments;
+}
+
+static void fill_points(const ps_result_parts *pp, const int *leaf_of_supernode,
+                        const int *segment_of_leaf, ps_result *r) {
+    for (size_t i = 0; i < pp->n_input; i++) {
+        size_t u = pp->unique_of[i];
+        int s = pp->supernode_of[u];
+        r->point_supernode[i] = s;
+        r->centrality[i] = pp->f[u];
+        r->labels[i] = segment_of_leaf[leaf_of_supernode[s]];
+        ps_segment_info *seg = &r->segments[r->labels[i]];
+        seg->size++;
+        r->supernodes[s].size++;
+    }
+}
+
+static void fill_supernodes(const ps_result_parts *pp, const int *leaf_of_supernode,
+                            const int *segment_of_leaf, ps_result *r) {
+    for (int s = 0; s < pp->n_supernodes; s++) {
+        uint32_t sink = pp->sinks[s];
+        ps_supernode *sn = &r->supernodes[s];
+        sn->sink = pp->first_of[sink];
+        sn->centrality = pp->f[sink];
+        sn->is_minimum = 0;
+        sn->segment = segment_of_leaf[leaf_of_supernode[s]];
+        r->segments[sn->segment].n_supernodes++;
+    }
+}
+
+/* Feature sizes over the distinct points, supernode lists, tree leaf ids. */
+static int fill_segments(const ps_result_parts *pp, const int *segment_of_leaf, ps_result *r) {
+    int n = r->n_segments;
+    double *lo = malloc((size_t)n * sizeof *lo), *hi = malloc((size_t)n * sizeof *hi);
+    int ok = lo && hi;
+    for (int g = 0; ok && g < n; g++) {
+        ps_segment_info *seg = &r->segments[g];
+        seg->supernodes = malloc((size_t)(seg->n_supernodes ? seg->n_supernodes : 1) *
+                                 sizeof *seg->supernodes);
+        ok = seg->supernodes != NULL;
+        seg->n_supernodes = 0;
+        lo[g] = 1e300, hi[g] = -1e300;
+    }
+    for (int s = 0; ok && s < pp->n_supernodes; s++) {
+        ps_segment_info *seg = &r->segments[r->supernodes[s].segment];
+        seg->supernodes[seg->n_supernodes++] = s;
+    }
+    for (size_t u = 0; ok && u < pp->n_unique; u++) {
+        int g = r->supernodes[pp->supernode_of[u]].segment;
+        if (pp->f[u] < lo[g]) lo[g] = pp->f[u];
+        if (pp->f[u] > hi[g]) hi[g] = pp->f[u];
+    }
+    for (int t = 0; ok && t < pp->n_tree; t++)
+        if (pp->group_of_leaf[t] == t) r->segments[segment_of_leaf[t]].tree_node = t;
+    for (int g = 0; ok && g < n; g++) r->segments[g].feature_size = hi[g] - lo[g];
+    free(lo);
+    free(hi);
+    return ok ? 0 : -1;
+}
+
+static int *leaves_of_supernodes(const ps_result_parts *pp) {
+    int *leaf = malloc((size_t)(pp->n_supernodes ? pp->n_supernodes : 1) * sizeof *leaf);
+    if (!leaf) return NULL;
+    for (int t = 0; t < pp->n_tree; t++) {
+        const ps_tree_node *node = &pp->tree[t];
+        if (node->children[0] >= 0) continue;
+        for (int j = 0; j < node->n_supernodes; j++) leaf[node->supernodes[j]] = t;
+    }
+    return leaf;
+}
+
+static int allocate(ps_result *r, const ps_result_parts *pp, int n_segments) {
+    size_t n = pp->n_input;
+    r->labels = malloc(n * sizeof *r->labels);
+    r->point_supernode = malloc(n * sizeof *r->point_supernode);
+    r->centrality = malloc(n * sizeof *r->centrality);
+    r->supernodes = calloc((size_t)pp->n_supernodes + 1, sizeof *r->supernodes);
+    r->segments = calloc((size_t)n_segments + 1, sizeof *r->segments);
+    r->merges = malloc(((size_t)pp->n_merges + 1) * sizeof *r->merges);
+    return r->labels && r->point_supernode && r->centrality && r->supernodes && r->segments &&
+                   r->merges
+               ? 0
+               : -1;
+}
+
+ps_status ps_result_build(const ps_result_parts *pp, const ps_params *params,
+                          ps_result **out, ps_error *err) {
+    ps_result *r = calloc(1, sizeof *r);
+    int *leaf_of_supernode = leaves_of_supernodes(pp);
+    int *segment_of_leaf = malloc((size_t)pp->n_tree * sizeof *segment_of_leaf);
+    int n_segments = -1;
+    if (r && leaf_of_supernode && segment_of_leaf)
+        n_segments = number_segments(pp, leaf_of_supernode, segment_of_leaf);
+    int ok = n_segments > 0 && allocate(r, pp, n_segments) == 0;
+    if (ok) {
+        r->n_points = pp->n_input;
+        r->dim = pp->dim;
+        r->n_components = pp->n_components;
+        r->n_supernodes = pp->n_supernodes;
+        r->n_segments = n_segments;
+        r->params = *params;
+        fill_supernodes(pp, leaf_of_supernode, segment_of_leaf, r);
+        fill_points(pp, leaf_of_supernode, segment_of_leaf, r);
+        ok = fill_segments(pp, segment_of_leaf, r) == 0;
+        memcpy(r->merges, pp->merges, (size_t)pp->n_merges * sizeof *r->merges);
+        r->n_merges = pp->n_merges;
+    }
+    free(leaf_of_supernode);
+    free(segment_of_leaf);
+    if (!ok) {
+        ps_result_free(r);
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (result)");
+    }
+    r->tree = pp->tree;
+    r->n_tree_nodes = pp->n_tree;
+    *out = r;
+    return PS_OK;
+}
+
+void ps_result_free(ps_result *r) {
+    if (!r) return;
+    free(r->labels);
+    free(r->point_supernode);
+    free(r->centrality);
+    free(r->supernodes);
+    for (int g = 0; r->segments && g < r->n_segments; g++) free(r->segments[g].supernodes);
+    free(r->segments);
+    for (int t = 0; r->tree && t < r->n_tree_nodes; t++) free(r->tree[t].supernodes);
+    free(r->tree);
+    free(r->merges);
+    free(r);
+}

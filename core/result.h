@@ -1,0 +1,33 @@
+/*
+ * result.h: assembling the public ps_result from what the phases produced
+ * for the distinct points, mapped back onto every input point.
+ */
+#ifndef PS_RESULT_H
+#define PS_RESULT_H
+
+#include "pointseg.h"
+
+typedef struct ps_result_parts {
+    size_t n_input;              /* #P input points */
+    int dim;
+    size_t n_unique;             /* #U distinct points */
+    const size_t *unique_of;     /* #P distinct index of each input point */
+    const size_t *first_of;      /* #U lowest input index of each distinct point */
+    const double *f;             /* #U centrality */
+    int n_components;
+    int n_supernodes;            /* #S */
+    const uint32_t *sinks;       /* #S distinct index of each sink */
+    const int *supernode_of;     /* #U */
+    ps_tree_node *tree;          /* #n_tree, ownership moves into the result */
+    int n_tree;
+    const int *group_of_leaf;    /* #n_tree (refine.h) */
+    const ps_merge *merges;      /* #n_merges, copied */
+    int n_merges;
+} ps_result_parts;
+
+/* Builds *out (free with ps_result_free).  On success the result owns
+ * parts->tree; on failure the caller still does. */
+ps_status ps_result_build(const ps_result_parts *parts, const ps_params *params,
+                          ps_result **out, ps_error *err);
+
+#endif

@@ -1,0 +1,235 @@
+/*
+ * segment.c: ps_segment, the three phases in order.
+ *
+ * Validates the input, removes duplicate points, then runs features (kNN
+ * graph, centrality, flow to sinks), hierarchy (normalized cuts over the
+ * supernodes) and refinement (small features merge), timing each phase,
+ * reporting progress and honouring the cancel flag between steps.  The
+ * result is assembled by result.c; duplicates get their representative's
+ * answers.
+ */
+#include "centrality.h"
+#include "dedup.h"
+#include "flow.h"
+#include "knn_graph.h"
+#include "ncut.h"
+#include "parallel.h"
+#include "pointseg.h"
+#include "refine.h"
+#include "result.h"
+
+#include <math.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* Everything the phases produce for the distinct points. */
+typedef struct pipeline {
+    const ps_input *in;
+    const ps_control *ctl;
+    ps_params params;
+    int threads;
+    ps_dedup dedup;
+    double *points;        /* #U by dim distinct points (in->points when no dups) */
+    ps_graph graph;
+    int *component;        /* #U */
+    int n_components;
+    double *f;             /* #U centrality */
+    ps_flow flow;
+    size_t *supernode_sizes;
+    ps_tree_node *tree;
+    int n_tree;
+    int *group_of_leaf;    /* #n_tree */
+    ps_merge *merges;
+    int n_merges;
+    ps_timings timings;
+} pipeline;
+
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static int cancelled(const ps_control *ctl) {
+    return ctl && ctl->cancel &&
+           atomic_load_explicit((const volatile atomic_int *)ctl->cancel,
+                                memory_order_relaxed);
+}
+
+static void progress(const ps_control *ctl, ps_phase phase, double fraction) {
+    if (ctl && ctl->progress) ctl->progress(ctl->user, phase, fraction);
+}
+
+static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *err) {
+    if (!in || !in->points || in->n == 0)
+        return ps_fail(err, PS_ERR_INVALID, "no points");
+    if (in->dim < 2 || in->dim > PS_MAX_DIM)
+        return ps_fail(err, PS_ERR_INVALID, "dimension must be in [2, %d], got %d",
+                       PS_MAX_DIM, in->dim);
+    if (in->n > UINT32_MAX - 1)
+        return ps_fail(err, PS_ERR_INVALID, "too many points (%zu)", in->n);
+    size_t count = in->n * (size_t)in->dim;
+    for (size_t i = 0; i < count; i++)
+        if (!isfinite(in->points[i]))
+            return ps_fail(err, PS_ERR_INVALID, "point %zu has a non-finite coordinate",
+                           i / (size_t)in->dim);
+    return ps_params_check(p, err);
+}
+
+/* Distinct points; fails when fewer than k + 1 remain. */
+static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
+    const ps_input *in = pl->in;
+    ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
+    if (st != PS_OK) return st;
+    size_t u = pl->dedup.n_unique;
+    if (u < (size_t)pl->params.k + 1)
+        return ps_fail(err, PS_ERR_INVALID,
+                       "need at least k + 1 = %d distinct points, got %zu", pl->params.k + 1, u);
+    if (u == in->n) {
+        pl->points = (double *)in->points;
+        return PS_OK;
+    }
+    pl->points = malloc(u * (size_t)in->dim * sizeof *pl->points);
+    if (!pl->points) return ps_fail(err, PS_ERR_NOMEM, "out of memory (points)");
+    for (size_t i = 0; i < u; i++)
+        memcpy(pl->points + i * in->dim, in->points + pl->dedup.first[i] * in->dim,
+               (size_t)in->dim * sizeof *pl->points);
+    return PS_OK;
+}
+
+static ps_status phase_knn(pipeline *pl, ps_error *err) {
+    size_t u = pl->dedup.n_unique;
+    ps_status st = ps_knn_graph_build(pl->points, u, pl->in->dim, pl->params.k, pl->threads,
+                                      &pl->graph, err);
+    if (st != PS_OK) return st;
+    pl->component = malloc(u * sizeof *pl->component);
+    if (!pl->component) return ps_fail(err, PS_ERR_NOMEM, "out of memory (components)");
+    pl->n_components = ps_graph_components(&pl->graph, pl->component);
+    return PS_OK;
+}
+
+static ps_status phase_centrality(pipeline *pl, ps_error *err) {
+    size_t u = pl->dedup.n_unique;
+    ps_params *p = &pl->params;
+    if (p->centrality == PS_CENTRALITY_AUTO)
+        p->centrality = u <= PS_EXACT_AUTO_LIMIT ? PS_CENTRALITY_EXACT : PS_CENTRALITY_APPROX;
+    if (p->centrality == PS_CENTRALITY_APPROX && p->samples == 0)
+        p->samples = (int)ceil(sqrt((double)u));
+    pl->f = malloc(u * sizeof *pl->f);
+    if (!pl->f) return ps_fail(err, PS_ERR_NOMEM, "out of memory (centrality)");
+    int used = 0;
+    ps_status st = ps_centrality(&pl->graph, pl->component, pl->n_components, p->centrality,
+                                 p->samples, pl->threads, pl->ctl, pl->f, NULL, &used, err);
+    if (st == PS_OK && p->centrality == PS_CENTRALITY_APPROX) p->samples = used;
+    return st;
+}
+
+static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
+    ps_status st = ps_flow_build(&pl->graph, pl->f, +1, &pl->flow, err);
+    if (st != PS_OK) return st;
+    pl->supernode_sizes = calloc((size_t)pl->flow.n_sinks, sizeof *pl->supernode_sizes);
+    if (!pl->supernode_sizes) return ps_fail(err, PS_ERR_NOMEM, "out of memory (supernodes)");
+    for (size_t i = 0; i < pl->dedup.n_unique; i++)
+        pl->supernode_sizes[pl->flow.sink_of[i]]++;
+    return PS_OK;
+}
+
+static ps_status phase_hierarchy(pipeline *pl, ps_error *err) {
+    ps_supernode_graph sg = {
+        .m = pl->flow.n_sinks,
+        .sinks = pl->flow.sinks,
+        .sizes = pl->supernode_sizes,
+        .supernode_of = pl->flow.sink_of,
+        .component = pl->component,
+    };
+    return ps_ncut_hierarchy(&pl->graph, &sg, pl->params.ncut_threshold, pl->threads, pl->ctl,
+                             &pl->tree, &pl->n_tree, err);
+}
+
+static ps_status phase_refine(pipeline *pl, ps_error *err) {
+    pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
+    if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
+    return ps_refine(&pl->graph, pl->f, pl->flow.sink_of, pl->component, pl->tree, pl->n_tree,
+                     pl->params.feature_threshold, pl->group_of_leaf, &pl->merges,
+                     &pl->n_merges, err);
+}
+
+typedef ps_status (*phase_fn)(pipeline *pl, ps_error *err);
+
+static ps_status run_phases(pipeline *pl, ps_error *err) {
+    static const phase_fn phases[PS_PHASE_COUNT] = {phase_knn, phase_centrality,
+                                                    phase_supernodes, phase_hierarchy,
+                                                    phase_refine};
+    for (int ph = 0; ph < PS_PHASE_COUNT; ph++) {
+        if (cancelled(pl->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
+        double start = now_ms();
+        progress(pl->ctl, (ps_phase)ph, 0.0);
+        ps_status st = phases[ph](pl, err);
+        if (st != PS_OK) return st;
+        progress(pl->ctl, (ps_phase)ph, 1.0);
+        pl->timings.ms[ph] = now_ms() - start;
+    }
+    return PS_OK;
+}
+
+static void pipeline_free(pipeline *pl) {
+    if (pl->points != pl->in->points) free(pl->points);
+    ps_dedup_free(&pl->dedup);
+    ps_graph_free(&pl->graph);
+    free(pl->component);
+    free(pl->f);
+    ps_flow_free(&pl->flow);
+    free(pl->supernode_sizes);
+    ps_tree_free(pl->tree, pl->n_tree);
+    free(pl->group_of_leaf);
+    free(pl->merges);
+}
+
+static ps_result_parts parts_of(const pipeline *pl) {
+    return (ps_result_parts){
+        .n_input = pl->in->n,
+        .dim = pl->in->dim,
+        .n_unique = pl->dedup.n_unique,
+        .unique_of = pl->dedup.unique_of,
+        .first_of = pl->dedup.first,
+        .f = pl->f,
+        .n_components = pl->n_components,
+        .n_supernodes = pl->flow.n_sinks,
+        .sinks = pl->flow.sinks,
+        .supernode_of = pl->flow.sink_of,
+        .tree = pl->tree,
+        .n_tree = pl->n_tree,
+        .group_of_leaf = pl->group_of_leaf,
+        .merges = pl->merges,
+        .n_merges = pl->n_merges,
+    };
+}
+
+ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,
+                     ps_result **out, ps_error *err) {
+    double start = now_ms();
+    *out = NULL;
+    pipeline pl = {.in = in, .ctl = ctl};
+    if (params) pl.params = *params;
+    else ps_params_default(&pl.params);
+    ps_status st = check_input(in, &pl.params, err);
+    if (st != PS_OK) return st;
+    pl.points = (double *)in->points;
+    pl.threads = ps_parallel_threads(pl.params.threads);
+    st = remove_duplicates(&pl, err);
+    if (st == PS_OK) st = run_phases(&pl, err);
+    if (st == PS_OK) {
+        ps_result_parts parts = parts_of(&pl);
+        st = ps_result_build(&parts, &pl.params, out, err);
+        /* the tree moved into the result */
+        if (st == PS_OK) pl.tree = NULL, pl.n_tree = 0;
+    }
+    pipeline_free(&pl);
+    if (st == PS_OK) {
+        (*out)->timings = pl.timings;
+        (*out)->timings.total_ms = now_ms() - start;
+    }
+    return st;
+}
