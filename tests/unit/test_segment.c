@@ -1,0 +1,317 @@
+/*
+ * test_segment.c: ps_segment end to end on synthetic shapes with known parts:
+ * the parts come out, the answer survives rotation, translation, uniform
+ * scaling, permutation and any thread count, the result is self-consistent,
+ * and bad input fails cleanly.
+ */
+#include "pointseg.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static ps_result *segment_with(const double *pts, size_t n, const ps_params *p) {
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_result *r = NULL;
+    ps_error err = {0};
+    ps_status st = ps_segment(&in, p, NULL, &r, &err);
+    CHECK_MSG(st == PS_OK, "ps_segment failed: %s", err.message);
+    return r;
+}
+
+static ps_result *segment_default(const double *pts, size_t n) {
+    ps_params p;
+    ps_params_default(&p);
+    return segment_with(pts, n, &p);
+}
+
+/* Label most points of part `part` carry, and the fraction that carry it. */
+static int majority_label(const ps_result *r, const int *part, int which, double *purity) {
+    int *count = calloc((size_t)r->n_segments, sizeof *count);
+    size_t total = 0;
+    for (size_t i = 0; i < r->n_points; i++)
+        if (part[i] == which) count[r->labels[i]]++, total++;
+    int best = 0;
+    for (int s = 1; s < r->n_segments; s++)
+        if (count[s] > count[best]) best = s;
+    *purity = total ? (double)count[best] / (double)total : 0;
+    free(count);
+    return best;
+}
+
+/* Parts first..last each mostly in one segment, all different segments. */
+static void check_parts_separate(const ps_result *r, const int *part, int first, int last,
+                                 double min_purity) {
+    int labels[16];
+    for (int a = first; a <= last; a++) {
+        double purity;
+        labels[a] = majority_label(r, part, a, &purity);
+        CHECK_MSG(purity >= min_purity, "part %d: only %.2f of it in one segment", a, purity);
+        for (int b = first; b < a; b++)
+            CHECK_MSG(labels[a] != labels[b], "parts %d and %d share segment %d", a, b,
+                      labels[a]);
+    }
+}
+
+static void check_consistent(const ps_result *r) {
+    size_t seg_total = 0, sn_total = 0;
+    for (size_t i = 0; i < r->n_points; i++) {
+        REQUIRE(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
+        REQUIRE(r->point_supernode[i] >= 0 && r->point_supernode[i] < r->n_supernodes);
+        CHECK(r->supernodes[r->point_supernode[i]].segment == r->labels[i]);
+        CHECK(isfinite(r->centrality[i]));
+    }
+    for (int s = 0; s < r->n_segments; s++) {
+        seg_total += r->segments[s].size;
+        CHECK(r->segments[s].feature_size >= 0);
+        if (s > 0) CHECK(r->segments[s].size <= r->segments[s - 1].size);
+    }
+    for (int s = 0; s < r->n_supernodes; s++) sn_total += r->supernodes[s].size;
+    CHECK(seg_total == r->n_points);
+    CHECK(sn_total == r->n_points);
+    REQUIRE(r->n_tree_nodes >= 1);
+    CHECK(r->tree[0].parent == -1 && r->tree[0].n_supernodes == r->n_supernodes);
+    for (int t = 0; t < r->n_tree_nodes; t++) {
+        const ps_tree_node *node = &r->tree[t];
+        if (node->children[0] < 0) continue;
+        const ps_tree_node *a = &r->tree[node->children[0]], *b = &r->tree[node->children[1]];
+        CHECK(a->parent == t && b->parent == t);
+        CHECK(a->n_supernodes + b->n_supernodes == node->n_supernodes);
+    }
+}
+
+static void test_dumbbell_two_spheres(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_dumbbell(0, &n, &part);
+    ps_result *r = segment_default(pts, n);
+    REQUIRE(r);
+    check_consistent(r);
+    check_parts_separate(r, part, 1, 2, 0.9);
+    ps_result_free(r);
+    free(pts);
+    free(part);
+}
+
+static void test_hand_five_fingers(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_hand(0, &n, &part);
+    ps_result *r = segment_default(pts, n);
+    REQUIRE(r);
+    check_consistent(r);
+    check_parts_separate(r, part, 0, 5, 0.75);
+    ps_result_free(r);
+    free(pts);
+    free(part);
+}
+
+static void test_star_six_arms(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_star(0, &n, &part);
+    ps_result *r = segment_default(pts, n);
+    REQUIRE(r);
+    check_consistent(r);
+    check_parts_separate(r, part, 1, 6, 0.8);
+    ps_result_free(r);
+    free(pts);
+    free(part);
+}
+
+/* Fraction of points whose label differs from b's after mapping each label
+ * of a to the label of b most of its points carry. */
+static double disagreement(const ps_result *a, const int *labels_b, size_t n) {
+    int na = a->n_segments, nb = 0;
+    for (size_t i = 0; i < n; i++)
+        if (labels_b[i] + 1 > nb) nb = labels_b[i] + 1;
+    int *table = calloc((size_t)na * (size_t)nb, sizeof *table);
+    for (size_t i = 0; i < n; i++) table[a->labels[i] * nb + labels_b[i]]++;
+    size_t agree = 0;
+    for (int s = 0; s < na; s++) {
+        int best = 0;
+        for (int t = 0; t < nb; t++)
+            if (table[s * nb + t] > best) best = table[s * nb + t];
+        agree += (size_t)best;
+    }
+    free(table);
+    return 1.0 - (double)agree / (double)n;
+}
+
+static void check_invariant(double angle, double scale) {
+    size_t n;
+    double *pts = ps_shape_hand(0, &n, NULL);
+    ps_result *a = segment_default(pts, n);
+    const double t[3] = {3.5 * scale, -20.0 * scale, 7.25 * scale};
+    ps_shape_transform(pts, n, 0.3, -0.5, 0.81, angle, scale, t);
+    ps_result *b = segment_default(pts, n);
+    REQUIRE(a && b);
+    CHECK_MSG(a->n_segments == b->n_segments, "segments %d vs %d (angle %g, scale %g)",
+              a->n_segments, b->n_segments, angle, scale);
+    double d = disagreement(a, b->labels, n);
+    CHECK_MSG(d <= 0.005, "%.4f of the points changed segment (angle %g, scale %g)", d, angle,
+              scale);
+    ps_result_free(a);
+    ps_result_free(b);
+    free(pts);
+}
+
+static void test_rotation_translation(void) { check_invariant(1.1, 1.0); }
+static void test_scale_small(void) { check_invariant(0.0, 0.001); }
+static void test_scale_large(void) { check_invariant(2.5, 1000.0); }
+
+static void test_permutation(void) {
+    size_t n;
+    double *pts = ps_shape_star(0, &n, NULL);
+    double *perm_pts = malloc(n * 3 * sizeof *perm_pts);
+    size_t *perm = malloc(n * sizeof *perm);
+    for (size_t i = 0; i < n; i++) perm[i] = i;
+    unsigned s = 12345;
+    for (size_t i = n - 1; i > 0; i--) {
+        s = s * 1103515245u + 12345u;
+        size_t j = (s >> 8) % (i + 1), tmp = perm[i];
+        perm[i] = perm[j], perm[j] = tmp;
+    }
+    for (size_t i = 0; i < n; i++) memcpy(perm_pts + 3 * i, pts + 3 * perm[i], 3 * sizeof(double));
+    ps_result *a = segment_default(pts, n), *b = segment_default(perm_pts, n);
+    REQUIRE(a && b);
+    int *b_in_a_order = malloc(n * sizeof *b_in_a_order);
+    for (size_t i = 0; i < n; i++) b_in_a_order[perm[i]] = b->labels[i];
+    CHECK(a->n_segments == b->n_segments);
+    double d = disagreement(a, b_in_a_order, n);
+    CHECK_MSG(d <= 0.005, "%.4f of the points changed segment", d);
+    free(b_in_a_order);
+    ps_result_free(a);
+    ps_result_free(b);
+    free(perm);
+    free(perm_pts);
+    free(pts);
+}
+
+static void check_same_for_threads(ps_centrality_mode mode) {
+    size_t n;
+    double *pts = ps_shape_hand(0, &n, NULL);
+    ps_params p;
+    ps_params_default(&p);
+    p.centrality = mode;
+    p.threads = 1;
+    ps_result *one = segment_with(pts, n, &p);
+    for (int threads = 2; threads <= 3; threads++) {
+        p.threads = threads;
+        ps_result *many = segment_with(pts, n, &p);
+        REQUIRE(one && many);
+        CHECK(memcmp(one->labels, many->labels, n * sizeof *one->labels) == 0);
+        CHECK(memcmp(one->centrality, many->centrality, n * sizeof(double)) == 0);
+        ps_result_free(many);
+    }
+    ps_result_free(one);
+    free(pts);
+}
+
+static void test_threads_exact(void) { check_same_for_threads(PS_CENTRALITY_EXACT); }
+static void test_threads_approx(void) { check_same_for_threads(PS_CENTRALITY_APPROX); }
+
+static void test_duplicates_share_labels(void) {
+    size_t n;
+    double *pts = ps_shape_dumbbell(0, &n, NULL);
+    size_t m = n + n / 2;
+    double *dup = malloc(m * 3 * sizeof *dup);
+    memcpy(dup, pts, n * 3 * sizeof *dup);
+    for (size_t i = n; i < m; i++) memcpy(dup + 3 * i, pts + 3 * ((i - n) * 2), 3 * sizeof *dup);
+    ps_result *a = segment_default(pts, n), *b = segment_default(dup, m);
+    REQUIRE(a && b);
+    check_consistent(b);
+    for (size_t i = n; i < m; i++) CHECK(b->labels[i] == b->labels[(i - n) * 2]);
+    CHECK(a->n_segments == b->n_segments);
+    ps_result_free(a);
+    ps_result_free(b);
+    free(dup);
+    free(pts);
+}
+
+static void test_disconnected_scans(void) {
+    size_t n;
+    double *sphere = ps_shape_sphere(0, &n, NULL);
+    double *two = malloc(2 * n * 3 * sizeof *two);
+    memcpy(two, sphere, n * 3 * sizeof *two);
+    for (size_t i = 0; i < n; i++) {
+        two[3 * (n + i)] = sphere[3 * i] + 50;
+        two[3 * (n + i) + 1] = sphere[3 * i + 1];
+        two[3 * (n + i) + 2] = sphere[3 * i + 2];
+    }
+    ps_result *r = segment_default(two, 2 * n);
+    REQUIRE(r);
+    check_consistent(r);
+    CHECK(r->n_components == 2);
+    CHECK(r->n_segments >= 2);
+    int *side = calloc((size_t)r->n_segments, sizeof *side); /* bit 1: first, 2: second */
+    for (size_t i = 0; i < 2 * n; i++) side[r->labels[i]] |= i < n ? 1 : 2;
+    for (int s = 0; s < r->n_segments; s++) CHECK_MSG(side[s] != 3, "segment %d spans both", s);
+    free(side);
+    ps_result_free(r);
+    free(two);
+    free(sphere);
+}
+
+static void expect_invalid(const double *pts, size_t n, int dim, const char *what) {
+    ps_input in = {.points = pts, .n = n, .dim = dim};
+    ps_result *r = (ps_result *)1;
+    ps_error err = {0};
+    ps_status st = ps_segment(&in, NULL, NULL, &r, &err);
+    CHECK_MSG(st == PS_ERR_INVALID, "%s: status %d", what, (int)st);
+    CHECK(r == NULL);
+    CHECK_MSG(strlen(err.message) > 0, "%s: no message", what);
+}
+
+static void test_bad_input(void) {
+    double pts[3 * 20];
+    for (int i = 0; i < 60; i++) pts[i] = (double)(i % 7) + i * 0.01;
+    expect_invalid(NULL, 0, 3, "empty");
+    expect_invalid(pts, 1, 3, "one point");
+    expect_invalid(pts, 7, 3, "fewer than k+1");
+    expect_invalid(pts, 10, 1, "dimension 1");
+    double equal[3 * 20];
+    for (int i = 0; i < 60; i++) equal[i] = 1.5;
+    expect_invalid(equal, 20, 3, "all equal");
+    pts[17] = NAN;
+    expect_invalid(pts, 20, 3, "NaN");
+    pts[17] = INFINITY;
+    expect_invalid(pts, 20, 3, "Inf");
+}
+
+static int progress_calls, last_phase;
+static void on_progress(void *user, ps_phase phase, double fraction) {
+    (void)user;
+    CHECK(fraction >= 0 && fraction <= 1);
+    CHECK((int)phase >= last_phase);
+    last_phase = (int)phase;
+    progress_calls++;
+}
+
+static void test_progress_and_cancel(void) {
+    size_t n;
+    double *pts = ps_shape_sphere(0, &n, NULL);
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_control ctl = {.progress = on_progress};
+    ps_result *r = NULL;
+    ps_error err;
+    last_phase = 0;
+    CHECK(ps_segment(&in, NULL, &ctl, &r, &err) == PS_OK);
+    CHECK(progress_calls >= 2 * PS_PHASE_COUNT);
+    CHECK(last_phase == PS_PHASE_REFINE);
+    ps_result_free(r);
+    volatile int cancel = 1;
+    ctl.cancel = &cancel;
+    CHECK(ps_segment(&in, NULL, &ctl, &r, &err) == PS_ERR_CANCELLED);
+    CHECK(r == NULL);
+    free(pts);
+}
+
+PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
+             TEST(test_star_six_arms), TEST(test_rotation_translation), TEST(test_scale_small),
+             TEST(test_scale_large), TEST(test_permutation), TEST(test_threads_exact),
+             TEST(test_threads_approx), TEST(test_duplicates_share_labels),
+             TEST(test_disconnected_scans), TEST(test_bad_input),
+             TEST(test_progress_and_cancel))
