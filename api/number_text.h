@@ -1,0 +1,19 @@
+/*
+ * number_text.h: fast number-to-text writers for the encoders' per-point
+ * arrays (one snprintf or cJSON node per point is too slow for 1M points).
+ * Each writes at p, without a terminating NUL, and returns the end.
+ */
+#ifndef PS_NUMBER_TEXT_H
+#define PS_NUMBER_TEXT_H
+
+/* Most characters each writer produces. */
+enum { PS_INT_TEXT_MAX = 11, PS_DOUBLE_TEXT_MAX = 24 };
+
+/* v in decimal: "-2147483648" at most. */
+char *ps_put_int(char *p, int v);
+
+/* v as %.9g (enough to tell float-size values apart), or "null" when v is
+ * not finite. */
+char *ps_put_double(char *p, double v);
+
+#endif
