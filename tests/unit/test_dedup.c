@@ -1,0 +1,73 @@
+/* test_dedup.c: coincident points collapse onto their lowest index, distinct
+ * points keep their order, and the maps agree with a brute-force check. */
+#include "dedup.h"
+#include "testlib.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static void test_small_example(void) {
+    const double p[] = {1, 2, 0, 0, 1, 2, 3, 3, 0, 0, 1, 2};
+    ps_dedup d;
+    REQUIRE(ps_dedup_build(p, 6, 2, &d, NULL) == PS_OK);
+    CHECK(d.n_unique == 3);
+    const size_t unique_of[] = {0, 1, 0, 2, 1, 0};
+    const size_t first[] = {0, 1, 3};
+    CHECK(memcmp(d.unique_of, unique_of, sizeof unique_of) == 0);
+    CHECK(memcmp(d.first, first, sizeof first) == 0);
+    ps_dedup_free(&d);
+    CHECK(d.first == NULL && d.unique_of == NULL);
+}
+
+static void test_all_distinct_and_empty(void) {
+    const double p[] = {3, 2, 1, 0, -1, -2};
+    ps_dedup d;
+    REQUIRE(ps_dedup_build(p, 6, 1, &d, NULL) == PS_OK);
+    CHECK(d.n_unique == 6);
+    for (size_t i = 0; i < 6; i++) CHECK(d.unique_of[i] == i && d.first[i] == i);
+    ps_dedup_free(&d);
+    REQUIRE(ps_dedup_build(p, 0, 3, &d, NULL) == PS_OK);
+    CHECK(d.n_unique == 0);
+    ps_dedup_free(&d);
+}
+
+/* Many repeats on a coarse lattice, checked against pairwise comparison. */
+static void test_against_brute_force(void) {
+    enum { N = 2000, DIM = 3 };
+    double *p = malloc(N * DIM * sizeof *p);
+    REQUIRE(p);
+    unsigned s = 12345;
+    for (size_t i = 0; i < N * DIM; i++) {
+        s = s * 1103515245u + 12345u;
+        p[i] = (double)((s >> 16) % 5) * 0.5;
+    }
+    ps_dedup d;
+    REQUIRE(ps_dedup_build(p, N, DIM, &d, NULL) == PS_OK);
+    size_t count = 0;
+    for (size_t i = 0; i < N; i++) {
+        size_t lowest = i;
+        for (size_t j = 0; j < i && lowest == i; j++)
+            if (memcmp(&p[i * DIM], &p[j * DIM], DIM * sizeof *p) == 0) lowest = j;
+        if (lowest == i) {
+            CHECK(d.unique_of[i] == count && d.first[count] == i);
+            count++;
+        } else {
+            CHECK(d.unique_of[i] == d.unique_of[lowest]);
+        }
+    }
+    CHECK(d.n_unique == count);
+    CHECK(count > 100 && count < N);
+    for (size_t u = 1; u < d.n_unique; u++) CHECK(d.first[u] > d.first[u - 1]);
+    ps_dedup_free(&d);
+    free(p);
+}
+
+static void test_rejects_null(void) {
+    ps_dedup d;
+    ps_error err = {0};
+    CHECK(ps_dedup_build(NULL, 3, 3, &d, &err) == PS_ERR_INVALID);
+    CHECK(err.status == PS_ERR_INVALID);
+}
+
+PS_TEST_MAIN(TEST(test_small_example), TEST(test_all_distinct_and_empty),
+             TEST(test_against_brute_force), TEST(test_rejects_null))
