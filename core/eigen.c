@@ -3,6 +3,7 @@
 
 #include <lapacke.h>
 #include <math.h>
+#include <stdlib.h>
 
 static void swap_columns(double *vectors, int m) {
     for (int i = 0; i < m; i++) {
@@ -12,21 +13,33 @@ static void swap_columns(double *vectors, int m) {
     }
 }
 
-ps_status ps_eigen_top2(double *a, int m, double values[2], double *vectors,
-                        ps_error *err) {
-    if (m < 2) return ps_fail(err, PS_ERR_INVALID, "eigen: need m >= 2, got %d", m);
+/* dsyevr uses the eigenvalue array (#m) as workspace and may write 2m
+ * support indices, whatever the number of eigenpairs asked for. */
+static ps_status call_dsyevr(double *a, int m, double *all_values, lapack_int *support,
+                             double values[2], double *vectors, ps_error *err) {
     lapack_int found = 0;
-    lapack_int support[4];
-    double ascending[2];
     lapack_int info = LAPACKE_dsyevr(LAPACK_COL_MAJOR, 'V', 'I', 'U', m, a, m, 0.0, 0.0,
-                                     m - 1, m, 0.0, &found, ascending, vectors, m, support);
+                                     m - 1, m, 0.0, &found, all_values, vectors, m, support);
     if (info != 0 || found != 2)
         return ps_fail(err, PS_ERR_INTERNAL, "LAPACKE_dsyevr failed (info %d, found %d, m %d)",
                        (int)info, (int)found, m);
-    values[0] = ascending[1];
-    values[1] = ascending[0];
+    values[0] = all_values[1];
+    values[1] = all_values[0];
     swap_columns(vectors, m);
     return PS_OK;
+}
+
+ps_status ps_eigen_top2(double *a, int m, double values[2], double *vectors,
+                        ps_error *err) {
+    if (m < 2) return ps_fail(err, PS_ERR_INVALID, "eigen: need m >= 2, got %d", m);
+    double *all_values = malloc((size_t)m * sizeof *all_values);
+    lapack_int *support = malloc(2 * (size_t)m * sizeof *support);
+    ps_status st = all_values && support
+                       ? call_dsyevr(a, m, all_values, support, values, vectors, err)
+                       : ps_fail(err, PS_ERR_NOMEM, "eigen: out of memory (m %d)", m);
+    free(all_values);
+    free(support);
+    return st;
 }
 
 void ps_sign_normalize(double *v, int m) {
