@@ -12,8 +12,9 @@ enum { PS_INT_TEXT_MAX = 11, PS_DOUBLE_TEXT_MAX = 24 };
 /* v in decimal: "-2147483648" at most. */
 char *ps_put_int(char *p, int v);
 
-/* v as %.9g (enough to tell float-size values apart), or "null" when v is
- * not finite. */
+/* v as %.9g would write it (enough to tell float-size values apart; in
+ * rare half-way cases the ninth digit may differ by one), or "null" when v
+ * is not finite.  Zero is "0". */
 char *ps_put_double(char *p, double v);
 
 #endif

@@ -2,10 +2,12 @@
  * the JSON document parsed back with cJSON field by field, the labels text,
  * the binary PLY byte by byte, and the segment palette. */
 #include "encode.h"
+#include "number_text.h"
 #include "testlib.h"
 
 #include <cJSON.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -253,6 +255,59 @@ static void test_json_large_labels(void) {
     free(big);
 }
 
+/* ---- number text ------------------------------------------------------ */
+
+static void test_put_int(void) {
+    static const int values[] = {0, 7, -7, 10, 1234567890, 2147483647, -2147483647 - 1};
+    char got[32], want[32];
+    for (size_t i = 0; i < sizeof values / sizeof values[0]; i++) {
+        *ps_put_int(got, values[i]) = 0;
+        snprintf(want, sizeof want, "%d", values[i]);
+        CHECK_MSG(strcmp(got, want) == 0, "%s != %s", got, want);
+    }
+}
+
+/* Next of a fixed xorshift sequence. */
+static uint64_t next_random(uint64_t *s) {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
+
+/* ps_put_double against printf's %.9g over values of every magnitude:
+ * the same text nearly always, the same value to nine digits always. */
+static void test_put_double_matches_printf(void) {
+    static const double fixed[] = {1, -1, 0.5, 0.1, 1e-5, 1e-4, 123456789, 999999999.5,
+                                   1e9, 99999.99999, 0.30000000000000004, 1e29, 1e-29,
+                                   1e30, 1e-300, -2.5e300, 3.0e-310, 1.7976931348623157e308};
+    char got[64], want[64];
+    uint64_t state = 88172645463325252u;
+    int differ = 0, total = 0;
+    for (int i = 0; i < 200000; i++, total++) {
+        double v;
+        if (i < (int)(sizeof fixed / sizeof fixed[0])) {
+            v = fixed[i];
+        } else {
+            double mantissa = (double)(next_random(&state) >> 11) / 9007199254740992.0;
+            int e = (int)(next_random(&state) % 80) - 40;
+            v = (i & 1 ? -mantissa : mantissa) * pow(10, e);
+        }
+        *ps_put_double(got, v) = 0;
+        snprintf(want, sizeof want, "%.9g", v);
+        if (strcmp(got, want) == 0 || (v == 0 && strcmp(got, "0") == 0)) continue;
+        differ++;
+        double g = strtod(got, NULL);
+        CHECK_MSG(fabs(g - v) <= 1.01e-8 * fabs(v), "%.17g written as %s (printf: %s)", v, got,
+                  want);
+    }
+    CHECK_MSG(differ * 1000 < total, "%d of %d differ from printf", differ, total);
+    *ps_put_double(got, NAN) = 0;
+    CHECK(strcmp(got, "null") == 0);
+    *ps_put_double(got, -INFINITY) = 0;
+    CHECK(strcmp(got, "null") == 0);
+}
+
 /* ---- labels ------------------------------------------------------------- */
 
 static void test_labels_text(void) {
@@ -367,6 +422,7 @@ static void test_palette_distinct_and_cycling(void) {
 PS_TEST_MAIN(TEST(test_json_top_level), TEST(test_json_segments_and_supernodes),
              TEST(test_json_hierarchy_and_merges), TEST(test_json_params_and_timings),
              TEST(test_json_included_arrays), TEST(test_json_non_finite_is_null),
-             TEST(test_json_empty_result), TEST(test_json_large_labels), TEST(test_labels_text),
+             TEST(test_json_empty_result), TEST(test_json_large_labels), TEST(test_put_int),
+             TEST(test_put_double_matches_printf), TEST(test_labels_text),
              TEST(test_ply_vertices_and_colours), TEST(test_ply_faces_and_2d),
              TEST(test_palette_distinct_and_cycling))
