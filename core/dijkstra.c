@@ -1,0 +1,142 @@
+/*
+ * dijkstra.c: shortest paths on a ps_graph (dijkstra.h) with a 4-ary
+ * min-heap and decrease-key through a position array.
+ *
+ * The workspace keeps the heap and positions between runs; every run empties
+ * the heap, so positions are back to NOT_IN_HEAP and nothing is reset or
+ * allocated per run.
+ */
+#include "dijkstra.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#define NOT_IN_HEAP UINT32_MAX
+
+typedef struct heap_entry {
+    double key;
+    uint32_t vertex;
+} heap_entry;
+
+struct ps_dijkstra {
+    size_t n;
+    size_t size;       /* entries in heap */
+    heap_entry *heap;  /* #n */
+    uint32_t *pos;     /* #n heap slot of each vertex or NOT_IN_HEAP */
+};
+
+ps_dijkstra *ps_dijkstra_new(size_t n) {
+    ps_dijkstra *w = calloc(1, sizeof *w);
+    if (!w) return NULL;
+    size_t alloc_n = n ? n : 1;
+    w->n = n;
+    w->heap = malloc(alloc_n * sizeof *w->heap);
+    w->pos = malloc(alloc_n * sizeof *w->pos);
+    if (!w->heap || !w->pos) {
+        ps_dijkstra_free(w);
+        return NULL;
+    }
+    for (size_t v = 0; v < n; v++) w->pos[v] = NOT_IN_HEAP;
+    return w;
+}
+
+void ps_dijkstra_free(ps_dijkstra *w) {
+    if (!w) return;
+    free(w->heap);
+    free(w->pos);
+    free(w);
+}
+
+static void sift_up(ps_dijkstra *w, size_t i, heap_entry e) {
+    while (i > 0) {
+        size_t parent = (i - 1) / 4;
+        if (w->heap[parent].key <= e.key) break;
+        w->heap[i] = w->heap[parent];
+        w->pos[w->heap[i].vertex] = (uint32_t)i;
+        i = parent;
+    }
+    w->heap[i] = e;
+    w->pos[e.vertex] = (uint32_t)i;
+}
+
+static void sift_down(ps_dijkstra *w, size_t i, heap_entry e) {
+    for (;;) {
+        size_t child = 4 * i + 1, best = i;
+        double best_key = e.key;
+        size_t last = child + 4 < w->size ? child + 4 : w->size;
+        for (size_t c = child; c < last; c++)
+            if (w->heap[c].key < best_key) best = c, best_key = w->heap[c].key;
+        if (best == i) break;
+        w->heap[i] = w->heap[best];
+        w->pos[w->heap[i].vertex] = (uint32_t)i;
+        i = best;
+    }
+    w->heap[i] = e;
+    w->pos[e.vertex] = (uint32_t)i;
+}
+
+/* Inserts v or lowers its key. */
+static void heap_set(ps_dijkstra *w, uint32_t v, double key) {
+    heap_entry e = {key, v};
+    size_t i = w->pos[v] == NOT_IN_HEAP ? w->size++ : w->pos[v];
+    sift_up(w, i, e);
+}
+
+static uint32_t heap_pop(ps_dijkstra *w) {
+    uint32_t top = w->heap[0].vertex;
+    w->pos[top] = NOT_IN_HEAP;
+    if (--w->size > 0) sift_down(w, 0, w->heap[w->size]);
+    return top;
+}
+
+/* A shorter path, or an equally short one from a lower source (only while v
+ * is still in the heap, so settled vertices never change). */
+static int improves(const ps_dijkstra *w, double nd, double old, const int *owner,
+                    uint32_t u, uint32_t v) {
+    if (nd < old) return 1;
+    return owner && nd == old && w->pos[v] != NOT_IN_HEAP && owner[u] < owner[v];
+}
+
+void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
+                     size_t n_sources, double *dist, int *owner) {
+    for (size_t v = 0; v < g->n; v++) dist[v] = INFINITY;
+    if (owner)
+        for (size_t v = 0; v < g->n; v++) owner[v] = -1;
+    for (size_t s = 0; s < n_sources; s++) {
+        uint32_t v = sources[s];
+        if (dist[v] == 0.0) continue; /* a repeated source keeps its first index */
+        dist[v] = 0.0;
+        if (owner) owner[v] = (int)s;
+        heap_set(w, v, 0.0);
+    }
+    while (w->size > 0) {
+        uint32_t u = heap_pop(w);
+        double du = dist[u];
+        for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
+            uint32_t v = g->neighbors[e];
+            double nd = du + g->weights[e];
+            if (!improves(w, nd, dist[v], owner, u, v)) continue;
+            dist[v] = nd;
+            if (owner) owner[v] = owner[u];
+            heap_set(w, v, nd);
+        }
+    }
+}
+
+void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, double *dist) {
+    if (!(dist[source] > 0.0)) return;
+    dist[source] = 0.0;
+    heap_set(w, source, 0.0);
+    while (w->size > 0) {
+        uint32_t u = heap_pop(w);
+        double du = dist[u];
+        for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
+            uint32_t v = g->neighbors[e];
+            double nd = du + g->weights[e];
+            if (nd < dist[v]) {
+                dist[v] = nd;
+                heap_set(w, v, nd);
+            }
+        }
+    }
+}
