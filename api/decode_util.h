@@ -1,0 +1,54 @@
+/*
+ * decode_util.h: pieces every decoder shares (internal to api/): limits with
+ * their defaults, the checks a decoded set must pass, and growing arrays for
+ * formats whose counts are not known up front.
+ */
+#ifndef PS_DECODE_UTIL_H
+#define PS_DECODE_UTIL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "decode.h"
+
+/* lim, or the defaults (no point limit, PS_MAX_DIM) where lim is NULL or a
+ * field is 0. */
+ps_decode_limits ps_decode_limits_of(const ps_decode_limits *lim);
+
+/* 413 when n points exceed lim.max_points. */
+int ps_decode_check_points(size_t n, const ps_decode_limits *lim, ps_api_error *err);
+
+/* 422 unless 2 <= dim <= lim.max_dim. */
+int ps_decode_check_dim(long long dim, const ps_decode_limits *lim, ps_api_error *err);
+
+/* Checks a decoded set: n >= 1 (422 "no points"), dim in range, every
+ * coordinate and normal finite (422 naming the point as `noun` i, 0-based).
+ * On failure frees *ps.  Returns 0 or -1. */
+int ps_decode_finish(ps_pointset *ps, const ps_decode_limits *lim, const char *noun,
+                     ps_api_error *err);
+
+/* A growing array of doubles (v: #len). */
+typedef struct ps_dvec {
+    double *v;
+    size_t len, cap;
+} ps_dvec;
+
+/* Appends x (#n); 500 on allocation failure. */
+int ps_dvec_push(ps_dvec *a, const double *x, size_t n, ps_api_error *err);
+
+/* A growing list of triangles (v: #len/3 by 3). */
+typedef struct ps_tris {
+    uint32_t *v;
+    size_t len, cap;
+} ps_tris;
+
+/* Makes room for n_tris triangles in total; 500 on allocation failure. */
+int ps_tris_reserve(ps_tris *t, size_t n_tris, ps_api_error *err);
+
+/* Appends the triangle (a, b, c). */
+int ps_tris_push(ps_tris *t, uint32_t a, uint32_t b, uint32_t c, ps_api_error *err);
+
+/* Hands the triangles to ps (faces, n_faces; NULL when none) and empties t. */
+void ps_tris_move(ps_tris *t, ps_pointset *ps);
+
+#endif
