@@ -18,8 +18,10 @@
 
 /* component #P from ps_graph_components.  mode is EXACT or APPROX (the
  * caller resolves AUTO).  f #P out.  sample_ids, if not NULL, receives a
- * malloc'ed list of the sample vertices (#samples_used).  Checks ctl->cancel
- * between Dijkstra runs and reports progress through ctl. */
+ * malloc'ed list of the sample vertices (#samples_used).  In exact mode no
+ * samples are drawn: *samples_used = 0 and *sample_ids = NULL.  Checks
+ * ctl->cancel between Dijkstra runs (PS_ERR_CANCELLED) and reports progress
+ * through ctl from one thread at a time, with nondecreasing fractions. */
 ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
                         ps_centrality_mode mode, int samples, int threads,
                         const ps_control *ctl, double *f, uint32_t **sample_ids,

@@ -1,0 +1,277 @@
+/*
+ * centrality.c: f(p) = mean geodesic distance to the points of p's
+ * component (centrality.h), exact or from farthest-point samples.
+ *
+ * exact:  one Dijkstra per vertex in parallel; each run sums its own row in
+ *         vertex order, so f does not depend on which worker ran it.
+ * approx: per component, farthest-point sampling with the pruned
+ *         ps_dijkstra_lower (sequential, cheap), then full Dijkstras from all
+ *         samples in parallel.  Each worker adds quantized distances
+ *         (64-bit fixed point, one scale per component, chosen so no sum can
+ *         overflow) into its own array; the integer sums are exact, hence
+ *         identical for any thread count.
+ */
+#include "centrality.h"
+
+#include "dijkstra.h"
+#include "parallel.h"
+
+#include <math.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FIXED_POINT_RANGE 1125899906842624.0 /* 2^50: bound on a vertex's sum */
+#define FPS_SHARE 0.25                      /* progress share of the sampling */
+
+/* Vertices grouped by component: members[start[c] .. start[c+1]) increasing. */
+typedef struct components {
+    int count;
+    const int *of;      /* #P component of each vertex */
+    size_t *start;      /* #count+1 */
+    uint32_t *members;  /* #P */
+} components;
+
+typedef struct workers {
+    int count;
+    ps_dijkstra **dijkstra; /* #count */
+    double **dist;          /* #count by #P */
+    int64_t **sums;         /* #count by #P (approx only) */
+} workers;
+
+typedef struct run_ctx {
+    const ps_graph *g;
+    const components *comps;
+    workers *w;
+    const uint32_t *sources;   /* approx: the samples; exact: NULL (vertex i) */
+    const double *scale;       /* approx: #components fixed-point scales */
+    double *f;                 /* exact: #P out */
+    const ps_control *ctl;
+    atomic_int cancelled;
+    atomic_size_t done;
+    size_t total;
+} run_ctx;
+
+static int cancel_requested(const ps_control *ctl) {
+    return ctl && ctl->cancel && *ctl->cancel;
+}
+
+static void report(const ps_control *ctl, double fraction) {
+    if (ctl && ctl->progress) ctl->progress(ctl->user, PS_PHASE_CENTRALITY, fraction);
+}
+
+static void components_free(components *c) {
+    free(c->start), free(c->members);
+}
+
+static ps_status components_build(const ps_graph *g, const int *of, int count, components *c) {
+    c->count = count;
+    c->of = of;
+    c->start = calloc((size_t)count + 1, sizeof *c->start);
+    c->members = malloc((g->n ? g->n : 1) * sizeof *c->members);
+    if (!c->start || !c->members) return PS_ERR_NOMEM;
+    for (size_t v = 0; v < g->n; v++) c->start[of[v] + 1]++;
+    for (int i = 0; i < count; i++) c->start[i + 1] += c->start[i];
+    size_t *fill = c->start; /* advanced while filling, then shifted back */
+    for (size_t v = 0; v < g->n; v++) c->members[fill[of[v]]++] = (uint32_t)v;
+    for (int i = count; i > 0; i--) c->start[i] = c->start[i - 1];
+    c->start[0] = 0;
+    return PS_OK;
+}
+
+static void workers_free(workers *w) {
+    for (int i = 0; i < w->count; i++) {
+        if (w->dijkstra) ps_dijkstra_free(w->dijkstra[i]);
+        if (w->dist) free(w->dist[i]);
+        if (w->sums) free(w->sums[i]);
+    }
+    free(w->dijkstra), free(w->dist), free(w->sums);
+}
+
+static ps_status workers_build(size_t n, int count, int with_sums, workers *w) {
+    w->count = count;
+    w->dijkstra = calloc((size_t)count, sizeof *w->dijkstra);
+    w->dist = calloc((size_t)count, sizeof *w->dist);
+    w->sums = with_sums ? calloc((size_t)count, sizeof *w->sums) : NULL;
+    if (!w->dijkstra || !w->dist || (with_sums && !w->sums)) return PS_ERR_NOMEM;
+    size_t alloc_n = n ? n : 1;
+    for (int i = 0; i < count; i++) {
+        w->dijkstra[i] = ps_dijkstra_new(n);
+        w->dist[i] = malloc(alloc_n * sizeof *w->dist[i]);
+        if (with_sums) w->sums[i] = calloc(alloc_n, sizeof *w->sums[i]);
+        if (!w->dijkstra[i] || !w->dist[i] || (with_sums && !w->sums[i])) return PS_ERR_NOMEM;
+    }
+    return PS_OK;
+}
+
+/* Worker 0 alone reports, so fractions are monotone and never concurrent. */
+static void finish_run(run_ctx *r, int worker) {
+    size_t done = atomic_fetch_add(&r->done, 1) + 1;
+    if (worker == 0) report(r->ctl, FPS_SHARE + (1.0 - FPS_SHARE) * (double)done / (double)r->total);
+}
+
+static int should_stop(run_ctx *r) {
+    if (atomic_load(&r->cancelled)) return 1;
+    if (!cancel_requested(r->ctl)) return 0;
+    atomic_store(&r->cancelled, 1);
+    return 1;
+}
+
+static void exact_runs(void *ctx, size_t begin, size_t end, int worker) {
+    run_ctx *r = ctx;
+    double *dist = r->w->dist[worker];
+    for (size_t s = begin; s < end && !should_stop(r); s++) {
+        uint32_t source = (uint32_t)s;
+        ps_dijkstra_run(r->w->dijkstra[worker], r->g, &source, 1, dist, NULL);
+        int c = r->comps->of[s];
+        size_t first = r->comps->start[c], last = r->comps->start[c + 1];
+        double sum = 0.0;
+        for (size_t i = first; i < last; i++) sum += dist[r->comps->members[i]];
+        r->f[s] = sum / (double)(last - first);
+        finish_run(r, worker);
+    }
+}
+
+static void sample_runs(void *ctx, size_t begin, size_t end, int worker) {
+    run_ctx *r = ctx;
+    double *dist = r->w->dist[worker];
+    int64_t *sums = r->w->sums[worker];
+    for (size_t s = begin; s < end && !should_stop(r); s++) {
+        uint32_t source = r->sources[s];
+        ps_dijkstra_run(r->w->dijkstra[worker], r->g, &source, 1, dist, NULL);
+        int c = r->comps->of[source];
+        double scale = r->scale[c];
+        for (size_t i = r->comps->start[c]; i < r->comps->start[c + 1]; i++) {
+            uint32_t v = r->comps->members[i];
+            sums[v] += llround(dist[v] * scale);
+        }
+        finish_run(r, worker);
+    }
+}
+
+/* Samples per component: round(S * size / n), at least 1, at most size. */
+static size_t share_of(size_t samples, size_t size, size_t n) {
+    size_t s = (size_t)llround((double)samples * (double)size / (double)n);
+    if (s < 1) s = 1;
+    return s > size ? size : s;
+}
+
+static uint32_t farthest_member(const components *comps, int c, const double *mind) {
+    uint32_t best = comps->members[comps->start[c]];
+    for (size_t i = comps->start[c]; i < comps->start[c + 1]; i++) {
+        uint32_t v = comps->members[i];
+        if (mind[v] > mind[best]) best = v;
+    }
+    return best;
+}
+
+typedef struct sampling {
+    uint32_t *ids;    /* #total samples, component by component */
+    size_t total;
+    double *scale;    /* #components fixed-point scale */
+    size_t *count;    /* #components samples in each */
+} sampling;
+
+static void sampling_free(sampling *s) {
+    free(s->ids), free(s->scale), free(s->count);
+}
+
+/* Farthest-point sampling of every component; mind #P scratch. */
+static ps_status choose_samples(const ps_graph *g, const components *comps, size_t samples,
+                                ps_dijkstra *dij, double *mind, const ps_control *ctl,
+                                sampling *s) {
+    s->scale = malloc((size_t)comps->count * sizeof *s->scale);
+    s->count = malloc((size_t)comps->count * sizeof *s->count);
+    if (!s->scale || !s->count) return PS_ERR_NOMEM;
+    s->total = 0;
+    for (int c = 0; c < comps->count; c++) {
+        s->count[c] = share_of(samples, comps->start[c + 1] - comps->start[c], g->n);
+        s->total += s->count[c];
+    }
+    s->ids = malloc(s->total * sizeof *s->ids);
+    if (!s->ids) return PS_ERR_NOMEM;
+    for (size_t v = 0; v < g->n; v++) mind[v] = INFINITY;
+    size_t chosen = 0;
+    for (int c = 0; c < comps->count; c++) {
+        double bound = 0.0;
+        for (size_t i = 0; i < s->count[c]; i++) {
+            if (cancel_requested(ctl)) return PS_ERR_CANCELLED;
+            uint32_t v = i == 0 ? comps->members[comps->start[c]] : farthest_member(comps, c, mind);
+            ps_dijkstra_lower(dij, g, v, mind);
+            /* After the first run mind holds distances from one vertex; twice
+             * its eccentricity bounds every distance in the component. */
+            if (i == 0) bound = 2.0 * mind[farthest_member(comps, c, mind)];
+            s->ids[chosen++] = v;
+            report(ctl, FPS_SHARE * (double)chosen / (double)s->total);
+        }
+        s->scale[c] = bound > 0.0 ? FIXED_POINT_RANGE / (bound * (double)s->count[c]) : 1.0;
+    }
+    return PS_OK;
+}
+
+static void fixed_point_means(const components *comps, const sampling *s, const workers *w,
+                              double *f) {
+    for (int c = 0; c < comps->count; c++)
+        for (size_t i = comps->start[c]; i < comps->start[c + 1]; i++) {
+            uint32_t v = comps->members[i];
+            int64_t total = 0;
+            for (int k = 0; k < w->count; k++) total += w->sums[k][v];
+            f[v] = (double)total / s->scale[c] / (double)s->count[c];
+        }
+}
+
+static ps_status run_parallel(run_ctx *r, int threads, ps_range_fn fn) {
+    atomic_init(&r->cancelled, 0);
+    atomic_init(&r->done, 0);
+    ps_parallel_for(threads, r->total, 1, fn, r);
+    if (atomic_load(&r->cancelled)) return PS_ERR_CANCELLED;
+    report(r->ctl, 1.0);
+    return PS_OK;
+}
+
+static ps_status approx_centrality(const ps_graph *g, const components *comps, size_t samples,
+                                   workers *w, const ps_control *ctl, double *f, sampling *s) {
+    ps_status st = choose_samples(g, comps, samples, w->dijkstra[0], w->dist[0], ctl, s);
+    if (st != PS_OK) return st;
+    run_ctx r = {.g = g, .comps = comps, .w = w, .sources = s->ids, .scale = s->scale,
+                 .ctl = ctl, .total = s->total};
+    st = run_parallel(&r, w->count, sample_runs);
+    if (st == PS_OK) fixed_point_means(comps, s, w, f);
+    return st;
+}
+
+static ps_status fail_status(ps_status st, ps_error *err) {
+    if (st == PS_ERR_NOMEM) return ps_fail(err, st, "centrality: out of memory");
+    return ps_fail(err, st, "centrality: cancelled");
+}
+
+ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
+                        ps_centrality_mode mode, int samples, int threads,
+                        const ps_control *ctl, double *f, uint32_t **sample_ids,
+                        int *samples_used, ps_error *err) {
+    if (sample_ids) *sample_ids = NULL;
+    if (samples_used) *samples_used = 0;
+    if (mode != PS_CENTRALITY_EXACT && mode != PS_CENTRALITY_APPROX)
+        return ps_fail(err, PS_ERR_INVALID, "centrality: mode must be exact or approx");
+    if (samples < 0) return ps_fail(err, PS_ERR_INVALID, "centrality: samples %d < 0", samples);
+    if (g->n == 0) return PS_OK;
+    int exact = mode == PS_CENTRALITY_EXACT;
+    components comps = {0};
+    workers w = {0};
+    sampling s = {0};
+    ps_status st = components_build(g, component, n_components, &comps);
+    if (st == PS_OK) st = workers_build(g->n, ps_parallel_threads(threads), !exact, &w);
+    if (st == PS_OK && exact) {
+        run_ctx r = {.g = g, .comps = &comps, .w = &w, .f = f, .ctl = ctl, .total = g->n};
+        st = run_parallel(&r, w.count, exact_runs);
+    } else if (st == PS_OK) {
+        size_t want = samples ? (size_t)samples : (size_t)ceil(sqrt((double)g->n));
+        st = approx_centrality(g, &comps, want, &w, ctl, f, &s);
+    }
+    if (st == PS_OK && !exact && samples_used) *samples_used = (int)s.total;
+    if (st == PS_OK && !exact && sample_ids) *sample_ids = s.ids, s.ids = NULL;
+    sampling_free(&s);
+    workers_free(&w);
+    components_free(&comps);
+    return st == PS_OK ? PS_OK : fail_status(st, err);
+}

@@ -1,0 +1,209 @@
+/* test_centrality.c: exact centrality has the path graph's closed form,
+ * approx is close to exact on the shapes (RMS of normalized f < 0.08), both
+ * are bit-identical for any thread count, and cancel / progress behave. */
+#include "centrality.h"
+#include "knn_graph.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Paths 0..a-1 and a..n-1 with unit edges, and an isolated last vertex. */
+static void two_paths(size_t a, size_t n, ps_graph *g) {
+    g->n = n;
+    g->offsets = malloc((n + 1) * sizeof *g->offsets);
+    g->neighbors = malloc(2 * n * sizeof *g->neighbors);
+    g->weights = malloc(2 * n * sizeof *g->weights);
+    size_t m = 0;
+    for (size_t p = 0; p < n; p++) {
+        g->offsets[p] = m;
+        int last = p == n - 1;
+        if (p != 0 && p != a && !last) g->neighbors[m] = (uint32_t)p - 1, g->weights[m++] = 1.0;
+        if (p + 1 != a && p + 2 < n) g->neighbors[m] = (uint32_t)p + 1, g->weights[m++] = 1.0;
+    }
+    g->offsets[n] = m;
+}
+
+/* sum_j |i - j| / len on a path of len vertices */
+static double path_mean(size_t i, size_t len) {
+    double left = (double)i * (double)(i + 1) / 2.0;
+    double right = (double)(len - 1 - i) * (double)(len - i) / 2.0;
+    return (left + right) / (double)len;
+}
+
+static void test_exact_path_closed_form(void) {
+    size_t a = 30, n = 51;
+    ps_graph g;
+    two_paths(a, n, &g);
+    int comp[51];
+    REQUIRE(ps_graph_components(&g, comp) == 3);
+    double f[51];
+    int used = -1;
+    uint32_t *ids = (uint32_t *)1;
+    REQUIRE(ps_centrality(&g, comp, 3, PS_CENTRALITY_EXACT, 0, 2, NULL, f, &ids, &used, NULL) ==
+            PS_OK);
+    CHECK(used == 0 && ids == NULL);
+    for (size_t i = 0; i < a; i++) CHECK_NEAR(f[i], path_mean(i, a), 1e-12);
+    for (size_t i = a; i < n - 1; i++) CHECK_NEAR(f[i], path_mean(i - a, n - 1 - a), 1e-12);
+    CHECK(f[n - 1] == 0.0);
+    ps_graph_free(&g);
+}
+
+/* With as many samples as points, approx samples every vertex: it is exact. */
+static void test_approx_all_samples_is_exact(void) {
+    size_t a = 30, n = 51;
+    ps_graph g;
+    two_paths(a, n, &g);
+    int comp[51];
+    ps_graph_components(&g, comp);
+    double f[51];
+    int used = 0;
+    uint32_t *ids = NULL;
+    REQUIRE(ps_centrality(&g, comp, 3, PS_CENTRALITY_APPROX, 51, 3, NULL, f, &ids, &used, NULL) ==
+            PS_OK);
+    CHECK(used == 51);
+    REQUIRE(ids);
+    CHECK(ids[0] == 0 && ids[1] == a - 1); /* lowest vertex, then the far end */
+    CHECK(ids[a] == a && ids[n - 1] == n - 1);
+    for (size_t i = 0; i < a; i++) CHECK_NEAR(f[i], path_mean(i, a), 1e-9);
+    for (size_t i = a; i < n - 1; i++) CHECK_NEAR(f[i], path_mean(i - a, n - 1 - a), 1e-9);
+    CHECK(f[n - 1] == 0.0);
+    free(ids);
+    ps_graph_free(&g);
+}
+
+typedef struct shape_graph {
+    size_t n;
+    ps_graph g;
+    int *comp;
+    int n_comp;
+} shape_graph;
+
+static int shape_graph_make(double *pts, size_t n, shape_graph *s) {
+    s->n = n;
+    s->comp = malloc(n * sizeof *s->comp);
+    int ok = pts && s->comp && ps_knn_graph_build(pts, n, 3, 7, 2, &s->g, NULL) == PS_OK;
+    if (ok) s->n_comp = ps_graph_components(&s->g, s->comp);
+    free(pts);
+    return ok;
+}
+
+static void shape_graph_free(shape_graph *s) {
+    ps_graph_free(&s->g);
+    free(s->comp);
+}
+
+/* RMS difference of f and h, each normalized to [0, 1] per component. */
+static double normalized_rms(const shape_graph *s, const double *f, const double *h) {
+    double lo[2][64], hi[2][64], sq = 0.0;
+    for (int c = 0; c < s->n_comp && c < 64; c++) lo[0][c] = lo[1][c] = INFINITY, hi[0][c] = hi[1][c] = -INFINITY;
+    for (size_t v = 0; v < s->n; v++) {
+        int c = s->comp[v];
+        lo[0][c] = fmin(lo[0][c], f[v]), hi[0][c] = fmax(hi[0][c], f[v]);
+        lo[1][c] = fmin(lo[1][c], h[v]), hi[1][c] = fmax(hi[1][c], h[v]);
+    }
+    for (size_t v = 0; v < s->n; v++) {
+        int c = s->comp[v];
+        double a = (f[v] - lo[0][c]) / (hi[0][c] - lo[0][c]);
+        double b = (h[v] - lo[1][c]) / (hi[1][c] - lo[1][c]);
+        sq += (a - b) * (a - b);
+    }
+    return sqrt(sq / (double)s->n);
+}
+
+static void check_approx_close(double *pts, size_t n, const char *name) {
+    shape_graph s;
+    REQUIRE(shape_graph_make(pts, n, &s));
+    REQUIRE(s.n_comp < 64);
+    double *exact = malloc(n * sizeof *exact), *approx = malloc(n * sizeof *approx);
+    REQUIRE(exact && approx);
+    int used = 0;
+    REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_EXACT, 0, 2, NULL, exact, NULL,
+                          NULL, NULL) == PS_OK);
+    REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2, NULL, approx, NULL,
+                          &used, NULL) == PS_OK);
+    CHECK(used >= (int)ceil(sqrt((double)n)) && used <= (int)ceil(sqrt((double)n)) + s.n_comp);
+    double rms = normalized_rms(&s, exact, approx);
+    CHECK_MSG(rms < 0.08, "%s: RMS of normalized approx - exact = %g", name, rms);
+    free(exact), free(approx);
+    shape_graph_free(&s);
+}
+
+static void test_approx_close_to_exact(void) {
+    size_t n;
+    double *p = ps_shape_dumbbell(0.0, &n, NULL);
+    check_approx_close(p, n, "dumbbell");
+    p = ps_shape_star(0.0, &n, NULL);
+    check_approx_close(p, n, "star");
+    p = ps_shape_hand(40.0, &n, NULL);
+    check_approx_close(p, n, "hand");
+}
+
+static void check_threads_identical(ps_centrality_mode mode) {
+    size_t n;
+    shape_graph s;
+    double *pts = ps_shape_hand(30.0, &n, NULL);
+    REQUIRE(shape_graph_make(pts, n, &s));
+    double *f[3];
+    for (int t = 0; t < 3; t++) {
+        f[t] = malloc(n * sizeof *f[t]);
+        REQUIRE(f[t]);
+        REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, mode, 50, t + 1, NULL, f[t], NULL, NULL,
+                              NULL) == PS_OK);
+    }
+    CHECK(memcmp(f[0], f[1], n * sizeof *f[0]) == 0);
+    CHECK(memcmp(f[0], f[2], n * sizeof *f[0]) == 0);
+    CHECK(f[0][0] > 0.0);
+    for (int t = 0; t < 3; t++) free(f[t]);
+    shape_graph_free(&s);
+}
+
+static void test_threads_identical_exact(void) { check_threads_identical(PS_CENTRALITY_EXACT); }
+static void test_threads_identical_approx(void) { check_threads_identical(PS_CENTRALITY_APPROX); }
+
+typedef struct progress_log {
+    int calls, monotone, wrong_phase;
+    double last;
+    volatile int *cancel_at_half;
+} progress_log;
+
+static void on_progress(void *user, ps_phase phase, double fraction) {
+    progress_log *log = user;
+    log->calls++;
+    log->wrong_phase += phase != PS_PHASE_CENTRALITY;
+    if (fraction < log->last || fraction > 1.0) log->monotone = 0;
+    log->last = fraction;
+    if (log->cancel_at_half && fraction >= 0.5) *log->cancel_at_half = 1;
+}
+
+static void test_progress_and_cancel(void) {
+    size_t n;
+    shape_graph s;
+    double *pts = ps_shape_star(20.0, &n, NULL);
+    REQUIRE(shape_graph_make(pts, n, &s));
+    double *f = malloc(n * sizeof *f);
+    REQUIRE(f);
+    for (int mode = PS_CENTRALITY_EXACT; mode <= PS_CENTRALITY_APPROX; mode++) {
+        progress_log log = {0, 1, 0, 0.0, NULL};
+        ps_control ctl = {on_progress, &log, NULL};
+        REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, (ps_centrality_mode)mode, 40, 2, &ctl, f,
+                              NULL, NULL, NULL) == PS_OK);
+        CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
+
+        volatile int cancel = 0;
+        progress_log stop = {0, 1, 0, 0.0, &cancel};
+        ps_control cctl = {on_progress, &stop, &cancel};
+        ps_error err = {0};
+        CHECK(ps_centrality(&s.g, s.comp, s.n_comp, (ps_centrality_mode)mode, 40, 2, &cctl, f,
+                            NULL, NULL, &err) == PS_ERR_CANCELLED);
+        CHECK(err.status == PS_ERR_CANCELLED && stop.last < 1.0);
+    }
+    free(f);
+    shape_graph_free(&s);
+}
+
+PS_TEST_MAIN(TEST(test_exact_path_closed_form), TEST(test_approx_all_samples_is_exact),
+             TEST(test_approx_close_to_exact), TEST(test_threads_identical_exact),
+             TEST(test_threads_identical_approx), TEST(test_progress_and_cancel))
