@@ -93,12 +93,19 @@ void ps_request_params_default(ps_request_params *rp) {
 
 /* ---- parsing text values ------------------------------------------------ */
 
+/* An integer, also written as an integral number ("1e+05", "7.0": what a
+ * JSON number turned into text may look like); "7.5" is not one. */
 static int parse_int(const char *text, long *out) {
     char *end;
     errno = 0;
     long v = strtol(text, &end, 10);
-    if (end == text || *end != 0 || errno == ERANGE) return 0;
-    *out = v;
+    if (end != text && *end == 0 && errno != ERANGE) {
+        *out = v;
+        return 1;
+    }
+    double d = strtod(text, &end);
+    if (end == text || *end != 0 || !(fabs(d) < 1e15) || d != floor(d)) return 0;
+    *out = (long)d;
     return 1;
 }
 

@@ -79,6 +79,8 @@ static void test_set_every_type(void) {
     CHECK(ps_request_param_set(&rp, "k", "12", &err) == 0 && rp.core.k == 12);
     CHECK(ps_request_param_set(&rp, "samples", "100000", &err) == 0 && rp.core.samples == 100000);
     CHECK(ps_request_param_set(&rp, "threads", "0", &err) == 0 && rp.core.threads == 0);
+    CHECK(ps_request_param_set(&rp, "samples", "1e+05", &err) == 0 && rp.core.samples == 100000);
+    CHECK(ps_request_param_set(&rp, "k", "9.0", &err) == 0 && rp.core.k == 9);
     CHECK(ps_request_param_set(&rp, "ncut-threshold", "0.25", &err) == 0);
     CHECK_NEAR(rp.core.ncut_threshold, 0.25, 0);
     CHECK(ps_request_param_set(&rp, "feature_threshold", "1e-2", &err) == 0);
@@ -141,8 +143,8 @@ static void test_unknown_name_is_400(void) {
 
 static void test_bad_values_are_422(void) {
     const char *k_msg = "parameter 'k' must be an integer in [1, 64], got '%s'";
-    static const char *const bad_k[] = {"abc", "0", "65", "7.5", "", "7x", "-1",
-                                        "99999999999999999999999"};
+    static const char *const bad_k[] = {"abc", "0", "65", "7.5", "", "7x", "-1", "5e+02",
+                                        "99999999999999999999999", "1e300", "inf"};
     char msg[256];
     for (size_t i = 0; i < sizeof bad_k / sizeof bad_k[0]; i++) {
         snprintf(msg, sizeof msg, k_msg, bad_k[i]);
