@@ -1,0 +1,37 @@
+/*
+ * config.h: pointsegd's configuration: command-line flags, each also read
+ * from the environment as POINTSEG_<NAME> (flags win over the environment,
+ * the environment over the defaults).
+ */
+#ifndef PS_CONFIG_H
+#define PS_CONFIG_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+typedef struct ps_config {
+    int port;              /* --port, default 8080 */
+    char bind[64];         /* --bind, default 127.0.0.1 (IPv4 address) */
+    int threads;           /* --threads: worker threads, default = cores */
+    int queue_size;        /* --queue-size: waiting jobs, default 64 */
+    size_t max_body;       /* --max-body: bytes (after gzip), default 256 MiB */
+    size_t max_points;     /* --max-points, default 5,000,000 */
+    int job_ttl;           /* --job-ttl: seconds a finished job is kept, default 600 */
+    int max_jobs_kept;     /* --max-jobs-kept: finished jobs kept, default 1000 */
+    int drain_seconds;     /* --drain-seconds: wait for running jobs on SIGTERM, default 30 */
+    char token[256];       /* --token: bearer token, "" = none */
+    char cors_origin[512]; /* --cors-origin: "*" or comma-separated origins, "" = none */
+    char static_dir[512];  /* --static-dir, default clients/web when it exists */
+    char replica_name[64]; /* --replica-name: job id prefix, "" = none */
+    int quiet;             /* --quiet: no request log */
+} ps_config;
+
+/* Fills c from the defaults, then the environment, then argv.  Returns 0 to
+ * run, 1 when --help or --version was printed to out (exit 0), -1 after
+ * printing an error to err (exit 2). */
+int ps_config_load(ps_config *c, int argc, char **argv, FILE *out, FILE *err);
+
+/* Prints every flag with its environment variable and default. */
+void ps_config_usage(FILE *out);
+
+#endif

@@ -1,0 +1,49 @@
+/* intake.c: request bytes and text parameters -> point set and parameters. */
+#include "intake.h"
+
+#include "decode.h"
+#include "pointseg.h"
+
+#include <string.h>
+#include <strings.h>
+
+static int media_is(const char *ct, const char *name) {
+    size_t n = strlen(name);
+    return !strncasecmp(ct, name, n) && (ct[n] == 0 || ct[n] == ';' || ct[n] == ' ');
+}
+
+ps_media ps_intake_media(const char *ct) {
+    if (!ct || !*ct) return PS_MEDIA_POINTS;
+    while (*ct == ' ') ct++;
+    if (media_is(ct, "application/json")) return PS_MEDIA_JSON;
+    if (media_is(ct, "multipart/form-data")) return PS_MEDIA_MULTIPART;
+    if (media_is(ct, "application/ply") || media_is(ct, "application/octet-stream") ||
+        media_is(ct, "text/plain"))
+        return PS_MEDIA_POINTS;
+    return PS_MEDIA_UNSUPPORTED;
+}
+
+int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,
+                     ps_pointset *out, ps_api_error *err) {
+    ps_decode_limits lim = {max_points, PS_MAX_DIM};
+    memset(out, 0, sizeof *out);
+    if (len == 0) return ps_api_fail(err, 400, "the request body is empty");
+    if (media == PS_MEDIA_JSON) return ps_decode_json(bytes, len, &lim, out, err);
+    return ps_decode(bytes, len, &lim, out, err);
+}
+
+static int wants_ply(const char *accept) {
+    return accept && strstr(accept, "application/ply") != NULL;
+}
+
+int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
+                     size_t n_extra, ps_request_params *rp, ps_api_error *err) {
+    ps_request_params_default(rp);
+    rp->core.threads = 1;
+    if (wants_ply(accept)) rp->output = PS_OUTPUT_PLY;
+    for (size_t i = 0; body && i < body->n_params; i++)
+        if (ps_request_param_set(rp, body->params[i].name, body->params[i].value, err)) return -1;
+    for (size_t i = 0; i < n_extra; i++)
+        if (ps_request_param_set(rp, extra[i].name, extra[i].value ? extra[i].value : "", err)) return -1;
+    return 0;
+}

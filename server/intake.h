@@ -1,0 +1,43 @@
+/*
+ * intake.h: a request's bytes and text parameters into what a job needs: the
+ * decoded point set and the effective ps_request_params.  Knows nothing of
+ * sockets; the HTTP layer collects the pieces.
+ */
+#ifndef PS_INTAKE_H
+#define PS_INTAKE_H
+
+#include <stddef.h>
+
+#include "api_error.h"
+#include "params_table.h"
+#include "pointset.h"
+
+typedef enum ps_media {
+    PS_MEDIA_POINTS = 0,  /* application/ply, application/octet-stream, text/plain */
+    PS_MEDIA_JSON,        /* application/json */
+    PS_MEDIA_MULTIPART,   /* multipart/form-data */
+    PS_MEDIA_UNSUPPORTED
+} ps_media;
+
+/* From a Content-Type header value (NULL = octet-stream). */
+ps_media ps_intake_media(const char *content_type);
+
+typedef struct ps_text_param {
+    const char *name;
+    const char *value;
+} ps_text_param;
+
+/* Decodes len bytes (multipart: the `file` part, recognized by content) into
+ * *out, at most max_points points.  Returns 0 or -1 with err. */
+int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,
+                     ps_pointset *out, ps_api_error *err);
+
+/* The parameters of a request, later sources winning: defaults (threads = 1
+ * so jobs run side by side), the Accept header (application/ply: PLY
+ * output; may be NULL), the body's own params, then the extra pairs
+ * (multipart fields, then the query string).  Returns 0 or -1 with err (400
+ * unknown name, 422 bad value). */
+int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
+                     size_t n_extra, ps_request_params *rp, ps_api_error *err);
+
+#endif

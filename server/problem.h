@@ -1,0 +1,19 @@
+/*
+ * problem.h: error documents in the RFC 9457 problem+json format
+ * ({"type", "title", "status", "detail"}), the body of every error answer.
+ */
+#ifndef PS_PROBLEM_H
+#define PS_PROBLEM_H
+
+#include <stddef.h>
+
+#define PS_PROBLEM_MEDIA_TYPE "application/problem+json"
+
+/* The reason phrase of an HTTP status ("Unprocessable Content"). */
+const char *ps_problem_title(int status);
+
+/* A malloc'ed problem+json document for status with detail (may be NULL);
+ * *len receives its length.  NULL only when memory runs out. */
+char *ps_problem_json(int status, const char *detail, size_t *len);
+
+#endif

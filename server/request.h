@@ -1,0 +1,57 @@
+/*
+ * request.h: the state shared by the HTTP layer's files: the server (config,
+ * job backend, libmicrohttpd daemon, the list of requests waiting for their
+ * job) and one request's state from its first callback to its completion.
+ */
+#ifndef PS_REQUEST_H
+#define PS_REQUEST_H
+
+#include <pthread.h>
+#include <stddef.h>
+
+#include "api_error.h"
+#include "body.h"
+#include "config.h"
+#include "intake.h"
+#include "jobs.h"
+#include "metrics.h"
+
+struct MHD_Connection;
+struct MHD_Daemon;
+typedef struct ps_request ps_request;
+
+typedef struct ps_server {
+    const ps_config *cfg;
+    ps_jobs *jobs;
+    struct MHD_Daemon *mhd;
+    pthread_mutex_t lock;     /* guards waiting, in_flight, stop_watch */
+    pthread_cond_t changed;   /* in_flight dropped, or stop_watch set */
+    ps_request *waiting;      /* suspended synchronous requests */
+    size_t in_flight;         /* requests begun and not completed */
+    int stop_watch;
+    pthread_t watcher;        /* cancels jobs of clients that went away */
+    int has_watcher;
+} ps_server;
+
+struct ps_request {
+    ps_server *srv;
+    struct MHD_Connection *conn;
+    double t0;                /* monotonic seconds at the first callback */
+    char method[16];
+    char path[256];
+    ps_route route;
+    char job_id[96];          /* job of this request ("" = none) */
+    int status;               /* answered status, 0 = not yet */
+    size_t bytes;             /* answered body bytes */
+    ps_media media;
+    ps_body *body;
+    ps_api_error error;       /* upload failure, or a failed submit */
+    int failed;
+    int suspended;            /* waits for its synchronous job */
+    ps_job *job;              /* synchronous job, referenced */
+    int waiting;              /* linked in srv->waiting */
+    int cancel_sent;
+    ps_request *prev, *next;  /* srv->waiting */
+};
+
+#endif

@@ -1,0 +1,365 @@
+/* routes.c: routing, authorization, and the handler of every route. */
+#include "routes.h"
+
+#include "openapi.h"
+#include "respond.h"
+#include "static_files.h"
+
+#include <cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+#include <unistd.h>
+
+#define MAX_QUERY_PARAMS 64
+
+static const char *const allow_get[] = {MHD_HTTP_HEADER_ALLOW, "GET, HEAD, OPTIONS", NULL};
+static const char *const allow_post[] = {MHD_HTTP_HEADER_ALLOW, "POST, OPTIONS", NULL};
+static const char *const allow_job[] = {MHD_HTTP_HEADER_ALLOW, "GET, DELETE, OPTIONS", NULL};
+static const char *const retry_after[] = {MHD_HTTP_HEADER_RETRY_AFTER, "1", NULL};
+
+static int is(const ps_request *r, const char *method) { return !strcmp(r->method, method); }
+
+/* Sets r->route and, for /jobs/{id}..., r->job_id. */
+static void match_route(ps_request *r) {
+    static const struct { const char *path; ps_route route; } fixed[] = {
+        {"/segment", PS_ROUTE_SEGMENT}, {"/jobs", PS_ROUTE_JOBS}, {"/healthz", PS_ROUTE_HEALTHZ},
+        {"/readyz", PS_ROUTE_READYZ}, {"/metrics", PS_ROUTE_METRICS},
+        {"/openapi.json", PS_ROUTE_OPENAPI}, {"/version", PS_ROUTE_VERSION}};
+    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
+        if (!strcmp(r->path, fixed[i].path)) {
+            r->route = fixed[i].route;
+            return;
+        }
+    r->route = PS_ROUTE_STATIC;
+    if (strncmp(r->path, "/jobs/", 6)) return;
+    const char *id = r->path + 6, *slash = strchr(id, '/');
+    size_t len = slash ? (size_t)(slash - id) : strlen(id);
+    if (!len || len >= sizeof r->job_id) return;
+    if (slash && strcmp(slash, "/result")) return;
+    memcpy(r->job_id, id, len);
+    r->job_id[len] = 0;
+    r->route = slash ? PS_ROUTE_JOB_RESULT : PS_ROUTE_JOB;
+}
+
+/* Compares in time independent of where they differ. */
+static int same_secret(const char *a, const char *b) {
+    size_t la = strlen(a), lb = strlen(b);
+    unsigned char diff = (unsigned char)(la != lb);
+    for (size_t i = 0; i < lb; i++) diff |= (unsigned char)(a[i < la ? i : 0] ^ b[i]);
+    return la > 0 && diff == 0;
+}
+
+static int authorized(ps_request *r) {
+    const char *token = r->srv->cfg->token;
+    if (!*token || r->route == PS_ROUTE_HEALTHZ) return 1;
+    const char *h = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_AUTHORIZATION);
+    return h && !strncasecmp(h, "Bearer ", 7) && same_secret(h + 7, token);
+}
+
+static enum MHD_Result respond_json(ps_request *r, int status, cJSON *doc, const char *const *headers) {
+    char *text = doc ? cJSON_PrintUnformatted(doc) : NULL;
+    cJSON_Delete(doc);
+    if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
+    return ps_respond(r, status, "application/json", text, strlen(text), headers);
+}
+
+static void add_time(cJSON *o, const char *name, double t) {
+    char text[32];
+    time_t secs = (time_t)t;
+    struct tm tm;
+    if (t <= 0) return;
+    gmtime_r(&secs, &tm);
+    size_t n = strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &tm);
+    snprintf(text + n, sizeof text - n, ".%03dZ", (int)((t - (double)secs) * 1000));
+    cJSON_AddStringToObject(o, name, text);
+}
+
+static cJSON *status_document(ps_job *job) {
+    ps_job_status st;
+    ps_job_get_status(job, &st);
+    cJSON *doc = cJSON_CreateObject(), *progress = cJSON_CreateObject();
+    cJSON_AddStringToObject(doc, "id", st.id);
+    cJSON_AddStringToObject(doc, "status", ps_job_state_name(st.state));
+    cJSON_AddStringToObject(progress, "phase", ps_phase_name(st.phase));
+    cJSON_AddNumberToObject(progress, "fraction", st.state == PS_JOB_DONE ? 1.0 : st.fraction);
+    cJSON_AddItemToObject(doc, "progress", progress);
+    cJSON_AddNumberToObject(doc, "points", (double)st.n_points);
+    add_time(doc, "created", st.created);
+    add_time(doc, "started", st.started);
+    add_time(doc, "finished", st.finished);
+    if (st.state == PS_JOB_FAILED) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddNumberToObject(e, "status", st.error_status);
+        cJSON_AddStringToObject(e, "detail", st.error);
+        cJSON_AddItemToObject(doc, "error", e);
+    }
+    return doc;
+}
+
+static enum MHD_Result job_route(ps_request *r) {
+    ps_job *job = ps_jobs_find(r->srv->jobs, r->job_id);
+    if (!job) return ps_respond_problem(r, 404, NULL, "no job '%s' (unknown or expired)", r->job_id);
+    enum MHD_Result rc;
+    if (is(r, "DELETE")) {
+        ps_job_cancel(job);
+        rc = respond_json(r, 202, status_document(job), NULL);
+    } else {
+        rc = respond_json(r, 200, status_document(job), NULL);
+    }
+    ps_job_release(job);
+    return rc;
+}
+
+/* The answer of a finished job (its document, or its error). */
+static enum MHD_Result answer_from_job(ps_request *r, ps_job *job, int cancelled_status) {
+    size_t len;
+    const char *media;
+    const char *doc = ps_job_result(job, &len, &media);
+    if (doc) return ps_respond_copy(r, 200, media, doc, len, NULL);
+    ps_job_status st;
+    ps_job_get_status(job, &st);
+    if (st.state == PS_JOB_FAILED) return ps_respond_problem(r, st.error_status, NULL, "%s", st.error);
+    if (st.state == PS_JOB_CANCELLED)
+        return ps_respond_problem(r, cancelled_status, cancelled_status == 503 ? retry_after : NULL,
+                                  "job %s was cancelled", st.id);
+    return ps_respond_problem(r, 409, NULL, "job %s is %s, not done", st.id, ps_job_state_name(st.state));
+}
+
+static enum MHD_Result result_route(ps_request *r) {
+    ps_job *job = ps_jobs_find(r->srv->jobs, r->job_id);
+    if (!job) return ps_respond_problem(r, 404, NULL, "no job '%s' (unknown or expired)", r->job_id);
+    enum MHD_Result rc = answer_from_job(r, job, 409);
+    ps_job_release(job);
+    return rc;
+}
+
+static enum MHD_Result simple_route(ps_request *r) {
+    cJSON *doc = cJSON_CreateObject();
+    ps_jobs_stats st;
+    size_t len = 0;
+    char *text;
+    switch (r->route) {
+    case PS_ROUTE_HEALTHZ:
+        cJSON_AddStringToObject(doc, "status", "ok");
+        return respond_json(r, 200, doc, NULL);
+    case PS_ROUTE_READYZ:
+        cJSON_Delete(doc);
+        if (ps_jobs_full(r->srv->jobs)) return ps_respond_problem(r, 503, retry_after, "the job queue is full");
+        ps_jobs_get_stats(r->srv->jobs, &st);
+        doc = cJSON_CreateObject();
+        cJSON_AddStringToObject(doc, "status", "ready");
+        cJSON_AddNumberToObject(doc, "queued", (double)st.queued);
+        cJSON_AddNumberToObject(doc, "capacity", (double)st.capacity);
+        return respond_json(r, 200, doc, NULL);
+    case PS_ROUTE_VERSION:
+        cJSON_AddStringToObject(doc, "pointseg", PS_VERSION);
+        cJSON_AddStringToObject(doc, "libmicrohttpd", MHD_get_version());
+        return respond_json(r, 200, doc, NULL);
+    case PS_ROUTE_METRICS:
+        cJSON_Delete(doc);
+        ps_jobs_get_stats(r->srv->jobs, &st);
+        text = ps_metrics_render(&st, &len);
+        if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
+        return ps_respond(r, 200, "text/plain; version=0.0.4", text, len, NULL);
+    default:
+        cJSON_Delete(doc);
+        text = ps_openapi_json(&len);
+        if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
+        return ps_respond(r, 200, "application/json", text, len, NULL);
+    }
+}
+
+static enum MHD_Result static_route(ps_request *r) {
+    size_t size;
+    const char *media;
+    int fd = ps_static_open(r->srv->cfg->static_dir, r->path, &size, &media);
+    if (fd < 0) return ps_respond_problem(r, 404, NULL, "no route or file %s", r->path);
+    if (!is(r, "GET") && !is(r, "HEAD")) {
+        close(fd);
+        return ps_respond_problem(r, 405, allow_get, "%s is not allowed on %s", r->method, r->path);
+    }
+    struct MHD_Response *resp = MHD_create_response_from_fd(size, fd);
+    if (!resp) {
+        close(fd);
+        return MHD_NO;
+    }
+    MHD_add_response_header(resp, MHD_HTTP_HEADER_CONTENT_TYPE, media);
+    r->status = 200;
+    r->bytes = size;
+    enum MHD_Result rc = MHD_queue_response(r->conn, 200, resp);
+    MHD_destroy_response(resp);
+    return rc;
+}
+
+static const char *const *allowed_methods(ps_route route) {
+    switch (route) {
+    case PS_ROUTE_SEGMENT: case PS_ROUTE_JOBS: return allow_post;
+    case PS_ROUTE_JOB: return allow_job;
+    default: return allow_get;
+    }
+}
+
+static int method_allowed(const ps_request *r) {
+    switch (r->route) {
+    case PS_ROUTE_SEGMENT: case PS_ROUTE_JOBS: return is(r, "POST");
+    case PS_ROUTE_JOB: return is(r, "GET") || is(r, "HEAD") || is(r, "DELETE");
+    case PS_ROUTE_STATIC: return 1;
+    default: return is(r, "GET") || is(r, "HEAD");
+    }
+}
+
+/* Checks the headers of an upload and prepares its body. */
+static enum MHD_Result begin_upload(ps_request *r) {
+    const ps_config *cfg = r->srv->cfg;
+    const char *ct = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_TYPE);
+    const char *ce = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_ENCODING);
+    const char *cl = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_LENGTH);
+    unsigned long long declared = cl ? strtoull(cl, NULL, 10) : 0;
+    if (declared > cfg->max_body)
+        return ps_respond_problem(r, 413, NULL, "Content-Length %llu is over the limit of %zu bytes",
+                                  declared, cfg->max_body);
+    r->media = ps_intake_media(ct);
+    if (r->media == PS_MEDIA_UNSUPPORTED)
+        return ps_respond_problem(r, 415, NULL, "Content-Type %s is not supported (use application/ply, "
+                                  "application/octet-stream, text/plain, application/json or "
+                                  "multipart/form-data)", ct);
+    int gzip = ce && !strcasecmp(ce, "gzip");
+    if (ce && !gzip && strcasecmp(ce, "identity"))
+        return ps_respond_problem(r, 415, NULL, "Content-Encoding %s is not supported (use gzip)", ce);
+    r->body = ps_body_new(r->conn, cfg->max_body, gzip ? 0 : (size_t)declared, gzip,
+                          r->media == PS_MEDIA_MULTIPART, &r->error);
+    if (!r->body) return ps_respond_error(r, &r->error);
+    return MHD_YES;
+}
+
+enum MHD_Result ps_routes_begin(ps_request *r) {
+    match_route(r);
+    if (is(r, "OPTIONS")) return ps_respond_preflight(r);
+    if (!authorized(r)) {
+        static const char *const challenge[] = {MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer", NULL};
+        return ps_respond_problem(r, 401, challenge, "a valid bearer token is required");
+    }
+    if (!method_allowed(r))
+        return ps_respond_problem(r, 405, allowed_methods(r->route), "%s is not allowed on %s",
+                                  r->method, ps_route_name(r->route));
+    switch (r->route) {
+    case PS_ROUTE_SEGMENT: case PS_ROUTE_JOBS: return begin_upload(r);
+    case PS_ROUTE_JOB: return job_route(r);
+    case PS_ROUTE_JOB_RESULT: return result_route(r);
+    case PS_ROUTE_STATIC: return static_route(r);
+    default: return simple_route(r);
+    }
+}
+
+typedef struct query_params {
+    ps_text_param items[MAX_QUERY_PARAMS];
+    size_t n;
+    int overflow;
+} query_params;
+
+static enum MHD_Result collect_query(void *cls, enum MHD_ValueKind kind, const char *key, const char *value) {
+    query_params *q = cls;
+    (void)kind;
+    if (q->n == MAX_QUERY_PARAMS) {
+        q->overflow = 1;
+        return MHD_NO;
+    }
+    q->items[q->n++] = (ps_text_param){key, value};
+    return MHD_YES;
+}
+
+/* Multipart fields, then the query string. */
+static int gather_params(ps_request *r, const ps_pointset *ps, ps_request_params *rp) {
+    query_params q = {.n = 0};
+    size_t n_fields;
+    const ps_body_field *fields = ps_body_fields(r->body, &n_fields);
+    for (size_t i = 0; i < n_fields && q.n < MAX_QUERY_PARAMS; i++)
+        q.items[q.n++] = (ps_text_param){fields[i].name, fields[i].value};
+    MHD_get_connection_values(r->conn, MHD_GET_ARGUMENT_KIND, collect_query, &q);
+    if (q.overflow) return ps_api_fail(&r->error, 400, "more than %d parameters", MAX_QUERY_PARAMS);
+    const char *accept = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT);
+    return ps_intake_params(ps, accept, q.items, q.n, rp, &r->error);
+}
+
+static void job_ended(void *user) {
+    ps_request *r = user;
+    ps_server *s = r->srv;
+    pthread_mutex_lock(&s->lock);
+    if (r->waiting) {
+        if (r->prev) r->prev->next = r->next;
+        else s->waiting = r->next;
+        if (r->next) r->next->prev = r->prev;
+        r->waiting = 0;
+    }
+    pthread_mutex_unlock(&s->lock);
+    MHD_resume_connection(r->conn);
+}
+
+/* Suspends the connection and queues the job; job_ended resumes it. */
+static enum MHD_Result wait_for_job(ps_request *r, ps_pointset *ps, const ps_request_params *rp) {
+    ps_server *s = r->srv;
+    pthread_mutex_lock(&s->lock);
+    r->prev = NULL;
+    r->next = s->waiting;
+    if (s->waiting) s->waiting->prev = r;
+    s->waiting = r;
+    r->waiting = 1;
+    pthread_mutex_unlock(&s->lock);
+    r->suspended = 1;
+    MHD_suspend_connection(r->conn);
+    int rc = ps_jobs_submit(s->jobs, ps, rp, job_ended, r, &r->job);
+    if (rc) {
+        r->failed = 1;
+        ps_api_fail(&r->error, rc, rc == 503 ? "the job queue is full (%d waiting)" : "out of memory",
+                    s->cfg->queue_size);
+        job_ended(r);
+        return MHD_YES;
+    }
+    pthread_mutex_lock(&s->lock);
+    snprintf(r->job_id, sizeof r->job_id, "%s", ps_job_id(r->job));
+    pthread_mutex_unlock(&s->lock);
+    return MHD_YES;
+}
+
+static enum MHD_Result submit_async(ps_request *r, ps_pointset *ps, const ps_request_params *rp) {
+    ps_job *job;
+    int rc = ps_jobs_submit(r->srv->jobs, ps, rp, NULL, NULL, &job);
+    if (rc == 503) return ps_respond_problem(r, 503, retry_after, "the job queue is full (%d waiting)",
+                                             r->srv->cfg->queue_size);
+    if (rc) return ps_respond_problem(r, 500, NULL, "out of memory");
+    char location[128];
+    snprintf(r->job_id, sizeof r->job_id, "%s", ps_job_id(job));
+    snprintf(location, sizeof location, "/jobs/%s", r->job_id);
+    ps_job_release(job);
+    const char *const headers[] = {MHD_HTTP_HEADER_LOCATION, location, NULL};
+    cJSON *doc = cJSON_CreateObject();
+    cJSON_AddStringToObject(doc, "id", r->job_id);
+    cJSON_AddStringToObject(doc, "status", "queued");
+    return respond_json(r, 202, doc, headers);
+}
+
+enum MHD_Result ps_routes_upload_done(ps_request *r) {
+    ps_pointset ps;
+    ps_request_params rp;
+    size_t len;
+    if (r->failed || ps_body_finish(r->body, &r->error)) return ps_respond_error(r, &r->error);
+    const char *bytes = ps_body_data(r->body, &len);
+    if (ps_intake_decode(bytes, len, r->media, r->srv->cfg->max_points, &ps, &r->error))
+        return ps_respond_error(r, &r->error);
+    if (gather_params(r, &ps, &rp)) {
+        ps_pointset_free(&ps);
+        return ps_respond_error(r, &r->error);
+    }
+    ps_body_free(r->body);
+    r->body = NULL;
+    if (r->route == PS_ROUTE_JOBS) return submit_async(r, &ps, &rp);
+    return wait_for_job(r, &ps, &rp);
+}
+
+enum MHD_Result ps_routes_resumed(ps_request *r) {
+    if (!r->job) return ps_respond_error(r, &r->error);
+    return answer_from_job(r, r->job, 503);
+}

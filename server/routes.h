@@ -1,0 +1,24 @@
+/*
+ * routes.h: what each route does.  The HTTP layer calls ps_routes_begin on a
+ * request's first callback (headers known), ps_routes_upload_done once its
+ * body is in, and ps_routes_resumed when its synchronous job has ended.
+ * Each returns the libmicrohttpd result to hand back.
+ */
+#ifndef PS_ROUTES_H
+#define PS_ROUTES_H
+
+#include <microhttpd.h>
+
+#include "request.h"
+
+/* Answers at once, or (POST /segment, /jobs) sets r->body for the upload. */
+enum MHD_Result ps_routes_begin(ps_request *r);
+
+/* Decodes, then answers 202 (/jobs) or suspends the connection until the
+ * job ends (/segment). */
+enum MHD_Result ps_routes_upload_done(ps_request *r);
+
+/* Answers a resumed /segment request from its job. */
+enum MHD_Result ps_routes_resumed(ps_request *r);
+
+#endif
