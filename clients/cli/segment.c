@@ -41,7 +41,7 @@ static const char segment_usage[] =
     "{\"points\": [[x,y,z], ...], \"params\": {...}}; \"-\" reads stdin) into its\n"
     "parts and writes the result to OUT (default: stdout).\n"
     "\n"
-    "  -o OUT          write the result to OUT instead of stdout\n"
+    "  -o OUT          write the result to OUT (\"-\": stdout, the default)\n"
     "  --server URL    segment on a pointsegd daemon (not supported yet)\n"
     "  -h, --help      this text\n"
     "\n"
@@ -191,8 +191,9 @@ static char *encode(const ps_request_params *rp, const ps_pointset *ps, const ps
     return ps_encode_json(r, rp->include, len);
 }
 
-/* Writes bytes to path (NULL = stdout); 0 or an exit status. */
+/* Writes bytes to path (NULL or "-" = stdout); 0 or an exit status. */
 static int write_output(const char *path, const char *bytes, size_t len) {
+    if (path && strcmp(path, "-") == 0) path = NULL;
     FILE *f = path ? fopen(path, "wb") : stdout;
     int ok = f && fwrite(bytes, 1, len, f) == len;
     if (f) ok = (path ? fclose(f) : fflush(f)) == 0 && ok;
