@@ -6,6 +6,8 @@
  * index).  A vertex with no higher neighbour is a sink.  Following the
  * pointers leads every vertex to one sink; the vertices that reach a sink
  * form its supernode.  Descent (for minima) is the same on -f.
+ * Only strictly higher neighbours count: on a plateau of equal f every
+ * vertex without a strictly higher neighbour is a sink of its own.
  */
 #ifndef PS_FLOW_H
 #define PS_FLOW_H
