@@ -1,6 +1,7 @@
 /* test_encode.c: the encoders (api/encode_*.c) on a result built by hand:
  * the JSON document parsed back with cJSON field by field, the labels text,
  * the binary PLY byte by byte, and the segment palette. */
+#include "decode.h"
 #include "encode.h"
 #include "number_text.h"
 #include "testlib.h"
@@ -398,6 +399,28 @@ static void test_ply_faces_and_2d(void) {
     free(text);
 }
 
+/* ps_decode_ply reads back the points (as floats) and the faces. */
+static void test_ply_decodes_back(void) {
+    ps_result r = small_result();
+    double pts[N * 3];
+    for (int i = 0; i < N * 3; i++) pts[i] = (i % 5) * 0.3 - (i % 2);
+    uint32_t faces[6] = {0, 1, 2, 5, 4, 3};
+    ps_pointset in = {N, 3, pts, NULL, 2, faces, 0, NULL};
+    size_t len;
+    char *text = ps_encode_ply(&in, &r, &len);
+    REQUIRE(text != NULL);
+    ps_pointset back;
+    ps_api_error err;
+    memset(&back, 0, sizeof back);
+    int rc = ps_decode_ply(text, len, NULL, &back, &err);
+    free(text);
+    REQUIRE(rc == 0);
+    CHECK(back.n == N && back.dim == 3 && back.n_faces == 2);
+    for (int i = 0; i < N * 3 && back.n == N; i++) CHECK(back.points[i] == (float)pts[i]);
+    for (int i = 0; i < 6 && back.faces; i++) CHECK(back.faces[i] == faces[i]);
+    ps_pointset_free(&back);
+}
+
 static void test_palette_distinct_and_cycling(void) {
     unsigned char a[3], b[3];
     int period = 0;
@@ -425,4 +448,5 @@ PS_TEST_MAIN(TEST(test_json_top_level), TEST(test_json_segments_and_supernodes),
              TEST(test_json_empty_result), TEST(test_json_large_labels), TEST(test_put_int),
              TEST(test_put_double_matches_printf), TEST(test_labels_text),
              TEST(test_ply_vertices_and_colours), TEST(test_ply_faces_and_2d),
+             TEST(test_ply_decodes_back),
              TEST(test_palette_distinct_and_cycling))
