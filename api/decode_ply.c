@@ -38,31 +38,49 @@ static const ps_ply_property *property_of(const ps_ply_header *h, const ps_ply_e
     return &h->properties[e->first_property + i];
 }
 
-static uint64_t load_bits(const unsigned char *p, size_t size, int big_endian) {
-    uint64_t v = 0;
-    if (big_endian)
-        for (size_t i = 0; i < size; i++) v = v << 8 | p[i];
-    else
-        for (size_t i = size; i-- > 0;) v = v << 8 | p[i];
-    return v;
+/* 1 when the file's byte order differs from this machine's. */
+static int needs_swap(ps_ply_format f) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    return f == PS_PLY_BINARY_LE;
+#else
+    return f == PS_PLY_BINARY_BE;
+#endif
 }
 
-static double load_binary(const char *at, ps_ply_type t, int big_endian) {
-    uint64_t bits = load_bits((const unsigned char *)at, ps_ply_type_size(t), big_endian);
+static uint16_t load16(const char *p, int swap) {
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap16(v) : v;
+}
+
+static uint32_t load32(const char *p, int swap) {
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap32(v) : v;
+}
+
+static uint64_t load64(const char *p, int swap) {
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap64(v) : v;
+}
+
+static double load_binary(const char *at, ps_ply_type t, int swap) {
     switch (t) {
-    case PS_PLY_INT8: return (int8_t)(uint8_t)bits;
-    case PS_PLY_UINT8: return (uint8_t)bits;
-    case PS_PLY_INT16: return (int16_t)(uint16_t)bits;
-    case PS_PLY_UINT16: return (uint16_t)bits;
-    case PS_PLY_INT32: return (int32_t)(uint32_t)bits;
-    case PS_PLY_UINT32: return (uint32_t)bits;
+    case PS_PLY_INT8: return (int8_t)*at;
+    case PS_PLY_UINT8: return (uint8_t)*at;
+    case PS_PLY_INT16: return (int16_t)load16(at, swap);
+    case PS_PLY_UINT16: return load16(at, swap);
+    case PS_PLY_INT32: return (int32_t)load32(at, swap);
+    case PS_PLY_UINT32: return load32(at, swap);
     case PS_PLY_FLOAT32: {
-        uint32_t b32 = (uint32_t)bits;
+        uint32_t bits = load32(at, swap);
         float f;
-        memcpy(&f, &b32, sizeof f);
+        memcpy(&f, &bits, sizeof f);
         return f;
     }
     case PS_PLY_FLOAT64: {
+        uint64_t bits = load64(at, swap);
         double d;
         memcpy(&d, &bits, sizeof d);
         return d;
@@ -90,7 +108,7 @@ static int read_value(ply_reader *r, ps_ply_type t, double *v, ps_api_error *err
     if (r->format == PS_PLY_ASCII) return read_ascii(r, v, err);
     size_t size = ps_ply_type_size(t);
     if ((size_t)(r->end - r->pos) < size) return truncated(r, err);
-    *v = load_binary(r->pos, t, r->format == PS_PLY_BINARY_BE);
+    *v = load_binary(r->pos, t, needs_swap(r->format));
     r->pos += size;
     return 0;
 }
@@ -195,13 +213,13 @@ static int plan_vertices(const ps_ply_header *h, const ps_ply_element *e,
 
 static int read_vertices_fixed(const ply_vertex_plan *plan, size_t count, size_t stride,
                                ply_reader *r) {
-    int big = r->format == PS_PLY_BINARY_BE;
+    int swap = needs_swap(r->format);
     size_t dim = (size_t)plan->dim;
     for (size_t i = 0; i < count; i++) {
         const char *rec = r->pos + i * stride;
         for (int k = 0; k < plan->n_fields; k++)
             plan->fields[k].dst[i * dim] =
-                load_binary(rec + plan->fields[k].offset, plan->fields[k].type, big);
+                load_binary(rec + plan->fields[k].offset, plan->fields[k].type, swap);
     }
     r->pos += count * stride;
     return 0;
@@ -262,13 +280,18 @@ static int face_index_property(const ps_ply_header *h, const ps_ply_element *e) 
 static int read_polygon(ply_reader *r, const ps_ply_property *p, uint64_t face,
                         uint64_t n_vertices, ps_tris *tris, ps_api_error *err) {
     uint32_t count, first = 0, prev = 0;
+    int binary = r->format != PS_PLY_ASCII, swap = needs_swap(r->format);
+    size_t size = ps_ply_type_size(p->type);
     if (read_list_count(r, p->count_type, &count, err)) return -1;
-    if (r->format != PS_PLY_ASCII &&
-        (size_t)(r->end - r->pos) / ps_ply_type_size(p->type) < count)
-        return truncated(r, err);
+    if (binary && (size_t)(r->end - r->pos) / size < count) return truncated(r, err);
     for (uint32_t j = 0; j < count; j++) {
         double v;
-        if (read_value(r, p->type, &v, err)) return -1;
+        if (binary) {
+            v = load_binary(r->pos, p->type, swap);
+            r->pos += size;
+        } else if (read_ascii(r, &v, err)) {
+            return -1;
+        }
         if (!(v >= 0 && v < (double)n_vertices && v <= UINT32_MAX && v == floor(v)))
             return ps_api_fail(err, 422, "face %llu refers to vertex %.17g (the file has %llu "
                                "vertices)", (unsigned long long)face, v,
