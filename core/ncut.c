@@ -31,8 +31,11 @@
 
 /* sigma_c = PS_NCUT_SIGMA_SCALE * (mean over the supernodes of component c
  * of the distance to the nearest other sink of c): a length of the data, so
- * labels do not change with the scale.  The one knob of the similarity. */
+ * labels do not change with the scale.  The one knob of the similarity;
+ * -DPS_NCUT_SIGMA_SCALE=x overrides it for tuning. */
+#ifndef PS_NCUT_SIGMA_SCALE
 #define PS_NCUT_SIGMA_SCALE 1.0
+#endif
 
 typedef struct all_pairs_job {
     const ps_graph *sink_graph;
