@@ -1,0 +1,173 @@
+/* pointseg_client.c: the libcurl client of pointsegd. */
+#include "pointseg_client.h"
+
+#include <cJSON.h>
+#include <curl/curl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+
+int ps_client_global_init(void) {
+    return curl_global_init(CURL_GLOBAL_DEFAULT) == CURLE_OK ? 0 : -1;
+}
+
+static size_t on_body(char *data, size_t size, size_t n, void *user) {
+    ps_client_response *r = user;
+    size_t add = size * n;
+    char *grown = realloc(r->body, r->len + add + 1);
+    if (!grown) return 0;
+    memcpy(grown + r->len, data, add);
+    r->body = grown;
+    r->len += add;
+    r->body[r->len] = 0;
+    return add;
+}
+
+/* Copies the value of header line `line` into out when its name is `name`. */
+static void take_header(const char *line, size_t len, const char *name, char *out, size_t cap) {
+    size_t n = strlen(name);
+    if (len <= n + 1 || strncasecmp(line, name, n) || line[n] != ':') return;
+    const char *v = line + n + 1;
+    size_t vlen = len - n - 1;
+    while (vlen && (*v == ' ' || *v == '\t')) v++, vlen--;
+    while (vlen && (v[vlen - 1] == '\r' || v[vlen - 1] == '\n' || v[vlen - 1] == ' ')) vlen--;
+    if (vlen >= cap) vlen = cap - 1;
+    memcpy(out, v, vlen);
+    out[vlen] = 0;
+}
+
+static size_t on_header(char *line, size_t size, size_t n, void *user) {
+    ps_client_response *r = user;
+    size_t len = size * n;
+    take_header(line, len, "Content-Type", r->content_type, sizeof r->content_type);
+    take_header(line, len, "Location", r->location, sizeof r->location);
+    take_header(line, len, "Retry-After", r->retry_after, sizeof r->retry_after);
+    take_header(line, len, "Allow", r->allow, sizeof r->allow);
+    return len;
+}
+
+static struct curl_slist *build_headers(const ps_client *c, const ps_client_body *body,
+                                        const char *const *extra) {
+    struct curl_slist *h = NULL;
+    char line[512];
+    if (body) {
+        snprintf(line, sizeof line, "Content-Type: %s",
+                 body->content_type ? body->content_type : "application/octet-stream");
+        h = curl_slist_append(h, line);
+        if (body->content_encoding) {
+            snprintf(line, sizeof line, "Content-Encoding: %s", body->content_encoding);
+            h = curl_slist_append(h, line);
+        }
+    }
+    if (c->token) {
+        snprintf(line, sizeof line, "Authorization: Bearer %s", c->token);
+        h = curl_slist_append(h, line);
+    }
+    h = curl_slist_append(h, "Expect:");
+    for (; extra && *extra; extra++) h = curl_slist_append(h, *extra);
+    return h;
+}
+
+int ps_client_request(const ps_client *c, const char *method, const char *path,
+                      const ps_client_body *body, const char *const *headers, ps_client_response *out) {
+    char url[1024];
+    memset(out, 0, sizeof *out);
+    CURL *curl = curl_easy_init();
+    if (!curl) return snprintf(out->error, sizeof out->error, "curl_easy_init failed"), -1;
+    snprintf(url, sizeof url, "%s%s", c->base_url, path);
+    struct curl_slist *h = build_headers(c, body, headers);
+    curl_easy_setopt(curl, CURLOPT_URL, url);
+    curl_easy_setopt(curl, CURLOPT_CUSTOMREQUEST, method);
+    curl_easy_setopt(curl, CURLOPT_NOSIGNAL, 1L);
+    curl_easy_setopt(curl, CURLOPT_HTTPHEADER, h);
+    curl_easy_setopt(curl, CURLOPT_WRITEFUNCTION, on_body);
+    curl_easy_setopt(curl, CURLOPT_WRITEDATA, out);
+    curl_easy_setopt(curl, CURLOPT_HEADERFUNCTION, on_header);
+    curl_easy_setopt(curl, CURLOPT_HEADERDATA, out);
+    if (!strcmp(method, "HEAD")) curl_easy_setopt(curl, CURLOPT_NOBODY, 1L);
+    if (c->timeout_ms) curl_easy_setopt(curl, CURLOPT_TIMEOUT_MS, c->timeout_ms);
+    if (body) {
+        curl_easy_setopt(curl, CURLOPT_POSTFIELDS, body->data);
+        curl_easy_setopt(curl, CURLOPT_POSTFIELDSIZE_LARGE, (curl_off_t)body->len);
+    }
+    CURLcode rc = curl_easy_perform(curl);
+    if (rc == CURLE_OK) curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &out->status);
+    else snprintf(out->error, sizeof out->error, "%s", curl_easy_strerror(rc));
+    curl_slist_free_all(h);
+    curl_easy_cleanup(curl);
+    return rc == CURLE_OK ? 0 : -1;
+}
+
+static void with_query(char *out, size_t cap, const char *path, const char *query) {
+    snprintf(out, cap, "%s%s%s", path, query && *query ? "?" : "", query ? query : "");
+}
+
+int ps_client_segment(const ps_client *c, const ps_client_body *body, const char *query,
+                      ps_client_response *out) {
+    char path[512];
+    with_query(path, sizeof path, "/segment", query);
+    return ps_client_request(c, "POST", path, body, NULL, out);
+}
+
+/* The string member `name` of a JSON object text into out. */
+static int json_string(const char *text, const char *name, char *out, size_t cap) {
+    cJSON *doc = text ? cJSON_Parse(text) : NULL;
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(doc, name);
+    int ok = cJSON_IsString(v) && strlen(v->valuestring) < cap;
+    if (ok) memcpy(out, v->valuestring, strlen(v->valuestring) + 1);
+    cJSON_Delete(doc);
+    return ok ? 0 : -1;
+}
+
+int ps_client_submit(const ps_client *c, const ps_client_body *body, const char *query,
+                     char *id, size_t cap, ps_client_response *out) {
+    char path[512];
+    with_query(path, sizeof path, "/jobs", query);
+    if (ps_client_request(c, "POST", path, body, NULL, out)) return -1;
+    if (out->status != 202) return 0;
+    return json_string(out->body, "id", id, cap);
+}
+
+static int job_request(const ps_client *c, const char *method, const char *id, const char *suffix,
+                       ps_client_response *out) {
+    char path[512];
+    snprintf(path, sizeof path, "/jobs/%s%s", id, suffix);
+    return ps_client_request(c, method, path, NULL, NULL, out);
+}
+
+int ps_client_poll(const ps_client *c, const char *id, ps_client_response *out) {
+    return job_request(c, "GET", id, "", out);
+}
+
+int ps_client_result(const ps_client *c, const char *id, ps_client_response *out) {
+    return job_request(c, "GET", id, "/result", out);
+}
+
+int ps_client_cancel(const ps_client *c, const char *id, ps_client_response *out) {
+    return job_request(c, "DELETE", id, "", out);
+}
+
+static int is_final(const char *state) {
+    return !strcmp(state, "done") || !strcmp(state, "failed") || !strcmp(state, "cancelled");
+}
+
+int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *state, size_t cap) {
+    struct timespec pause = {0, 20 * 1000 * 1000};
+    for (long waited = 0;; waited += 20) {
+        ps_client_response r;
+        int rc = ps_client_poll(c, id, &r);
+        int got = rc == 0 && r.status == 200 && json_string(r.body, "status", state, cap) == 0;
+        ps_client_response_free(&r);
+        if (got && is_final(state)) return 0;
+        if (waited >= timeout_ms) return -1;
+        nanosleep(&pause, NULL);
+    }
+}
+
+void ps_client_response_free(ps_client_response *r) {
+    free(r->body);
+    r->body = NULL;
+    r->len = 0;
+}

@@ -1,0 +1,62 @@
+/*
+ * pointseg_client.h: a small libcurl client of pointsegd: synchronous
+ * segmentation, the asynchronous job API (submit, poll, result, cancel),
+ * and a generic request for anything else.  Each call is independent and
+ * thread safe (call ps_client_global_init once first).
+ */
+#ifndef PS_CLIENT_H
+#define PS_CLIENT_H
+
+#include <stddef.h>
+
+typedef struct ps_client {
+    const char *base_url; /* "http://127.0.0.1:8080" */
+    const char *token;    /* bearer token, or NULL */
+    long timeout_ms;      /* whole request; 0 = none */
+} ps_client;
+
+typedef struct ps_client_response {
+    long status;          /* HTTP status, 0 when the transfer failed */
+    char *body;           /* malloc'ed, NUL-terminated (free with ps_client_response_free) */
+    size_t len;
+    char content_type[128];
+    char location[256];
+    char retry_after[32];
+    char allow[128];
+    char error[256];      /* libcurl's message when status is 0 */
+} ps_client_response;
+
+typedef struct ps_client_body {
+    const void *data;
+    size_t len;
+    const char *content_type;     /* NULL = application/octet-stream */
+    const char *content_encoding; /* NULL or "gzip" */
+} ps_client_body;
+
+/* Once per process, before any thread uses the client. */
+int ps_client_global_init(void);
+
+/* Any request; body may be NULL; headers: NULL-terminated "Name: value"
+ * lines.  Returns 0 when an answer came (any status), -1 otherwise. */
+int ps_client_request(const ps_client *c, const char *method, const char *path_and_query,
+                      const ps_client_body *body, const char *const *headers, ps_client_response *out);
+
+/* POST /segment?query (query may be NULL or ""). */
+int ps_client_segment(const ps_client *c, const ps_client_body *body, const char *query,
+                      ps_client_response *out);
+
+/* POST /jobs?query; on 202 copies the job id into id (cap bytes). */
+int ps_client_submit(const ps_client *c, const ps_client_body *body, const char *query,
+                     char *id, size_t cap, ps_client_response *out);
+
+int ps_client_poll(const ps_client *c, const char *id, ps_client_response *out);   /* GET /jobs/{id} */
+int ps_client_result(const ps_client *c, const char *id, ps_client_response *out); /* GET /jobs/{id}/result */
+int ps_client_cancel(const ps_client *c, const char *id, ps_client_response *out); /* DELETE /jobs/{id} */
+
+/* Polls until the job is done, failed or cancelled, or timeout_ms passes;
+ * copies its final status ("done", ...) into state.  Returns 0 when final. */
+int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *state, size_t cap);
+
+void ps_client_response_free(ps_client_response *r);
+
+#endif
