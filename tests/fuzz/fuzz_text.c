@@ -1,0 +1,21 @@
+/* fuzz_text.c: libFuzzer target for format detection and the OFF, OBJ and
+ * XYZ/CSV decoders; every input goes through all three and ps_decode
+ * (tests/fuzz/run.sh). */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "decode.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    static const ps_format formats[] = {PS_FORMAT_OFF, PS_FORMAT_OBJ, PS_FORMAT_XYZ};
+    ps_decode_limits lim = {1u << 20, 64};
+    ps_pointset ps;
+    ps_api_error err;
+    for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
+        if (ps_decode_text((const char *)data, size, formats[i], &lim, &ps, &err) == 0)
+            ps_pointset_free(&ps);
+    if (ps_decode((const char *)data, size, &lim, &ps, &err) == 0) ps_pointset_free(&ps);
+    return 0;
+}

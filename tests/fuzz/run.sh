@@ -1,0 +1,53 @@
+#!/bin/sh
+# run.sh: builds the decoder fuzz targets with libFuzzer + ASan + UBSan and
+# runs each on a copy of its seed corpus.
+#   tests/fuzz/run.sh BUILD [short|long]   20 s per target (short) or 600 s
+# Prints "PASS fuzz:<target>", "FAIL fuzz:<target>: <reason>" or
+# "SKIP fuzz:<target>: <reason>" per target; exits non-zero on any failure.
+# Crash inputs are kept in BUILD/fuzz/<target>-crash-*.
+set -u
+BUILD=${1:-build}
+MODE=${2:-short}
+TARGETS="ply json text"
+case "$MODE" in
+short) SECONDS_EACH=20 ;;
+long) SECONDS_EACH=600 ;;
+*) echo "usage: $0 BUILD [short|long]" >&2; exit 2 ;;
+esac
+cd "$(dirname "$0")/../.." || exit 2
+
+if ! command -v clang >/dev/null 2>&1; then
+    for t in $TARGETS; do echo "SKIP fuzz:$t: clang is not installed"; done
+    exit 0
+fi
+
+# Only the decoders and what they need; no core, no daemon.
+SOURCES="api/api_error.c api/pointset.c $(ls api/decode*.c)"
+OUT="$BUILD/fuzz"
+mkdir -p "$OUT"
+failed=0
+for t in $TARGETS; do
+    bin="$OUT/fuzz_$t"
+    log="$OUT/fuzz_$t.log"
+    # shellcheck disable=SC2086
+    if ! clang -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -fsanitize=fuzzer,address,undefined \
+        -fno-sanitize-recover=undefined -Icore -Iapi $SOURCES "tests/fuzz/fuzz_$t.c" \
+        $(pkg-config --cflags --libs libcjson) -lm -o "$bin" >"$log" 2>&1; then
+        echo "FAIL fuzz:$t: does not build (see $log)"
+        failed=1
+        continue
+    fi
+    corpus="$OUT/corpus_$t"
+    rm -rf "$corpus"
+    mkdir -p "$corpus"
+    cp tests/fuzz/seeds/"$t"/* "$corpus"/ 2>/dev/null
+    if "$bin" -max_total_time="$SECONDS_EACH" -max_len=8192 -timeout=10 -rss_limit_mb=2048 \
+        -print_final_stats=0 -artifact_prefix="$OUT/fuzz_$t-" "$corpus" >"$log" 2>&1; then
+        echo "PASS fuzz:$t"
+    else
+        reason=$(grep -m1 -E 'ERROR|runtime error|SUMMARY' "$log" | cut -c1-160)
+        echo "FAIL fuzz:$t: ${reason:-exit status non-zero} (see $log)"
+        failed=1
+    fi
+done
+exit $failed
