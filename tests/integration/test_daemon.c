@@ -392,7 +392,8 @@ static void test_service_endpoints(void) {
     const char *const preflight[] = {"Origin: http://viewer.example", "Access-Control-Request-Method: POST", NULL};
     CHECK(ps_client_request(&d.client, "OPTIONS", "/segment", NULL, preflight, &r) == 0 && r.status == 204);
     ps_client_response_free(&r);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    int exit_status = ps_daemon_stop(&d, 10);
+    CHECK_MSG(exit_status == 0, "pointsegd exited with %d", exit_status);
 }
 
 static void test_token_and_static_files(void) {
@@ -582,6 +583,31 @@ static void test_full_queue_and_cancel(void) {
     CHECK(ps_daemon_stop(&d, 10) == 0);
 }
 
+static void test_client_going_away_cancels(void) {
+    ps_daemon d;
+    ps_client_response r;
+    size_t n, len;
+    double *pts = ps_shape_dumbbell(500, &n, NULL);
+    REQUIRE(pts);
+    char *xyz = ps_points_xyz(pts, n, &len);
+    free(pts);
+    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--threads", "1", NULL}) == 0);
+    ps_client impatient = d.client;
+    impatient.timeout_ms = 500;
+    ps_client_body body = {xyz, len, NULL, NULL};
+    CHECK(ps_client_segment(&impatient, &body, "centrality=exact", &r) != 0);
+    ps_client_response_free(&r);
+    int cancelled = 0;
+    for (double t0 = seconds_now(); !cancelled && seconds_now() - t0 < 5; sleep_ms(50)) {
+        cancelled = get_status(&d, "/metrics", &r) == 200 &&
+                    strstr(r.body, "pointseg_jobs_finished_total{outcome=\"cancelled\"} 1");
+        ps_client_response_free(&r);
+    }
+    CHECK_MSG(cancelled, "the job of a client that went away was not cancelled");
+    free(xyz);
+    CHECK(ps_daemon_stop(&d, 10) == 0);
+}
+
 static void *drained_client(void *arg) {
     one_client(arg);
     return NULL;
@@ -628,7 +654,8 @@ int main(int argc, char **argv) {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
         TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
-        TEST(test_full_queue_and_cancel), TEST(test_sigterm_drains), TEST(test_zz_cleanup)};
+        TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
+        TEST(test_sigterm_drains), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);
     if (ps_client_global_init()) return 1;
     return ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
