@@ -1,0 +1,302 @@
+/*
+ * bench_speed.c: how fast pointseg is, phase by phase and end to end
+ * (file bytes -> ps_decode -> ps_segment -> ps_encode_json), on the scan
+ * models horse.ply and bunny.ply (approx centrality), on a ~4,700-point
+ * model with exact centrality (PSB 1.off, or a synthetic hand), and on
+ * 1,000,000 points sampled from the horse's surface, with peak RSS.  Small
+ * cases print the median of 5 runs, the 1M case one run.  See
+ * tests/bench/README.md.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "decode.h"
+#include "encode.h"
+#include "pointseg.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#define SMALL_RUNS 5
+#define LARGE_POINTS 1000000
+
+/* Columns of one measured run, in milliseconds (segments, points: counts). */
+enum { COL_DECODE, COL_PHASE0, COL_SEGMENT = COL_PHASE0 + PS_PHASE_COUNT,
+       COL_ENCODE, COL_TOTAL, COL_SEGMENTS, COL_POINTS, N_COLS };
+
+typedef struct run_times { double v[N_COLS]; } run_times;
+
+/* One benchmark case: a file to decode, or points already in memory. */
+typedef struct speed_case {
+    const char *name;
+    const char *path;          /* file to read and decode, or NULL */
+    const ps_pointset *points; /* used when path is NULL */
+    ps_centrality_mode mode;
+    int runs;
+} speed_case;
+
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static double peak_rss_mb(void) {
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_maxrss / 1024.0; /* Linux reports kilobytes */
+}
+
+static void print_machine(void) {
+    char line[512], cpu[256] = "unknown";
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    while (f && fgets(line, sizeof line, f)) {
+        char *colon = strchr(line, ':');
+        if (strncmp(line, "model name", 10) != 0 || !colon) continue;
+        snprintf(cpu, sizeof cpu, "%s", colon + 2);
+        cpu[strcspn(cpu, "\n")] = 0;
+        break;
+    }
+    if (f) fclose(f);
+    char date[64];
+    time_t t = time(NULL);
+    struct tm tm;
+    strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", gmtime_r(&t, &tm));
+    printf("pointseg %s bench_speed, %s\nmachine: nproc %ld, CPU %s\n", PS_VERSION, date,
+           sysconf(_SC_NPROCESSORS_ONLN), cpu);
+    printf("times in ms (median of %d runs; the 1M case runs once), peak RSS of the "
+           "process so far in MB\n\n", SMALL_RUNS);
+}
+
+static int load_file(const char *path, ps_pointset *ps) {
+    char *bytes = NULL;
+    size_t len = 0;
+    ps_api_error err;
+    memset(ps, 0, sizeof *ps);
+    if (ps_read_file(path, &bytes, &len, &err) != 0 || ps_decode(bytes, len, NULL, ps, &err) != 0) {
+        fprintf(stderr, "%s: %s\n", path, err.message);
+        free(bytes);
+        return -1;
+    }
+    free(bytes);
+    return 0;
+}
+
+/* Segments and encodes ps, filling the segment, phase and encode columns. */
+static int segment_and_encode(const ps_pointset *ps, ps_centrality_mode mode, run_times *t) {
+    ps_params params;
+    ps_params_default(&params);
+    params.centrality = mode;
+    params.threads = 0;
+    ps_input in = {ps->points, ps->n, ps->dim, ps->normals};
+    ps_result *r = NULL;
+    ps_error err;
+    double start = now_ms();
+    if (ps_segment(&in, &params, NULL, &r, &err) != PS_OK) {
+        fprintf(stderr, "ps_segment: %s\n", err.message);
+        return -1;
+    }
+    double segmented = now_ms();
+    size_t len = 0;
+    char *json = ps_encode_json(r, 0, &len);
+    t->v[COL_ENCODE] = now_ms() - segmented;
+    t->v[COL_SEGMENT] = segmented - start;
+    for (int p = 0; p < PS_PHASE_COUNT; p++) t->v[COL_PHASE0 + p] = r->timings.ms[p];
+    t->v[COL_SEGMENTS] = r->n_segments;
+    t->v[COL_POINTS] = (double)ps->n;
+    free(json);
+    ps_result_free(r);
+    return json ? 0 : -1;
+}
+
+/* One end-to-end run of a case; 0 or -1. */
+static int run_once(const speed_case *c, run_times *t) {
+    ps_pointset decoded;
+    const ps_pointset *ps = c->points;
+    double start = now_ms();
+    memset(t, 0, sizeof *t);
+    if (c->path) {
+        if (load_file(c->path, &decoded) != 0) return -1;
+        ps = &decoded;
+    }
+    t->v[COL_DECODE] = now_ms() - start;
+    int rc = segment_and_encode(ps, c->mode, t);
+    t->v[COL_TOTAL] = now_ms() - start;
+    if (c->path) ps_pointset_free(&decoded);
+    return rc;
+}
+
+static int compare_double(const void *x, const void *y) {
+    double a = *(const double *)x, b = *(const double *)y;
+    return (a > b) - (a < b);
+}
+
+/* Column-wise median of runs[0..n) into *out. */
+static void median_times(const run_times *runs, int n, run_times *out) {
+    double column[SMALL_RUNS];
+    for (int c = 0; c < N_COLS; c++) {
+        for (int i = 0; i < n; i++) column[i] = runs[i].v[c];
+        qsort(column, (size_t)n, sizeof column[0], compare_double);
+        out->v[c] = n % 2 ? column[n / 2] : (column[n / 2 - 1] + column[n / 2]) / 2;
+    }
+}
+
+static void print_header(void) {
+    printf("%-24s %8s %4s %8s", "case", "points", "runs", "decode");
+    for (int p = 0; p < PS_PHASE_COUNT; p++) printf(" %10s", ps_phase_name(p));
+    printf(" %9s %8s %9s %5s %8s\n", "segment", "encode", "total", "segs", "RSS MB");
+}
+
+static void run_case(const speed_case *c) {
+    run_times runs[SMALL_RUNS], median;
+    for (int i = 0; i < c->runs; i++) {
+        if (run_once(c, &runs[i]) != 0) {
+            printf("%-24s FAILED\n", c->name);
+            return;
+        }
+    }
+    median_times(runs, c->runs, &median);
+    printf("%-24s %8.0f %4d ", c->name, median.v[COL_POINTS], c->runs);
+    if (c->path) printf("%8.1f", median.v[COL_DECODE]);
+    else printf("%8s", "-");
+    for (int p = 0; p < PS_PHASE_COUNT; p++) printf(" %10.1f", median.v[COL_PHASE0 + p]);
+    printf(" %9.1f %8.1f %9.1f %5.0f %8.1f\n", median.v[COL_SEGMENT], median.v[COL_ENCODE],
+           median.v[COL_TOTAL], median.v[COL_SEGMENTS], peak_rss_mb());
+}
+
+static uint64_t xorshift64(uint64_t *s) {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
+
+static double uniform01(uint64_t *s) { return (double)(xorshift64(s) >> 11) * 0x1.0p-53; }
+
+static double triangle_area(const double *a, const double *b, const double *c) {
+    double u[3], v[3];
+    for (int i = 0; i < 3; i++) { u[i] = b[i] - a[i]; v[i] = c[i] - a[i]; }
+    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
+           z = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+/* Index of the first cumulative area above target (cumulative increasing). */
+static size_t find_face(const double *cumulative, size_t n_faces, double target) {
+    size_t lo = 0, hi = n_faces - 1;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (cumulative[mid] > target) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}
+
+/* n points uniform by area on mesh's triangles (deterministic); 0 or -1. */
+static int sample_surface(const ps_pointset *mesh, size_t n, ps_pointset *out) {
+    double *cumulative = malloc(mesh->n_faces * sizeof *cumulative);
+    memset(out, 0, sizeof *out);
+    out->points = malloc(3 * n * sizeof *out->points);
+    if (!cumulative || !out->points) { free(cumulative); free(out->points); return -1; }
+    double total = 0;
+    for (size_t f = 0; f < mesh->n_faces; f++) {
+        const uint32_t *v = mesh->faces + 3 * f;
+        total += triangle_area(mesh->points + 3 * v[0], mesh->points + 3 * v[1],
+                               mesh->points + 3 * v[2]);
+        cumulative[f] = total;
+    }
+    uint64_t seed = 0x9E3779B97F4A7C15ull;
+    for (size_t i = 0; i < n; i++) {
+        const uint32_t *v = mesh->faces + 3 * find_face(cumulative, mesh->n_faces,
+                                                        uniform01(&seed) * total);
+        double r1 = sqrt(uniform01(&seed)), r2 = uniform01(&seed);
+        double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2;
+        for (int d = 0; d < 3; d++)
+            out->points[3 * i + d] = wa * mesh->points[3 * v[0] + d] +
+                                     wb * mesh->points[3 * v[1] + d] + wc * mesh->points[3 * v[2] + d];
+    }
+    free(cumulative);
+    out->n = n;
+    out->dim = 3;
+    return 0;
+}
+
+static int file_exists(const char *path) { return access(path, R_OK) == 0; }
+
+/* The scan model cases (horse, bunny: approx centrality). */
+static void run_scan_models(const char *shared) {
+    static const char *const names[] = {"horse", "bunny"};
+    for (int i = 0; i < 2; i++) {
+        char path[4096], label[64];
+        snprintf(path, sizeof path, "%s/models/%s.ply", shared ? shared : ".", names[i]);
+        snprintf(label, sizeof label, "%s.ply approx", names[i]);
+        if (!shared || !file_exists(path)) {
+            printf("%-24s SKIP: %s not found\n", label, path);
+            continue;
+        }
+        speed_case c = {label, path, NULL, PS_CENTRALITY_APPROX, SMALL_RUNS};
+        run_case(&c);
+    }
+}
+
+/* Exact centrality on PSB 1.off (4,706 vertices), or a synthetic hand. */
+static void run_exact(const char *shared) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/psb-dev/off/1.off", shared ? shared : ".");
+    if (shared && file_exists(path)) {
+        speed_case c = {"PSB 1.off exact", path, NULL, PS_CENTRALITY_EXACT, SMALL_RUNS};
+        run_case(&c);
+        return;
+    }
+    ps_pointset hand;
+    memset(&hand, 0, sizeof hand);
+    hand.dim = 3;
+    hand.points = ps_shape_hand(0, &hand.n, NULL);
+    if (!hand.points) { printf("%-24s FAILED: out of memory\n", "synthetic hand exact"); return; }
+    speed_case c = {"synthetic hand exact", NULL, &hand, PS_CENTRALITY_EXACT, SMALL_RUNS};
+    run_case(&c);
+    ps_pointset_free(&hand);
+}
+
+/* 1,000,000 points sampled from the horse's triangles, run once. */
+static void run_large(const char *shared) {
+    char path[4096];
+    ps_pointset horse, sampled;
+    snprintf(path, sizeof path, "%s/models/horse.ply", shared ? shared : ".");
+    if (!shared || !file_exists(path)) {
+        printf("%-24s SKIP: %s not found\n", "horse 1M sampled", path);
+        return;
+    }
+    if (load_file(path, &horse) != 0) return;
+    int rc = horse.n_faces ? sample_surface(&horse, LARGE_POINTS, &sampled) : -1;
+    ps_pointset_free(&horse);
+    if (rc != 0) { printf("%-24s FAILED: no faces or out of memory\n", "horse 1M sampled"); return; }
+    speed_case c = {"horse 1M sampled auto", NULL, &sampled, PS_CENTRALITY_AUTO, 1};
+    run_case(&c);
+    ps_pointset_free(&sampled);
+}
+
+int main(int argc, char **argv) {
+    int skip_large = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--skip-1m")) {
+            skip_large = 1;
+        } else {
+            fprintf(stderr, "usage: bench_speed [--skip-1m]\n");
+            return strcmp(argv[i], "--help") ? 2 : 0;
+        }
+    }
+    const char *shared = ps_test_shared_dir();
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    print_machine();
+    print_header();
+    run_scan_models(shared);
+    run_exact(shared);
+    if (!skip_large) run_large(shared);
+    return 0;
+}
