@@ -17,7 +17,8 @@ typedef struct off_reader {
 /* Reads the next field of the current line as an integer. */
 static int next_integer(off_reader *r, const char *what, long long *v, ps_api_error *err) {
     const char *fs, *ft;
-    if (ps_next_field(&r->s, r->e, NULL, &fs, &ft) != 1 || ps_parse_integer(fs, (size_t)(ft - fs), v))
+    if (ps_next_field(&r->s, r->e, NULL, &fs, &ft) != 1 ||
+        ps_parse_integer(fs, (size_t)(ft - fs), v))
         return ps_api_fail(err, 400, "line %zu: expected %s", r->lines.line, what);
     return 0;
 }
@@ -74,7 +75,8 @@ static int read_vertex(off_reader *r, size_t i, int has_normals, ps_pointset *ou
     if (next_line(r, "all vertices", err)) return -1;
     for (int k = 0; k < (has_normals ? 6 : 3); k++) {
         const char *fs, *ft;
-        double *dst = k < 3 ? &out->points[3 * i + (size_t)k] : &out->normals[3 * i + (size_t)k - 3];
+        double *dst = k < 3 ? &out->points[3 * i + (size_t)k]
+                            : &out->normals[3 * i + (size_t)k - 3];
         if (ps_next_field(&r->s, r->e, NULL, &fs, &ft) != 1)
             return ps_api_fail(err, 400, "line %zu: vertex %zu needs %d numbers", r->lines.line,
                                i, has_normals ? 6 : 3);

@@ -113,7 +113,8 @@ static int parse_property(const header_line *l, ps_ply_header *h, ps_api_error *
     int list = word_is(l, 1, "list");
     p->is_list = list;
     p->count_type = PS_PLY_UINT8;
-    int ok = list ? l->n_words == 5 && !parse_type(l, 2, &p->count_type) && !parse_type(l, 3, &p->type)
+    int ok = list ? l->n_words == 5 && !parse_type(l, 2, &p->count_type) &&
+                        !parse_type(l, 3, &p->type)
                   : l->n_words == 3 && !parse_type(l, 1, &p->type);
     if (!ok)
         return ps_api_fail(err, 400,

@@ -121,7 +121,8 @@ static void build_binary(bytes_out *b, int big, const char *xyz_type, const char
     put_text(b, "ply\n");
     put_text(b, big ? "format binary_big_endian 1.0\n" : "format binary_little_endian 1.0\n");
     put_text(b, "element vertex 3\n");
-    snprintf(line, sizeof line, "property %s nz\nproperty %s y\nproperty uchar red\n", n_type, xyz_type);
+    snprintf(line, sizeof line, "property %s nz\nproperty %s y\nproperty uchar red\n", n_type,
+             xyz_type);
     put_text(b, line);
     if (with_list) put_text(b, "property list ushort double extra\n");
     snprintf(line, sizeof line, "property %s x\nproperty %s nx\nproperty %s z\nproperty %s ny\n",
@@ -281,17 +282,17 @@ static void test_limits_and_garbage(void) {
     CHECK(decode_fails(b.data, b.len, &lim, 413, "3 points exceed the limit of 2"));
     CHECK(text_fails("", 400, "expected \"ply\""));
     CHECK(text_fails("ply\nformat ascii 1.0\n", 400, "no end_header"));
-    CHECK(text_fails("ply\nformat ascii 2\nelement v\nend_header\n", 400,
-                       "line 3"));
+    CHECK(text_fails("ply\nformat ascii 2\nelement v\nend_header\n", 400, "line 3"));
     CHECK(text_fails("ply\nformat ebcdic 1.0\nend_header\n", 400, "unknown format"));
     CHECK(text_fails("ply\nelement vertex 0\nend_header\n", 400, "no format"));
     CHECK(text_fails("ply\nformat ascii 1.0\nproperty float x\nend_header\n", 400,
-                       "property before any element"));
-    CHECK(text_fails("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n", 400, "line 4"));
+                     "property before any element"));
+    CHECK(text_fails("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n",
+                     400, "line 4"));
     CHECK(text_fails("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
-                       "property float y\nend_header\n", 422, "no points"));
+                     "property float y\nend_header\n", 422, "no points"));
     CHECK(text_fails("ply\nformat ascii 1.0\nwhatever\x01\nend_header\n", 400,
-                       "unknown keyword \"whatever?\""));
+                     "unknown keyword \"whatever?\""));
 }
 
 static double seconds_now(void) {
