@@ -18,7 +18,10 @@
  * O(m^2) memory for the dense W (m = supernodes, not points).
  *
  * W(u, v) = s_u s_v exp(-d(u, v) / sigma_c), W(u, u) = s_u^2, 0 across
- * components, with sigma_c from component_sigma() below.
+ * components, with sigma_c = PS_NCUT_SIGMA_SCALE (ncut.h) * the mean over
+ * the supernodes of component c of the distance to the nearest other sink of
+ * c (component_sigma() below): a length of the data, so labels do not change
+ * with the scale.
  */
 #include "ncut.h"
 
@@ -28,14 +31,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-
-/* sigma_c = PS_NCUT_SIGMA_SCALE * (mean over the supernodes of component c
- * of the distance to the nearest other sink of c): a length of the data, so
- * labels do not change with the scale.  The one knob of the similarity;
- * -DPS_NCUT_SIGMA_SCALE=x overrides it for tuning. */
-#ifndef PS_NCUT_SIGMA_SCALE
-#define PS_NCUT_SIGMA_SCALE 1.0
-#endif
 
 typedef struct all_pairs_job {
     const ps_graph *sink_graph;

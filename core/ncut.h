@@ -16,6 +16,15 @@
 
 #include "knn_graph.h"
 
+/* sigma of a component = PS_NCUT_SIGMA_SCALE * (mean over its supernodes of
+ * the geodesic distance to the nearest other sink).  The one knob of W: on
+ * the synthetic shapes of test_segment, 1 cuts the dumbbell's spheres into
+ * pieces and 3 leaves the hand's fingers on the palm; 2 gets both right.
+ * -DPS_NCUT_SIGMA_SCALE=x overrides it for tuning. */
+#ifndef PS_NCUT_SIGMA_SCALE
+#define PS_NCUT_SIGMA_SCALE 2.0
+#endif
+
 typedef struct ps_supernode_graph {
     int m;                  /* #S supernodes */
     const uint32_t *sinks;  /* #S sink vertex of each */

@@ -72,15 +72,17 @@ static double pair_ncut(const double W[3][3], int alone) {
 }
 
 /* Sinks at 0, 4, 10 on a unit path: d = 4, 6, 10 exactly (each border path
- * dist[p] + 1 + dist[q]); sigma = (4 + 4 + 6) / 3.  The root keeps the best
- * single split, whose NCut is checked against W computed here. */
+ * dist[p] + 1 + dist[q]); sigma = PS_NCUT_SIGMA_SCALE * (4 + 4 + 6) / 3.
+ * The root keeps the best single split, whose NCut is checked against W
+ * computed here. */
 static void test_path_distances_and_sigma(void) {
     static const uint32_t sinks[3] = {0, 4, 10};
     hand_graph h;
     hand_supernodes s;
     make_path(&h, 11, 1, 0);
     make_supernodes(&s, &h, sinks, 3);
-    double d[3][3] = {{0, 4, 10}, {4, 0, 6}, {10, 6, 0}}, W[3][3], sigma = 14.0 / 3;
+    double d[3][3] = {{0, 4, 10}, {4, 0, 6}, {10, 6, 0}}, W[3][3];
+    double sigma = PS_NCUT_SIGMA_SCALE * 14.0 / 3;
     for (int u = 0; u < 3; u++)
         for (int v = 0; v < 3; v++)
             W[u][v] = (double)s.sizes[u] * (double)s.sizes[v] * exp(-d[u][v] / sigma);
@@ -94,10 +96,10 @@ static void test_path_distances_and_sigma(void) {
 }
 
 static void run_two_groups(double length, ps_tree_node **tree, int *n) {
-    static const uint32_t sinks[6] = {1, 3, 5, 20, 22, 24};
+    static const uint32_t sinks[6] = {1, 3, 5, 40, 42, 44};
     hand_graph h;
     hand_supernodes s;
-    make_path(&h, 26, length, 0);
+    make_path(&h, 46, length, 0);
     make_supernodes(&s, &h, sinks, 6);
     *tree = NULL;
     REQUIRE(ps_ncut_hierarchy(&h.g, &s.sg, 0.3, 2, NULL, tree, n, NULL) == PS_OK);
