@@ -10,9 +10,12 @@
  *         (64-bit fixed point, one scale per component, chosen so no sum can
  *         overflow) into its own array; the integer sums are exact, hence
  *         identical for any thread count.
+ * Both run on a breadth-first relabelled copy of the graph (bfs_order.h):
+ * the Dijkstras touch memory in order and each component is one range.
  */
 #include "centrality.h"
 
+#include "bfs_order.h"
 #include "dijkstra.h"
 #include "parallel.h"
 
@@ -24,14 +27,6 @@
 #define FIXED_POINT_RANGE 1125899906842624.0 /* 2^50: bound on a vertex's sum */
 #define FPS_SHARE 0.25                      /* progress share of the sampling */
 
-/* Vertices grouped by component: members[start[c] .. start[c+1]) increasing. */
-typedef struct components {
-    int count;
-    const int *of;      /* #P component of each vertex */
-    size_t *start;      /* #count+1 */
-    uint32_t *members;  /* #P */
-} components;
-
 typedef struct workers {
     int count;
     ps_dijkstra **dijkstra; /* #count */
@@ -40,12 +35,12 @@ typedef struct workers {
 } workers;
 
 typedef struct run_ctx {
-    const ps_graph *g;
-    const components *comps;
+    const ps_bfs_order *o;
     workers *w;
-    const uint32_t *sources;   /* approx: the samples; exact: NULL (vertex i) */
+    const uint32_t *sources;   /* approx: the samples (new ids); exact: NULL */
     const double *scale;       /* approx: #components fixed-point scales */
-    double *f;                 /* exact: #P out */
+    const int *component;      /* #P component of each old id */
+    double *f;                 /* exact: #P out (old ids) */
     const ps_control *ctl;
     atomic_int cancelled;
     atomic_size_t done;
@@ -58,25 +53,6 @@ static int cancel_requested(const ps_control *ctl) {
 
 static void report(const ps_control *ctl, double fraction) {
     if (ctl && ctl->progress) ctl->progress(ctl->user, PS_PHASE_CENTRALITY, fraction);
-}
-
-static void components_free(components *c) {
-    free(c->start), free(c->members);
-}
-
-static ps_status components_build(const ps_graph *g, const int *of, int count, components *c) {
-    c->count = count;
-    c->of = of;
-    c->start = calloc((size_t)count + 1, sizeof *c->start);
-    c->members = malloc((g->n ? g->n : 1) * sizeof *c->members);
-    if (!c->start || !c->members) return PS_ERR_NOMEM;
-    for (size_t v = 0; v < g->n; v++) c->start[of[v] + 1]++;
-    for (int i = 0; i < count; i++) c->start[i + 1] += c->start[i];
-    size_t *fill = c->start; /* advanced while filling, then shifted back */
-    for (size_t v = 0; v < g->n; v++) c->members[fill[of[v]]++] = (uint32_t)v;
-    for (int i = count; i > 0; i--) c->start[i] = c->start[i - 1];
-    c->start[0] = 0;
-    return PS_OK;
 }
 
 static void workers_free(workers *w) {
@@ -119,32 +95,30 @@ static int should_stop(run_ctx *r) {
 
 static void exact_runs(void *ctx, size_t begin, size_t end, int worker) {
     run_ctx *r = ctx;
+    const ps_bfs_order *o = r->o;
     double *dist = r->w->dist[worker];
     for (size_t s = begin; s < end && !should_stop(r); s++) {
         uint32_t source = (uint32_t)s;
-        ps_dijkstra_run(r->w->dijkstra[worker], r->g, &source, 1, dist, NULL);
-        int c = r->comps->of[s];
-        size_t first = r->comps->start[c], last = r->comps->start[c + 1];
+        ps_dijkstra_run(r->w->dijkstra[worker], &o->g, &source, 1, dist, NULL);
+        int c = r->component[o->old_of[s]];
         double sum = 0.0;
-        for (size_t i = first; i < last; i++) sum += dist[r->comps->members[i]];
-        r->f[s] = sum / (double)(last - first);
+        for (size_t v = o->start[c]; v < o->start[c + 1]; v++) sum += dist[v];
+        r->f[o->old_of[s]] = sum / (double)(o->start[c + 1] - o->start[c]);
         finish_run(r, worker);
     }
 }
 
 static void sample_runs(void *ctx, size_t begin, size_t end, int worker) {
     run_ctx *r = ctx;
+    const ps_bfs_order *o = r->o;
     double *dist = r->w->dist[worker];
     int64_t *sums = r->w->sums[worker];
     for (size_t s = begin; s < end && !should_stop(r); s++) {
         uint32_t source = r->sources[s];
-        ps_dijkstra_run(r->w->dijkstra[worker], r->g, &source, 1, dist, NULL);
-        int c = r->comps->of[source];
+        ps_dijkstra_run(r->w->dijkstra[worker], &o->g, &source, 1, dist, NULL);
+        int c = r->component[o->old_of[source]];
         double scale = r->scale[c];
-        for (size_t i = r->comps->start[c]; i < r->comps->start[c + 1]; i++) {
-            uint32_t v = r->comps->members[i];
-            sums[v] += llround(dist[v] * scale);
-        }
+        for (size_t v = o->start[c]; v < o->start[c + 1]; v++) sums[v] += llround(dist[v] * scale);
         finish_run(r, worker);
     }
 }
@@ -156,17 +130,17 @@ static size_t share_of(size_t samples, size_t size, size_t n) {
     return s > size ? size : s;
 }
 
-static uint32_t farthest_member(const components *comps, int c, const double *mind) {
-    uint32_t best = comps->members[comps->start[c]];
-    for (size_t i = comps->start[c]; i < comps->start[c + 1]; i++) {
-        uint32_t v = comps->members[i];
-        if (mind[v] > mind[best]) best = v;
-    }
+/* The vertex of component c farthest from the samples (ties: lowest old id). */
+static uint32_t farthest_member(const ps_bfs_order *o, int c, const double *mind) {
+    uint32_t best = (uint32_t)o->start[c];
+    for (size_t v = o->start[c]; v < o->start[c + 1]; v++)
+        if (mind[v] > mind[best] || (mind[v] == mind[best] && o->old_of[v] < o->old_of[best]))
+            best = (uint32_t)v;
     return best;
 }
 
 typedef struct sampling {
-    uint32_t *ids;    /* #total samples, component by component */
+    uint32_t *ids;    /* #total samples (new ids), component by component */
     size_t total;
     double *scale;    /* #components fixed-point scale */
     size_t *count;    /* #components samples in each */
@@ -177,30 +151,30 @@ static void sampling_free(sampling *s) {
 }
 
 /* Farthest-point sampling of every component; mind #P scratch. */
-static ps_status choose_samples(const ps_graph *g, const components *comps, size_t samples,
-                                ps_dijkstra *dij, double *mind, const ps_control *ctl,
-                                sampling *s) {
-    s->scale = malloc((size_t)comps->count * sizeof *s->scale);
-    s->count = malloc((size_t)comps->count * sizeof *s->count);
+static ps_status choose_samples(const ps_bfs_order *o, size_t samples, ps_dijkstra *dij,
+                                double *mind, const ps_control *ctl, sampling *s) {
+    int count = o->n_components;
+    s->scale = malloc((size_t)count * sizeof *s->scale);
+    s->count = malloc((size_t)count * sizeof *s->count);
     if (!s->scale || !s->count) return PS_ERR_NOMEM;
     s->total = 0;
-    for (int c = 0; c < comps->count; c++) {
-        s->count[c] = share_of(samples, comps->start[c + 1] - comps->start[c], g->n);
+    for (int c = 0; c < count; c++) {
+        s->count[c] = share_of(samples, o->start[c + 1] - o->start[c], o->g.n);
         s->total += s->count[c];
     }
     s->ids = malloc(s->total * sizeof *s->ids);
     if (!s->ids) return PS_ERR_NOMEM;
-    for (size_t v = 0; v < g->n; v++) mind[v] = INFINITY;
+    for (size_t v = 0; v < o->g.n; v++) mind[v] = INFINITY;
     size_t chosen = 0;
-    for (int c = 0; c < comps->count; c++) {
+    for (int c = 0; c < count; c++) {
         double bound = 0.0;
         for (size_t i = 0; i < s->count[c]; i++) {
             if (cancel_requested(ctl)) return PS_ERR_CANCELLED;
-            uint32_t v = i == 0 ? comps->members[comps->start[c]] : farthest_member(comps, c, mind);
-            ps_dijkstra_lower(dij, g, v, mind);
+            uint32_t v = i == 0 ? (uint32_t)o->start[c] : farthest_member(o, c, mind);
+            ps_dijkstra_lower(dij, &o->g, v, mind);
             /* After the first run mind holds distances from one vertex; twice
              * its eccentricity bounds every distance in the component. */
-            if (i == 0) bound = 2.0 * mind[farthest_member(comps, c, mind)];
+            if (i == 0) bound = 2.0 * mind[farthest_member(o, c, mind)];
             s->ids[chosen++] = v;
             report(ctl, FPS_SHARE * (double)chosen / (double)s->total);
         }
@@ -209,14 +183,13 @@ static ps_status choose_samples(const ps_graph *g, const components *comps, size
     return PS_OK;
 }
 
-static void fixed_point_means(const components *comps, const sampling *s, const workers *w,
+static void fixed_point_means(const ps_bfs_order *o, const sampling *s, const workers *w,
                               double *f) {
-    for (int c = 0; c < comps->count; c++)
-        for (size_t i = comps->start[c]; i < comps->start[c + 1]; i++) {
-            uint32_t v = comps->members[i];
+    for (int c = 0; c < o->n_components; c++)
+        for (size_t v = o->start[c]; v < o->start[c + 1]; v++) {
             int64_t total = 0;
             for (int k = 0; k < w->count; k++) total += w->sums[k][v];
-            f[v] = (double)total / s->scale[c] / (double)s->count[c];
+            f[o->old_of[v]] = (double)total / s->scale[c] / (double)s->count[c];
         }
 }
 
@@ -229,15 +202,24 @@ static ps_status run_parallel(run_ctx *r, int threads, ps_range_fn fn) {
     return PS_OK;
 }
 
-static ps_status approx_centrality(const ps_graph *g, const components *comps, size_t samples,
-                                   workers *w, const ps_control *ctl, double *f, sampling *s) {
-    ps_status st = choose_samples(g, comps, samples, w->dijkstra[0], w->dist[0], ctl, s);
+static ps_status approx_centrality(run_ctx *r, size_t samples, sampling *s) {
+    workers *w = r->w;
+    ps_status st = choose_samples(r->o, samples, w->dijkstra[0], w->dist[0], r->ctl, s);
     if (st != PS_OK) return st;
-    run_ctx r = {.g = g, .comps = comps, .w = w, .sources = s->ids, .scale = s->scale,
-                 .ctl = ctl, .total = s->total};
-    st = run_parallel(&r, w->count, sample_runs);
-    if (st == PS_OK) fixed_point_means(comps, s, w, f);
+    r->sources = s->ids;
+    r->scale = s->scale;
+    r->total = s->total;
+    st = run_parallel(r, w->count, sample_runs);
+    if (st == PS_OK) fixed_point_means(r->o, s, w, r->f);
     return st;
+}
+
+/* Sample ids back to old ids, handed to the caller. */
+static void give_samples(const ps_bfs_order *o, sampling *s, uint32_t **sample_ids,
+                         int *samples_used) {
+    for (size_t i = 0; i < s->total; i++) s->ids[i] = o->old_of[s->ids[i]];
+    if (samples_used) *samples_used = (int)s->total;
+    if (sample_ids) *sample_ids = s->ids, s->ids = NULL;
 }
 
 static ps_status fail_status(ps_status st, ps_error *err) {
@@ -255,23 +237,25 @@ ps_status ps_centrality(const ps_graph *g, const int *component, int n_component
         return ps_fail(err, PS_ERR_INVALID, "centrality: mode must be exact or approx");
     if (samples < 0) return ps_fail(err, PS_ERR_INVALID, "centrality: samples %d < 0", samples);
     if (g->n == 0) return PS_OK;
+    ps_bfs_order o;
+    ps_status st = ps_bfs_order_build(g, &o, err);
+    if (st != PS_OK) return st;
+    if (o.n_components != n_components) {
+        ps_bfs_order_free(&o);
+        return ps_fail(err, PS_ERR_INVALID, "centrality: %d components given, the graph has %d",
+                       n_components, o.n_components);
+    }
     int exact = mode == PS_CENTRALITY_EXACT;
-    components comps = {0};
     workers w = {0};
     sampling s = {0};
-    ps_status st = components_build(g, component, n_components, &comps);
-    if (st == PS_OK) st = workers_build(g->n, ps_parallel_threads(threads), !exact, &w);
-    if (st == PS_OK && exact) {
-        run_ctx r = {.g = g, .comps = &comps, .w = &w, .f = f, .ctl = ctl, .total = g->n};
-        st = run_parallel(&r, w.count, exact_runs);
-    } else if (st == PS_OK) {
-        size_t want = samples ? (size_t)samples : (size_t)ceil(sqrt((double)g->n));
-        st = approx_centrality(g, &comps, want, &w, ctl, f, &s);
-    }
-    if (st == PS_OK && !exact && samples_used) *samples_used = (int)s.total;
-    if (st == PS_OK && !exact && sample_ids) *sample_ids = s.ids, s.ids = NULL;
+    run_ctx r = {.o = &o, .w = &w, .component = component, .f = f, .ctl = ctl, .total = g->n};
+    st = workers_build(g->n, ps_parallel_threads(threads), !exact, &w);
+    if (st == PS_OK && exact) st = run_parallel(&r, w.count, exact_runs);
+    else if (st == PS_OK)
+        st = approx_centrality(&r, samples ? (size_t)samples : (size_t)ceil(sqrt((double)g->n)), &s);
+    if (st == PS_OK && !exact) give_samples(&o, &s, sample_ids, samples_used);
     sampling_free(&s);
     workers_free(&w);
-    components_free(&comps);
+    ps_bfs_order_free(&o);
     return st == PS_OK ? PS_OK : fail_status(st, err);
 }

@@ -1,0 +1,71 @@
+/* bfs_order.c: relabel a ps_graph in breadth-first order (bfs_order.h). */
+#include "bfs_order.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define UNSEEN UINT32_MAX
+
+/* BFS visiting order: old_of lists the vertices, components contiguous. */
+static int visit_order(const ps_graph *g, uint32_t *old_of, uint32_t *new_of, size_t *start) {
+    size_t n = g->n, tail = 0;
+    int count = 0;
+    for (size_t v = 0; v < n; v++) new_of[v] = UNSEEN;
+    for (size_t root = 0; root < n; root++) {
+        if (new_of[root] != UNSEEN) continue;
+        start[count++] = tail;
+        new_of[root] = (uint32_t)tail;
+        old_of[tail++] = (uint32_t)root;
+        for (size_t head = start[count - 1]; head < tail; head++) {
+            uint32_t u = old_of[head];
+            for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
+                uint32_t q = g->neighbors[e];
+                if (new_of[q] != UNSEEN) continue;
+                new_of[q] = (uint32_t)tail;
+                old_of[tail++] = q;
+            }
+        }
+    }
+    start[count] = n;
+    return count;
+}
+
+static void relabel_rows(const ps_graph *g, const ps_bfs_order *o) {
+    size_t out = 0;
+    for (size_t i = 0; i < g->n; i++) {
+        uint32_t u = o->old_of[i];
+        o->g.offsets[i] = out;
+        for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++, out++) {
+            o->g.neighbors[out] = o->new_of[g->neighbors[e]];
+            o->g.weights[out] = g->weights[e];
+        }
+    }
+    o->g.offsets[g->n] = out;
+}
+
+ps_status ps_bfs_order_build(const ps_graph *g, ps_bfs_order *o, ps_error *err) {
+    memset(o, 0, sizeof *o);
+    size_t n = g->n, edges = g->offsets[n], alloc_n = n ? n : 1;
+    o->g.n = n;
+    o->g.offsets = malloc((n + 1) * sizeof *o->g.offsets);
+    o->g.neighbors = malloc((edges ? edges : 1) * sizeof *o->g.neighbors);
+    o->g.weights = malloc((edges ? edges : 1) * sizeof *o->g.weights);
+    o->old_of = malloc(alloc_n * sizeof *o->old_of);
+    o->new_of = malloc(alloc_n * sizeof *o->new_of);
+    o->start = malloc((n + 1) * sizeof *o->start);
+    if (!o->g.offsets || !o->g.neighbors || !o->g.weights || !o->old_of || !o->new_of ||
+        !o->start) {
+        ps_bfs_order_free(o);
+        return ps_fail(err, PS_ERR_NOMEM, "bfs order: out of memory for %zu vertices", n);
+    }
+    o->n_components = visit_order(g, o->old_of, o->new_of, o->start);
+    relabel_rows(g, o);
+    return PS_OK;
+}
+
+void ps_bfs_order_free(ps_bfs_order *o) {
+    if (!o) return;
+    ps_graph_free(&o->g);
+    free(o->old_of), free(o->new_of), free(o->start);
+    memset(o, 0, sizeof *o);
+}

@@ -1,0 +1,28 @@
+/*
+ * bfs_order.h: a copy of a ps_graph relabelled in breadth-first order, for
+ * cache-friendly repeated traversals (the centrality's many Dijkstras).
+ *
+ * Components are visited in order of their lowest vertex, each by BFS from
+ * that vertex (neighbours in row order), so every component occupies one
+ * contiguous range of new ids and its root (the lowest old vertex) comes
+ * first.  Shortest-path distances do not depend on the labelling.
+ */
+#ifndef PS_BFS_ORDER_H
+#define PS_BFS_ORDER_H
+
+#include "knn_graph.h"
+
+typedef struct ps_bfs_order {
+    ps_graph g;          /* #P vertices in new ids; rows in the old row order */
+    uint32_t *old_of;    /* #P old id of each new id */
+    uint32_t *new_of;    /* #P new id of each old id */
+    int n_components;
+    size_t *start;       /* #n_components+1: component c is new ids
+                            [start[c], start[c+1]), numbered as ps_graph_components */
+} ps_bfs_order;
+
+/* g: the graph to relabel.  On success o owns its arrays. */
+ps_status ps_bfs_order_build(const ps_graph *g, ps_bfs_order *o, ps_error *err);
+void ps_bfs_order_free(ps_bfs_order *o);
+
+#endif
