@@ -14,11 +14,12 @@
 
 #include <flann/flann.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define EXTRA 3               /* candidates beyond k + 1, for exact tie breaks */
-#define QUERY_BLOCK 65536     /* points per FLANN query call (bounds scratch) */
+#define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
 
 typedef struct candidate {
     double dist;
@@ -47,72 +48,102 @@ static void sort_candidates(candidate *c, int m) {
     }
 }
 
-/* One block of FLANN results reranked into the directed lists knn (#P by k). */
-typedef struct rerank_job {
-    const double *points;
-    int dim, k, m;        /* m candidates per query row */
-    size_t first_row;     /* block offset in the point set */
-    const int *found;     /* #block by m FLANN indices */
-    uint32_t *knn;        /* #P by k out */
-} rerank_job;
-
-static void rerank_rows(void *ctx, size_t begin, size_t end, int worker) {
-    (void)worker;
-    const rerank_job *j = ctx;
-    candidate c[64 + EXTRA + 1];
-    for (size_t r = begin; r < end; r++) {
-        size_t p = j->first_row + r;
-        const double *x = j->points + p * (size_t)j->dim;
-        int m = 0;
-        for (int t = 0; t < j->m; t++) {
-            int q = j->found[r * (size_t)j->m + (size_t)t];
-            if (q < 0 || (size_t)q == p) continue;
-            c[m].index = (uint32_t)q;
-            c[m].dist = point_distance(x, j->points + (size_t)q * (size_t)j->dim, j->dim);
-            m++;
-        }
-        sort_candidates(c, m);
-        for (int t = 0; t < j->k; t++) j->knn[p * (size_t)j->k + (size_t)t] = c[t].index;
-    }
-}
-
-static struct FLANNParameters search_parameters(int threads) {
+static struct FLANNParameters search_parameters(void) {
     struct FLANNParameters fp = DEFAULT_FLANN_PARAMETERS;
     fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
     fp.checks = FLANN_CHECKS_UNLIMITED;
     fp.eps = 0.0f;
-    fp.cores = threads;
+    fp.cores = 1; /* the workers of ps_parallel_for query blocks side by side */
     fp.log_level = FLANN_LOG_NONE;
     return fp;
+}
+
+/* Queries blocks of rows on the shared index, each worker with its own
+ * scratch, and keeps the k nearest other points of each row in knn. */
+typedef struct query_job {
+    flann_index_t index;
+    const double *points;
+    size_t n;
+    int dim, k, m;          /* m candidates per query row */
+    int **found;            /* per worker: #QUERY_BLOCK by m FLANN indices */
+    double **squared;       /* per worker: #QUERY_BLOCK by m FLANN distances */
+    uint32_t *knn;          /* #P by k out */
+    atomic_int failed;
+} query_job;
+
+/* Row p's candidates by (exact distance, index), self left out. */
+static void keep_nearest(const query_job *j, size_t p, const int *found) {
+    candidate c[64 + EXTRA + 1];
+    const double *x = j->points + p * (size_t)j->dim;
+    int m = 0;
+    for (int t = 0; t < j->m; t++) {
+        int q = found[t];
+        if (q < 0 || (size_t)q == p) continue;
+        c[m].index = (uint32_t)q;
+        c[m].dist = point_distance(x, j->points + (size_t)q * (size_t)j->dim, j->dim);
+        m++;
+    }
+    sort_candidates(c, m);
+    for (int t = 0; t < j->k; t++) j->knn[p * (size_t)j->k + (size_t)t] = c[t].index;
+}
+
+static void query_blocks(void *ctx, size_t begin, size_t end, int worker) {
+    query_job *j = ctx;
+    struct FLANNParameters fp = search_parameters();
+    for (size_t b = begin; b < end; b++) {
+        size_t first = b * QUERY_BLOCK;
+        size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
+        if (flann_find_nearest_neighbors_index_double(
+                j->index, (double *)j->points + first * (size_t)j->dim, (int)rows,
+                j->found[worker], j->squared[worker], j->m, &fp) != 0) {
+            atomic_store(&j->failed, 1);
+            return;
+        }
+        for (size_t r = 0; r < rows; r++)
+            keep_nearest(j, first + r, j->found[worker] + r * (size_t)j->m);
+    }
+}
+
+static void free_scratch(query_job *j, int threads) {
+    for (int t = 0; t < threads; t++) {
+        if (j->found) free(j->found[t]);
+        if (j->squared) free(j->squared[t]);
+    }
+    free(j->found), free(j->squared);
+}
+
+static int alloc_scratch(query_job *j, int threads) {
+    j->found = calloc((size_t)threads, sizeof *j->found);
+    j->squared = calloc((size_t)threads, sizeof *j->squared);
+    if (!j->found || !j->squared) return 0;
+    for (int t = 0; t < threads; t++) {
+        j->found[t] = malloc(QUERY_BLOCK * (size_t)j->m * sizeof *j->found[t]);
+        j->squared[t] = malloc(QUERY_BLOCK * (size_t)j->m * sizeof *j->squared[t]);
+        if (!j->found[t] || !j->squared[t]) return 0;
+    }
+    return 1;
 }
 
 /* knn #P by k: each point's k nearest other points. */
 static ps_status directed_knn(const double *points, size_t n, int dim, int k, int threads,
                               uint32_t *knn, ps_error *err) {
-    struct FLANNParameters fp = search_parameters(threads);
+    struct FLANNParameters fp = search_parameters();
     float speedup = 0.0f;
-    int m = k + 1 + EXTRA < (int)n ? k + 1 + EXTRA : (int)n;
-    size_t block = n < QUERY_BLOCK ? n : QUERY_BLOCK;
-    int *found = malloc(block * (size_t)m * sizeof *found);
-    double *sq = malloc(block * (size_t)m * sizeof *sq);
-    if (!found || !sq) {
-        free(found), free(sq);
-        return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query block");
+    query_job j = {.points = points, .n = n, .dim = dim, .k = k, .knn = knn,
+                   .m = k + 1 + EXTRA < (int)n ? k + 1 + EXTRA : (int)n};
+    atomic_init(&j.failed, 0);
+    if (!alloc_scratch(&j, threads)) {
+        free_scratch(&j, threads);
+        return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query blocks");
     }
-    flann_index_t index = flann_build_index_double((double *)points, (int)n, dim, &speedup, &fp);
-    ps_status st = index ? PS_OK : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
-    for (size_t first = 0; st == PS_OK && first < n; first += block) {
-        size_t rows = n - first < block ? n - first : block;
-        if (flann_find_nearest_neighbors_index_double(index, (double *)points + first * (size_t)dim,
-                                                      (int)rows, found, sq, m, &fp) != 0) {
-            st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
-            break;
-        }
-        rerank_job job = {points, dim, k, m, first, found, knn};
-        ps_parallel_for(threads, rows, 0, rerank_rows, &job);
+    j.index = flann_build_index_double((double *)points, (int)n, dim, &speedup, &fp);
+    ps_status st = j.index ? PS_OK : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
+    if (st == PS_OK) {
+        ps_parallel_for(threads, (n + QUERY_BLOCK - 1) / QUERY_BLOCK, 1, query_blocks, &j);
+        if (atomic_load(&j.failed)) st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
+        flann_free_index_double(j.index, &fp);
     }
-    if (index) flann_free_index_double(index, &fp);
-    free(found), free(sq);
+    free_scratch(&j, threads);
     return st;
 }
 
