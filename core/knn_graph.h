@@ -2,7 +2,8 @@
  * knn_graph.h: the symmetrized k-nearest-neighbour graph of a point set, in
  * compressed sparse row (CSR) form, built with FLANN's kd-tree.
  *
- * p ~ q is an edge when q is among p's k nearest neighbours or p among q's;
+ * p ~ q is an edge when q is among p's k nearest neighbours or p among q's
+ * (nearest by exact double distance, ties to the lower index);
  * its weight is the Euclidean distance |p - q| (> 0: the caller removes
  * duplicate points first, see dedup.h).  Each row is sorted by neighbour
  * index, so the graph is the same for any thread count.
