@@ -5,11 +5,14 @@
  * FLANN's single kd-tree (an exact search) on the double coordinates finds
  * k + EXTRA candidates per point; their distances are recomputed here in
  * double and the k nearest other points kept by (distance, index), so ties
- * and the thread count never change the graph.  The directed lists are then
+ * and the thread count never change the graph.  Queries go in Morton order
+ * (morton.h), blocks of them per worker, which keeps the tree walks in
+ * cache for inputs in any order.  The directed lists are then
  * mirrored into CSR rows sorted by neighbour index without duplicates.
  */
 #include "knn_graph.h"
 
+#include "morton.h"
 #include "parallel.h"
 
 #include <flann/flann.h>
@@ -65,6 +68,8 @@ typedef struct query_job {
     const double *points;
     size_t n;
     int dim, k, m;          /* m candidates per query row */
+    const uint32_t *order;  /* #P query order (Morton: nearby queries in a row) */
+    double **rows;          /* per worker: #QUERY_BLOCK by dim query points */
     int **found;            /* per worker: #QUERY_BLOCK by m FLANN indices */
     double **squared;       /* per worker: #QUERY_BLOCK by m FLANN distances */
     uint32_t *knn;          /* #P by k out */
@@ -90,36 +95,43 @@ static void keep_nearest(const query_job *j, size_t p, const int *found) {
 static void query_blocks(void *ctx, size_t begin, size_t end, int worker) {
     query_job *j = ctx;
     struct FLANNParameters fp = search_parameters();
+    size_t width = (size_t)j->dim;
     for (size_t b = begin; b < end; b++) {
         size_t first = b * QUERY_BLOCK;
         size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
-        if (flann_find_nearest_neighbors_index_double(
-                j->index, (double *)j->points + first * (size_t)j->dim, (int)rows,
-                j->found[worker], j->squared[worker], j->m, &fp) != 0) {
+        for (size_t r = 0; r < rows; r++)
+            memcpy(j->rows[worker] + r * width, j->points + j->order[first + r] * width,
+                   width * sizeof *j->points);
+        if (flann_find_nearest_neighbors_index_double(j->index, j->rows[worker], (int)rows,
+                                                      j->found[worker], j->squared[worker],
+                                                      j->m, &fp) != 0) {
             atomic_store(&j->failed, 1);
             return;
         }
         for (size_t r = 0; r < rows; r++)
-            keep_nearest(j, first + r, j->found[worker] + r * (size_t)j->m);
+            keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m);
     }
 }
 
 static void free_scratch(query_job *j, int threads) {
     for (int t = 0; t < threads; t++) {
+        if (j->rows) free(j->rows[t]);
         if (j->found) free(j->found[t]);
         if (j->squared) free(j->squared[t]);
     }
-    free(j->found), free(j->squared);
+    free(j->rows), free(j->found), free(j->squared);
 }
 
 static int alloc_scratch(query_job *j, int threads) {
+    j->rows = calloc((size_t)threads, sizeof *j->rows);
     j->found = calloc((size_t)threads, sizeof *j->found);
     j->squared = calloc((size_t)threads, sizeof *j->squared);
-    if (!j->found || !j->squared) return 0;
+    if (!j->rows || !j->found || !j->squared) return 0;
     for (int t = 0; t < threads; t++) {
+        j->rows[t] = malloc(QUERY_BLOCK * (size_t)j->dim * sizeof *j->rows[t]);
         j->found[t] = malloc(QUERY_BLOCK * (size_t)j->m * sizeof *j->found[t]);
         j->squared[t] = malloc(QUERY_BLOCK * (size_t)j->m * sizeof *j->squared[t]);
-        if (!j->found[t] || !j->squared[t]) return 0;
+        if (!j->rows[t] || !j->found[t] || !j->squared[t]) return 0;
     }
     return 1;
 }
@@ -129,11 +141,13 @@ static ps_status directed_knn(const double *points, size_t n, int dim, int k, in
                               uint32_t *knn, ps_error *err) {
     struct FLANNParameters fp = search_parameters();
     float speedup = 0.0f;
-    query_job j = {.points = points, .n = n, .dim = dim, .k = k, .knn = knn,
+    uint32_t *order = malloc(n * sizeof *order);
+    query_job j = {.points = points, .n = n, .dim = dim, .k = k, .knn = knn, .order = order,
                    .m = k + 1 + EXTRA < (int)n ? k + 1 + EXTRA : (int)n};
     atomic_init(&j.failed, 0);
-    if (!alloc_scratch(&j, threads)) {
+    if (!order || !alloc_scratch(&j, threads) || ps_morton_order(points, n, dim, order) != PS_OK) {
         free_scratch(&j, threads);
+        free(order);
         return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query blocks");
     }
     j.index = flann_build_index_double((double *)points, (int)n, dim, &speedup, &fp);
@@ -144,6 +158,7 @@ static ps_status directed_knn(const double *points, size_t n, int dim, int k, in
         flann_free_index_double(j.index, &fp);
     }
     free_scratch(&j, threads);
+    free(order);
     return st;
 }
 
