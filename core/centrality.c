@@ -22,7 +22,6 @@
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
-#include <string.h>
 
 #define FIXED_POINT_RANGE 1125899906842624.0 /* 2^50: bound on a vertex's sum */
 #define FPS_SHARE 0.25                      /* progress share of the sampling */
@@ -45,6 +44,7 @@ typedef struct run_ctx {
     atomic_int cancelled;
     atomic_size_t done;
     size_t total;
+    double progress_base;      /* fraction reported before the first run */
 } run_ctx;
 
 static int cancel_requested(const ps_control *ctl) {
@@ -83,7 +83,8 @@ static ps_status workers_build(size_t n, int count, int with_sums, workers *w) {
 /* Worker 0 alone reports, so fractions are monotone and never concurrent. */
 static void finish_run(run_ctx *r, int worker) {
     size_t done = atomic_fetch_add(&r->done, 1) + 1;
-    if (worker == 0) report(r->ctl, FPS_SHARE + (1.0 - FPS_SHARE) * (double)done / (double)r->total);
+    double share = 1.0 - r->progress_base;
+    if (worker == 0) report(r->ctl, r->progress_base + share * (double)done / (double)r->total);
 }
 
 static int should_stop(run_ctx *r) {
@@ -209,6 +210,7 @@ static ps_status approx_centrality(run_ctx *r, size_t samples, sampling *s) {
     r->sources = s->ids;
     r->scale = s->scale;
     r->total = s->total;
+    r->progress_base = FPS_SHARE;
     st = run_parallel(r, w->count, sample_runs);
     if (st == PS_OK) fixed_point_means(r->o, s, w, r->f);
     return st;

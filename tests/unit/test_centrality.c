@@ -165,13 +165,13 @@ static void test_threads_identical_approx(void) { check_threads_identical(PS_CEN
 
 typedef struct progress_log {
     int calls, monotone, wrong_phase;
-    double last;
+    double first, last;
     volatile int *cancel_at_half;
 } progress_log;
 
 static void on_progress(void *user, ps_phase phase, double fraction) {
     progress_log *log = user;
-    log->calls++;
+    if (log->calls++ == 0) log->first = fraction;
     log->wrong_phase += phase != PS_PHASE_CENTRALITY;
     if (fraction < log->last || fraction > 1.0) log->monotone = 0;
     log->last = fraction;
@@ -186,14 +186,15 @@ static void test_progress_and_cancel(void) {
     double *f = malloc(n * sizeof *f);
     REQUIRE(f);
     for (int mode = PS_CENTRALITY_EXACT; mode <= PS_CENTRALITY_APPROX; mode++) {
-        progress_log log = {0, 1, 0, 0.0, NULL};
+        progress_log log = {0, 1, 0, 0.0, 0.0, NULL};
         ps_control ctl = {on_progress, &log, NULL};
         REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, (ps_centrality_mode)mode, 40, 2, &ctl, f,
                               NULL, NULL, NULL) == PS_OK);
         CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
+        CHECK(log.first < 0.05);
 
         volatile int cancel = 0;
-        progress_log stop = {0, 1, 0, 0.0, &cancel};
+        progress_log stop = {0, 1, 0, 0.0, 0.0, &cancel};
         ps_control cctl = {on_progress, &stop, &cancel};
         ps_error err = {0};
         CHECK(ps_centrality(&s.g, s.comp, s.n_comp, (ps_centrality_mode)mode, 40, 2, &cctl, f,
