@@ -93,6 +93,27 @@ static void test_grid_ties(void) {
     check_against_brute(p, 225, 2, 5, 1);
 }
 
+/* The origin is the nearest neighbour of 200 random unit vectors in 64-d
+ * (pairwise about sqrt 2 apart): a hub whose row holds 200 entries. */
+static void test_hub_row(void) {
+    size_t n = 201;
+    int dim = 64;
+    double *p = random_points(n, dim, 4);
+    REQUIRE(p);
+    for (size_t i = 0; i < (size_t)dim; i++) p[i] = 0.0;
+    for (size_t i = 1; i < n; i++) {
+        double len = 0.0;
+        for (int d = 0; d < dim; d++) p[i * dim + d] -= 0.5, len += p[i * dim + d] * p[i * dim + d];
+        for (int d = 0; d < dim; d++) p[i * dim + d] /= sqrt(len);
+    }
+    ps_graph g;
+    REQUIRE(ps_knn_graph_build(p, n, dim, 2, 2, &g, NULL) == PS_OK);
+    CHECK(g.offsets[1] - g.offsets[0] == n - 1);
+    ps_graph_free(&g);
+    check_against_brute(p, n, dim, 2, 2);
+    free(p);
+}
+
 static int same_graph(const ps_graph *a, const ps_graph *b) {
     size_t e = a->offsets[a->n];
     return a->n == b->n && memcmp(a->offsets, b->offsets, (a->n + 1) * sizeof *a->offsets) == 0 &&
@@ -153,5 +174,6 @@ static void test_rejects_bad_k(void) {
 }
 
 PS_TEST_MAIN(TEST(test_random_3d), TEST(test_random_high_dim), TEST(test_grid_ties),
+             TEST(test_hub_row),
              TEST(test_threads_and_scale_invariant), TEST(test_components),
              TEST(test_rejects_bad_k))
