@@ -150,6 +150,7 @@ static int add_params(cJSON *doc, const ps_params *p) {
     return !o || add_number(o, "k", p->k) ||
                    !cJSON_AddStringToObject(o, "centrality", ps_centrality_name(p->centrality)) ||
                    add_number(o, "samples", p->samples) ||
+                   add_number(o, "persistence", p->persistence) ||
                    add_number(o, "ncut_threshold", p->ncut_threshold) ||
                    add_number(o, "feature_threshold", p->feature_threshold) ||
                    !cJSON_AddBoolToObject(o, "minima", p->use_minima != 0) ||

@@ -18,6 +18,7 @@ typedef enum param_id {
     P_K,
     P_CENTRALITY,
     P_SAMPLES,
+    P_PERSISTENCE,
     P_NCUT_THRESHOLD,
     P_FEATURE_THRESHOLD,
     P_MINIMA,
@@ -42,14 +43,16 @@ static const ps_param_spec table[P_COUNT] = {
                       "exact (Dijkstra from every point), approx (sampled), or auto by size"},
     [P_SAMPLES] = {"samples", PS_PT_INT, "0", 0, 100000, NULL,
                    "approx centrality sample count; 0 = ceil(sqrt(n))"},
-    [P_NCUT_THRESHOLD] = {"ncut_threshold", PS_PT_DOUBLE, "0.3", 0, 2, NULL,
+    [P_PERSISTENCE] = {"persistence", PS_PT_DOUBLE, "0.1", 0, 1, NULL,
+                       "merge maxima less prominent than this fraction of f's range"},
+    [P_NCUT_THRESHOLD] = {"ncut_threshold", PS_PT_DOUBLE, "0.6", 0, 2, NULL,
                           "stop bisecting when the normalized cut exceeds this"},
     [P_FEATURE_THRESHOLD] = {"feature_threshold", PS_PT_DOUBLE, "0.1", 0, 1, NULL,
                              "merge segments whose feature size is below this fraction of f's range"},
-    [P_MINIMA] = {"minima", PS_PT_BOOL, "false", 0, 1, NULL,
-                  "also make supernodes of the minima of the centrality"},
+    [P_MINIMA] = {"minima", PS_PT_BOOL, "true", 0, 1, NULL,
+                  "central regions below the limbs' saddles go to the minima of f"},
     [P_F2] = {"f2", PS_PT_BOOL, "false", 0, 1, NULL,
-              "use the second function (distance to the own sink)"},
+              "split supernodes at the maxima of f2, the distance to their own sink"},
     [P_THREADS] = {"threads", PS_PT_INT, "0", 0, 256, NULL,
                    "worker threads; 0 = all cores"},
     [P_OUTPUT] = {"output", PS_PT_ENUM, "json", 0, 0, output_choices,
@@ -203,6 +206,7 @@ static void store_number(ps_request_params *rp, param_id id, double v) {
     case P_K: rp->core.k = (int)v; break;
     case P_SAMPLES: rp->core.samples = (int)v; break;
     case P_THREADS: rp->core.threads = (int)v; break;
+    case P_PERSISTENCE: rp->core.persistence = v; break;
     case P_NCUT_THRESHOLD: rp->core.ncut_threshold = v; break;
     case P_FEATURE_THRESHOLD: rp->core.feature_threshold = v; break;
     case P_MINIMA: rp->core.use_minima = v != 0; break;

@@ -18,10 +18,11 @@
  * O(m^2) memory for the dense W (m = supernodes, not points).
  *
  * W(u, v) = s_u s_v exp(-d(u, v) / sigma_c), W(u, u) = s_u^2, 0 across
- * components, with sigma_c = PS_NCUT_SIGMA_SCALE (ncut.h) * the mean over
- * the supernodes of component c of the distance to the nearest other sink of
- * c (component_sigma() below): a length of the data, so labels do not change
- * with the scale.
+ * components, with sigma_c = PS_NCUT_SIGMA_SCALE (ncut.h) * the mean
+ * distance between two sinks of component c (component_sigma() below): a
+ * length of the shape itself, so labels change neither with the scale nor
+ * with how many sinks the shape happens to have (a sigma tied to the sink
+ * spacing made the segment count grow with the number of sinks).
  */
 #include "ncut.h"
 
@@ -147,19 +148,18 @@ static ps_status sink_distances(const ps_graph *g, const ps_supernode_graph *sg,
 }
 
 /* sigma #C out (C = max component + 1), see PS_NCUT_SIGMA_SCALE; 1 for a
- * component with no two distinct sinks (its sigma is never used then). */
+ * component with no two distinct sinks (its sigma is never used then).
+ * count #C scratch. */
 static void component_sigma(const double *D, int m, const int *component, int n_comp,
-                            double *sigma, int *count) {
+                            double *sigma, double *count) {
     for (int c = 0; c < n_comp; c++) sigma[c] = count[c] = 0;
-    for (int u = 0; u < m; u++) {
-        double nearest = INFINITY;
-        for (int v = 0; v < m; v++)
-            if (v != u && component[v] == component[u])
-                nearest = fmin(nearest, D[(size_t)u * m + v]);
-        if (!isfinite(nearest)) continue;
-        sigma[component[u]] += nearest;
-        count[component[u]]++;
-    }
+    for (int u = 0; u < m; u++)
+        for (int v = u + 1; v < m; v++) {
+            double d = D[(size_t)u * m + v];
+            if (component[v] != component[u] || !isfinite(d)) continue;
+            sigma[component[u]] += d;
+            count[component[u]]++;
+        }
     for (int c = 0; c < n_comp; c++) {
         double mean = count[c] ? sigma[c] / count[c] : 0;
         sigma[c] = mean > 0 ? PS_NCUT_SIGMA_SCALE * mean : 1;
@@ -185,7 +185,7 @@ static ps_status build_similarity(const ps_graph *g, const ps_supernode_graph *s
     for (int u = 0; u < sg->m; u++)
         if (component[u] >= n_comp) n_comp = component[u] + 1;
     double *sigma = malloc((size_t)n_comp * sizeof *sigma);
-    int *count = malloc((size_t)n_comp * sizeof *count);
+    double *count = malloc((size_t)n_comp * sizeof *count);
     ps_status st = sigma && count ? sink_distances(g, sg, threads, W, err)
                                   : ps_fail(err, PS_ERR_NOMEM, "ncut: out of memory");
     if (st == PS_OK) {

@@ -32,9 +32,10 @@ void ps_params_default(ps_params *p) {
         .k = 7,
         .centrality = PS_CENTRALITY_AUTO,
         .samples = 0,
-        .ncut_threshold = 0.3,
+        .persistence = 0.1,
+        .ncut_threshold = 0.6,
         .feature_threshold = 0.1,
-        .use_minima = 0,
+        .use_minima = 1,
         .use_f2 = 0,
         .threads = 0,
     };
@@ -47,6 +48,9 @@ ps_status ps_params_check(const ps_params *p, ps_error *err) {
         return ps_fail(err, PS_ERR_INVALID, "unknown centrality mode %d", (int)p->centrality);
     if (p->samples < 0 || p->samples > 100000)
         return ps_fail(err, PS_ERR_INVALID, "samples must be in [0, 100000], got %d", p->samples);
+    if (!(p->persistence >= 0 && p->persistence <= 1))
+        return ps_fail(err, PS_ERR_INVALID, "persistence must be in [0, 1], got %g",
+                       p->persistence);
     if (!(p->ncut_threshold >= 0 && p->ncut_threshold <= 2))
         return ps_fail(err, PS_ERR_INVALID, "ncut_threshold must be in [0, 2], got %g",
                        p->ncut_threshold);

@@ -63,11 +63,16 @@ typedef struct ps_params {
     int k;                    /* neighbours per point in the kNN graph (default 7) */
     ps_centrality_mode centrality;
     int samples;              /* approx centrality samples; 0 = ceil(sqrt(n)) */
+    double persistence;       /* merge sinks whose persistence is below this
+                                 fraction of the range of f (persistence.h) */
     double ncut_threshold;    /* stop bisecting when NCut exceeds this */
     double feature_threshold; /* merge segments whose feature size is below this
                                  fraction of the range of f */
-    int use_minima;           /* also make supernodes of the minima of f */
-    int use_f2;               /* second function: distance to own sink */
+    int use_minima;           /* also make supernodes of the minima of f, for
+                                 the central regions below each basin's
+                                 highest saddle (supernodes.h) */
+    int use_f2;               /* split supernodes along the maxima of f2, the
+                                 distance to their own sink (f2_split.h) */
     int threads;              /* worker threads; 0 = all cores */
 } ps_params;
 

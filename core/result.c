@@ -75,7 +75,7 @@ static void fill_supernodes(const ps_result_parts *pp, const int *leaf_of_supern
         ps_supernode *sn = &r->supernodes[s];
         sn->sink = pp->first_of[sink];
         sn->centrality = pp->f[sink];
-        sn->is_minimum = 0;
+        sn->is_minimum = pp->is_minimum[s];
         sn->segment = segment_of_leaf[leaf_of_supernode[s]];
         r->segments[sn->segment].n_supernodes++;
     }

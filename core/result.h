@@ -17,6 +17,7 @@ typedef struct ps_result_parts {
     int n_components;
     int n_supernodes;            /* #S */
     const uint32_t *sinks;       /* #S distinct index of each sink */
+    const int *is_minimum;       /* #S */
     const int *supernode_of;     /* #U */
     ps_tree_node *tree;          /* #n_tree, ownership moves into the result */
     int n_tree;

@@ -10,13 +10,14 @@
  */
 #include "centrality.h"
 #include "dedup.h"
-#include "flow.h"
+#include "f2_split.h"
 #include "knn_graph.h"
 #include "ncut.h"
 #include "parallel.h"
 #include "pointseg.h"
 #include "refine.h"
 #include "result.h"
+#include "supernodes.h"
 
 #include <math.h>
 #include <stdatomic.h>
@@ -36,8 +37,7 @@ typedef struct pipeline {
     int *component;        /* #U */
     int n_components;
     double *f;             /* #U centrality */
-    ps_flow flow;
-    size_t *supernode_sizes;
+    ps_supernodes sn;
     ps_tree_node *tree;
     int n_tree;
     int *group_of_leaf;    /* #n_tree */
@@ -127,21 +127,20 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
 }
 
 static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
-    ps_status st = ps_flow_build(&pl->graph, pl->f, +1, &pl->flow, err);
-    if (st != PS_OK) return st;
-    pl->supernode_sizes = calloc((size_t)pl->flow.n_sinks, sizeof *pl->supernode_sizes);
-    if (!pl->supernode_sizes) return ps_fail(err, PS_ERR_NOMEM, "out of memory (supernodes)");
-    for (size_t i = 0; i < pl->dedup.n_unique; i++)
-        pl->supernode_sizes[pl->flow.sink_of[i]]++;
-    return PS_OK;
+    const ps_params *p = &pl->params;
+    ps_status st = ps_supernodes_build(&pl->graph, pl->f, pl->component, pl->n_components,
+                                       p->persistence, p->use_minima, &pl->sn, err);
+    if (st == PS_OK && p->use_f2)
+        st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
+    return st;
 }
 
 static ps_status phase_hierarchy(pipeline *pl, ps_error *err) {
     ps_supernode_graph sg = {
-        .m = pl->flow.n_sinks,
-        .sinks = pl->flow.sinks,
-        .sizes = pl->supernode_sizes,
-        .supernode_of = pl->flow.sink_of,
+        .m = pl->sn.m,
+        .sinks = pl->sn.sinks,
+        .sizes = pl->sn.sizes,
+        .supernode_of = pl->sn.supernode_of,
         .component = pl->component,
     };
     return ps_ncut_hierarchy(&pl->graph, &sg, pl->params.ncut_threshold, pl->threads, pl->ctl,
@@ -151,7 +150,7 @@ static ps_status phase_hierarchy(pipeline *pl, ps_error *err) {
 static ps_status phase_refine(pipeline *pl, ps_error *err) {
     pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
     if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
-    return ps_refine(&pl->graph, pl->f, pl->flow.sink_of, pl->component, pl->tree, pl->n_tree,
+    return ps_refine(&pl->graph, pl->f, pl->sn.supernode_of, pl->component, pl->tree, pl->n_tree,
                      pl->params.feature_threshold, pl->group_of_leaf, &pl->merges,
                      &pl->n_merges, err);
 }
@@ -180,8 +179,7 @@ static void pipeline_free(pipeline *pl) {
     ps_graph_free(&pl->graph);
     free(pl->component);
     free(pl->f);
-    ps_flow_free(&pl->flow);
-    free(pl->supernode_sizes);
+    ps_supernodes_free(&pl->sn);
     ps_tree_free(pl->tree, pl->n_tree);
     free(pl->group_of_leaf);
     free(pl->merges);
@@ -196,9 +194,10 @@ static ps_result_parts parts_of(const pipeline *pl) {
         .first_of = pl->dedup.first,
         .f = pl->f,
         .n_components = pl->n_components,
-        .n_supernodes = pl->flow.n_sinks,
-        .sinks = pl->flow.sinks,
-        .supernode_of = pl->flow.sink_of,
+        .n_supernodes = pl->sn.m,
+        .sinks = pl->sn.sinks,
+        .is_minimum = pl->sn.is_minimum,
+        .supernode_of = pl->sn.supernode_of,
         .tree = pl->tree,
         .n_tree = pl->n_tree,
         .group_of_leaf = pl->group_of_leaf,

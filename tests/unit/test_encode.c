@@ -55,6 +55,7 @@ static ps_result small_result(void) {
     ps_params_default(&r.params);
     r.params.samples = 3;
     r.params.use_f2 = 1;
+    r.params.use_minima = 0;
     for (int ph = 0; ph < PS_PHASE_COUNT; ph++) r.timings.ms[ph] = ph + 0.5;
     r.timings.total_ms = 12.5;
     return r;
@@ -164,9 +165,10 @@ static void test_json_params_and_timings(void) {
     CHECK(num(p, "feature_threshold") == r.params.feature_threshold);
     const cJSON *mode = cJSON_GetObjectItemCaseSensitive(p, "centrality");
     CHECK(cJSON_IsString(mode) && strcmp(mode->valuestring, "auto") == 0);
+    CHECK(num(p, "persistence") == r.params.persistence);
     CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(p, "minima")));
     CHECK(is_true(p, "f2"));
-    CHECK(cJSON_GetArraySize(p) == 8);
+    CHECK(cJSON_GetArraySize(p) == 9);
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(doc, "timings_ms");
     CHECK(num(t, "knn") == 0.5 && num(t, "centrality") == 1.5 && num(t, "supernodes") == 2.5);
     CHECK(num(t, "hierarchy") == 3.5 && num(t, "refine") == 4.5 && num(t, "total") == 12.5);

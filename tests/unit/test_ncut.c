@@ -72,7 +72,7 @@ static double pair_ncut(const double W[3][3], int alone) {
 }
 
 /* Sinks at 0, 4, 10 on a unit path: d = 4, 6, 10 exactly (each border path
- * dist[p] + 1 + dist[q]); sigma = PS_NCUT_SIGMA_SCALE * (4 + 4 + 6) / 3.
+ * dist[p] + 1 + dist[q]); sigma = PS_NCUT_SIGMA_SCALE * (4 + 6 + 10) / 3.
  * The root keeps the best single split, whose NCut is checked against W
  * computed here. */
 static void test_path_distances_and_sigma(void) {
@@ -82,7 +82,7 @@ static void test_path_distances_and_sigma(void) {
     make_path(&h, 11, 1, 0);
     make_supernodes(&s, &h, sinks, 3);
     double d[3][3] = {{0, 4, 10}, {4, 0, 6}, {10, 6, 0}}, W[3][3];
-    double sigma = PS_NCUT_SIGMA_SCALE * 14.0 / 3;
+    double sigma = PS_NCUT_SIGMA_SCALE * 20.0 / 3;
     for (int u = 0; u < 3; u++)
         for (int v = 0; v < 3; v++)
             W[u][v] = (double)s.sizes[u] * (double)s.sizes[v] * exp(-d[u][v] / sigma);
@@ -129,7 +129,8 @@ static void test_two_groups_scale_free(void) {
 }
 
 /* Two path components (vertices 0..4 and 5..9) and a lone vertex 10 that is
- * the sink of two supernodes: components split off with NCut 0. */
+ * the sink of two supernodes: components split off with NCut 0 (threshold 0
+ * keeps only those splits). */
 static void test_components_and_shared_sink(void) {
     static const uint32_t sinks[6] = {0, 10, 4, 10, 5, 9};
     hand_graph h;
@@ -141,7 +142,7 @@ static void test_components_and_shared_sink(void) {
     s.sizes[3] = 1; /* vertex 10 stands for both supernodes 1 and 3 */
     ps_tree_node *tree;
     int n;
-    REQUIRE(ps_ncut_hierarchy(&h.g, &s.sg, 0.3, 1, NULL, &tree, &n, NULL) == PS_OK);
+    REQUIRE(ps_ncut_hierarchy(&h.g, &s.sg, 0.0, 1, NULL, &tree, &n, NULL) == PS_OK);
     REQUIRE(n >= 5);
     CHECK(tree[0].ncut == 0);
     REQUIRE(tree[1].n_supernodes == 2 && tree[2].n_supernodes == 4);

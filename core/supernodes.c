@@ -1,0 +1,126 @@
+/*
+ * supernodes.c: supernodes from the simplified ascent flow, and with
+ * use_minima the split of each basin at its highest saddle, the points
+ * below going to the simplified descent flow's minima (supernodes.h).
+ */
+#include "supernodes.h"
+
+#include "flow.h"
+#include "persistence.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static ps_status simplified_flow(const ps_graph *g, const double *f, const int *component,
+                                 int n_components, double persistence, int direction,
+                                 ps_flow *flow, ps_error *err) {
+    double *signed_f = NULL;
+    if (direction < 0) {
+        signed_f = malloc(g->n * sizeof *signed_f);
+        if (!signed_f) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+        for (size_t p = 0; p < g->n; p++) signed_f[p] = -f[p];
+    }
+    const double *h = signed_f ? signed_f : f;
+    ps_status st = ps_flow_build(g, h, +1, flow, err);
+    if (st == PS_OK)
+        st = ps_flow_simplify(g, h, component, n_components, persistence, flow, err);
+    free(signed_f);
+    return st;
+}
+
+/* level #S out: each basin's highest saddle, min(f(p), f(q)) over edges to
+ * other basins; -INFINITY-like (-1e300) for a basin that meets none. */
+static void highest_saddles(const ps_graph *g, const double *f, const ps_flow *up,
+                            double *level) {
+    for (int s = 0; s < up->n_sinks; s++) level[s] = -1e300;
+    for (size_t p = 0; p < g->n; p++)
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            uint32_t q = g->neighbors[e];
+            int a = up->sink_of[p], b = up->sink_of[q];
+            if (a == b) continue;
+            double h = f[p] < f[q] ? f[p] : f[q];
+            if (h > level[a]) level[a] = h;
+        }
+}
+
+static ps_status allocate(ps_supernodes *out, size_t n, int m, ps_error *err) {
+    out->m = m;
+    out->sinks = malloc((size_t)(m ? m : 1) * sizeof *out->sinks);
+    out->is_minimum = calloc((size_t)(m ? m : 1), sizeof *out->is_minimum);
+    out->sizes = calloc((size_t)(m ? m : 1), sizeof *out->sizes);
+    out->supernode_of = malloc((n ? n : 1) * sizeof *out->supernode_of);
+    if (out->sinks && out->is_minimum && out->sizes && out->supernode_of) return PS_OK;
+    ps_supernodes_free(out);
+    return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+}
+
+/* Drops empty supernodes (ids stay in order) and sets each one's
+ * representative: its highest point for a maximum, lowest for a minimum. */
+static int finish(ps_supernodes *out, const double *f, size_t n) {
+    int *new_id = malloc((size_t)(out->m ? out->m : 1) * sizeof *new_id);
+    int kept = 0;
+    if (!new_id) return -1;
+    for (int s = 0; s < out->m; s++) {
+        new_id[s] = out->sizes[s] ? kept : -1;
+        if (out->sizes[s]) {
+            out->sizes[kept] = out->sizes[s];
+            out->is_minimum[kept] = out->is_minimum[s];
+            out->sinks[kept++] = UINT32_MAX;
+        }
+    }
+    out->m = kept;
+    for (size_t p = 0; p < n; p++) {
+        int s = out->supernode_of[p] = new_id[out->supernode_of[p]];
+        uint32_t r = out->sinks[s];
+        if (r == UINT32_MAX || (out->is_minimum[s] ? f[p] < f[r] : f[p] > f[r]))
+            out->sinks[s] = (uint32_t)p;
+    }
+    free(new_id);
+    return 0;
+}
+
+static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
+                         const ps_flow *down, ps_supernodes *out, ps_error *err) {
+    int n_up = up->n_sinks, n_down = down ? down->n_sinks : 0;
+    ps_status st = allocate(out, g->n, n_up + n_down, err);
+    double *level = down ? malloc((size_t)n_up * sizeof *level) : NULL;
+    if (st != PS_OK || (down && !level)) {
+        free(level);
+        if (st == PS_OK) ps_supernodes_free(out);
+        return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    }
+    if (down) highest_saddles(g, f, up, level);
+    for (int s = 0; s < n_down; s++) out->is_minimum[n_up + s] = 1;
+    for (size_t p = 0; p < g->n; p++) {
+        int a = up->sink_of[p];
+        int s = down && f[p] < level[a] ? n_up + down->sink_of[p] : a;
+        out->supernode_of[p] = s;
+        out->sizes[s]++;
+    }
+    free(level);
+    if (finish(out, f, g->n) == 0) return PS_OK;
+    ps_supernodes_free(out);
+    return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+}
+
+ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
+                              int n_components, double persistence, int use_minima,
+                              ps_supernodes *out, ps_error *err) {
+    memset(out, 0, sizeof *out);
+    ps_flow up = {0}, down = {0};
+    ps_status st = simplified_flow(g, f, component, n_components, persistence, +1, &up, err);
+    if (st == PS_OK && use_minima)
+        st = simplified_flow(g, f, component, n_components, persistence, -1, &down, err);
+    if (st == PS_OK) st = combine(g, f, &up, use_minima ? &down : NULL, out, err);
+    ps_flow_free(&up);
+    ps_flow_free(&down);
+    return st;
+}
+
+void ps_supernodes_free(ps_supernodes *s) {
+    free(s->sinks);
+    free(s->is_minimum);
+    free(s->sizes);
+    free(s->supernode_of);
+    memset(s, 0, sizeof *s);
+}

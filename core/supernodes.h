@@ -1,0 +1,32 @@
+/*
+ * supernodes.h: phase 1's last step, the supernodes.
+ *
+ * Every point follows the steepest ascent of f to a sink (flow.h); shallow
+ * sinks merge by persistence (persistence.h).  With use_minima, the paper's
+ * "minima as well as maxima": a basin is only the part of the shape above
+ * its highest saddle (where it meets another basin, the root of a limb),
+ * and the points below it, the central regions that have no maximum of
+ * their own, form supernodes around the minima of f instead (descent flow,
+ * simplified the same way).
+ */
+#ifndef PS_SUPERNODES_H
+#define PS_SUPERNODES_H
+
+#include "knn_graph.h"
+
+typedef struct ps_supernodes {
+    int m;               /* #S */
+    uint32_t *sinks;     /* #S representative vertex: the max (or min) */
+    int *is_minimum;     /* #S 1 for a minimum's supernode */
+    size_t *sizes;       /* #S vertices */
+    int *supernode_of;   /* #P */
+} ps_supernodes;
+
+/* f #P, component #P.  persistence: fraction of each component's f range
+ * under which sinks merge (0 keeps every sink). */
+ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
+                              int n_components, double persistence, int use_minima,
+                              ps_supernodes *out, ps_error *err);
+void ps_supernodes_free(ps_supernodes *s);
+
+#endif

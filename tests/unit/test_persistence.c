@@ -1,0 +1,87 @@
+/* test_persistence.c: persistence merging of flow basins: a ripple merges
+ * into its neighbour, a prominent peak survives, fraction 0 keeps all, and
+ * components are judged by their own range. */
+#include "flow.h"
+#include "persistence.h"
+#include "testlib.h"
+
+#include <stdlib.h>
+
+/* Path 0-1-...-(n-1), unit weights; arrays owned by the caller's statics. */
+static void path_graph(ps_graph *g, size_t n, size_t *offsets, uint32_t *nbr, double *w) {
+    size_t e = 0;
+    for (size_t p = 0; p < n; p++) {
+        offsets[p] = e;
+        if (p > 0) nbr[e] = (uint32_t)(p - 1), w[e++] = 1;
+        if (p + 1 < n) nbr[e] = (uint32_t)(p + 1), w[e++] = 1;
+    }
+    offsets[n] = e;
+    *g = (ps_graph){n, offsets, nbr, w};
+}
+
+/* f on 9 vertices: big peak at 1 (10), ripple at 4 (5.5) over saddle 3 (5),
+ * then rising to a peak at 8 (9).  Range 10 - 5 = 5: the ripple (5.5 over
+ * the saddle 5.2 towards 5: persistence 0.3) merges at fraction 0.1; the
+ * peak at 8 (persistence 9 - 5 = 4) needs a fraction above 0.8. */
+static void test_ripple_merges(void) {
+    static size_t off[10];
+    static uint32_t nbr[16];
+    static double w[16];
+    ps_graph g;
+    path_graph(&g, 9, off, nbr, w);
+    const double f[9] = {9, 10, 6, 5, 5.5, 5.2, 7, 8, 9};
+    const int zero[9] = {0};
+    ps_flow fl;
+    REQUIRE(ps_flow_build(&g, f, +1, &fl, NULL) == PS_OK);
+    REQUIRE(fl.n_sinks == 3);
+    REQUIRE(ps_flow_simplify(&g, f, zero, 1, 0.0, &fl, NULL) == PS_OK);
+    CHECK(fl.n_sinks == 3);
+    REQUIRE(ps_flow_simplify(&g, f, zero, 1, 0.1, &fl, NULL) == PS_OK);
+    REQUIRE(fl.n_sinks == 2);
+    CHECK(fl.sinks[0] == 1 && fl.sinks[1] == 8);
+    CHECK(fl.sink_of[4] == fl.sink_of[8]); /* the ripple joined the peak at 8 */
+    CHECK(fl.sink_of[2] == 0 && fl.sink_of[3] != fl.sink_of[4]);
+    REQUIRE(ps_flow_simplify(&g, f, zero, 1, 0.75, &fl, NULL) == PS_OK);
+    CHECK(fl.n_sinks == 2);
+    REQUIRE(ps_flow_simplify(&g, f, zero, 1, 0.85, &fl, NULL) == PS_OK);
+    CHECK(fl.n_sinks == 1 && fl.sinks[0] == 1);
+    for (int v = 0; v < 9; v++) CHECK(fl.sink_of[v] == 0);
+    ps_flow_free(&fl);
+}
+
+/* Two components, each a path with two peaks; component 0 has a tall range
+ * so its second peak is relatively small, component 1 is judged alone. */
+static void test_threshold_per_component(void) {
+    static size_t off[11];
+    static uint32_t nbr[20];
+    static double w[20];
+    ps_graph g;
+    path_graph(&g, 10, off, nbr, w);
+    /* cut the edge 4-5: rebuild rows 4 and 5 without it */
+    const double f[10] = {100, 0, 1, 0.5, 0.2, 0.01, 1, 0.5, 0.9, 0.02};
+    const int comp[10] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1};
+    static size_t off2[11];
+    static uint32_t nbr2[18];
+    static double w2[18];
+    size_t e = 0;
+    for (size_t p = 0; p < 10; p++) {
+        off2[p] = e;
+        for (size_t k = off[p]; k < off[p + 1]; k++)
+            if (!((p == 4 && nbr[k] == 5) || (p == 5 && nbr[k] == 4)))
+                nbr2[e] = nbr[k], w2[e++] = w[k];
+    }
+    off2[10] = e;
+    ps_graph cut = {10, off2, nbr2, w2};
+    ps_flow fl;
+    REQUIRE(ps_flow_build(&cut, f, +1, &fl, NULL) == PS_OK);
+    int before = fl.n_sinks;
+    REQUIRE(ps_flow_simplify(&cut, f, comp, 2, 0.1, &fl, NULL) == PS_OK);
+    /* component 0: the peak at 2 (persistence 1 of range 100) merges;
+     * component 1: peaks 6 (1) and 8 (0.9 - 0.5 = 0.4 of range 0.99) stay */
+    CHECK(fl.n_sinks == before - 1);
+    CHECK(fl.sink_of[2] == fl.sink_of[0]);
+    CHECK(fl.sink_of[6] != fl.sink_of[8]);
+    ps_flow_free(&fl);
+}
+
+PS_TEST_MAIN(TEST(test_ripple_merges), TEST(test_threshold_per_component))

@@ -1,0 +1,108 @@
+/* test_supernodes.c: supernodes with and without minima on the star (its
+ * centre becomes a minimum's supernode), and the f2 split (a supernode whose
+ * far ends lie on two sides of its sink splits in two). */
+#include "centrality.h"
+#include "f2_split.h"
+#include "knn_graph.h"
+#include "shapes.h"
+#include "supernodes.h"
+#include "testlib.h"
+
+#include <stdlib.h>
+
+typedef struct star_case {
+    size_t n;
+    double *pts;
+    int *part;
+    ps_graph g;
+    int *comp;
+    double *f;
+} star_case;
+
+static int star_setup(star_case *c) {
+    c->pts = ps_shape_star(0, &c->n, &c->part);
+    c->comp = malloc(c->n * sizeof *c->comp);
+    c->f = malloc(c->n * sizeof *c->f);
+    if (ps_knn_graph_build(c->pts, c->n, 3, 7, 2, &c->g, NULL) != PS_OK) return -1;
+    int nc = ps_graph_components(&c->g, c->comp);
+    int used;
+    return ps_centrality(&c->g, c->comp, nc, PS_CENTRALITY_APPROX, 0, 2, NULL, c->f, NULL,
+                         &used, NULL) == PS_OK ? nc : -1;
+}
+
+static void star_free(star_case *c) {
+    ps_graph_free(&c->g);
+    free(c->pts), free(c->part), free(c->comp), free(c->f);
+}
+
+/* Fraction of supernode s's points in part `part`. */
+static double share(const star_case *c, const ps_supernodes *sn, int s, int part) {
+    size_t in = 0;
+    for (size_t p = 0; p < c->n; p++) in += sn->supernode_of[p] == s && c->part[p] == part;
+    return (double)in / (double)sn->sizes[s];
+}
+
+static void test_star_centre_is_a_minimum(void) {
+    star_case c;
+    int nc = star_setup(&c);
+    REQUIRE(nc == 1);
+    ps_supernodes plain, with_min;
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, 0.1, 0, &plain, NULL) == PS_OK);
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, 0.1, 1, &with_min, NULL) == PS_OK);
+    CHECK_MSG(plain.m == 6, "%d supernodes without minima", plain.m);
+    int minima = 0;
+    for (int s = 0; s < plain.m; s++) CHECK(!plain.is_minimum[s]);
+    for (int s = 0; s < with_min.m; s++) {
+        if (!with_min.is_minimum[s]) {
+            CHECK(share(&c, &with_min, s, 0) < 0.25); /* an arm, not the centre */
+            continue;
+        }
+        minima++;
+        CHECK_MSG(share(&c, &with_min, s, 0) > 0.6, "minimum %d: %.2f centre", s,
+                  share(&c, &with_min, s, 0));
+    }
+    CHECK(minima >= 1);
+    size_t total = 0;
+    for (int s = 0; s < with_min.m; s++) total += with_min.sizes[s];
+    CHECK(total == c.n);
+    ps_supernodes_free(&plain);
+    ps_supernodes_free(&with_min);
+    star_free(&c);
+}
+
+/* One supernode covering a path 0..10 with its representative at 4: f2
+ * peaks at both ends (4 and 6 away), so it splits in two; a persistence of
+ * 1 (the shorter end's 4 is under the range 6) keeps it whole. */
+static void test_f2_splits_two_ends(void) {
+    static size_t off[12];
+    static uint32_t nbr[20];
+    static double w[20];
+    size_t e = 0;
+    for (size_t p = 0; p < 11; p++) {
+        off[p] = e;
+        if (p > 0) nbr[e] = (uint32_t)(p - 1), w[e++] = 1;
+        if (p < 10) nbr[e] = (uint32_t)(p + 1), w[e++] = 1;
+    }
+    off[11] = e;
+    ps_graph g = {11, off, nbr, w};
+    double f[11];
+    for (int p = 0; p < 11; p++) f[p] = 10 - (p - 4) * (p - 4) * 0.1;
+    for (int pass = 0; pass < 2; pass++) {
+        ps_supernodes sn = {1, malloc(sizeof(uint32_t)), calloc(1, sizeof(int)),
+                            malloc(sizeof(size_t)), calloc(11, sizeof(int))};
+        sn.sinks[0] = 4, sn.sizes[0] = 11;
+        double persistence = pass == 0 ? 0.1 : 1.0;
+        REQUIRE(ps_supernodes_split_f2(&g, f, persistence, &sn, NULL) == PS_OK);
+        if (pass == 0) {
+            REQUIRE(sn.m == 2);
+            CHECK(sn.supernode_of[0] != sn.supernode_of[10]);
+            CHECK(sn.sizes[0] + sn.sizes[1] == 11);
+            CHECK(sn.sizes[0] >= 4 && sn.sizes[1] >= 4);
+        } else {
+            CHECK(sn.m == 1 && sn.sinks[0] == 4);
+        }
+        ps_supernodes_free(&sn);
+    }
+}
+
+PS_TEST_MAIN(TEST(test_star_centre_is_a_minimum), TEST(test_f2_splits_two_ends))
