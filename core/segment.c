@@ -127,9 +127,9 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
 }
 
 static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
-    const ps_params *p = &pl->params;
+    ps_params *p = &pl->params;
     ps_status st = ps_supernodes_build(&pl->graph, pl->f, pl->component, pl->n_components,
-                                       p->persistence, p->use_minima, &pl->sn, err);
+                                       &p->persistence, p->use_minima, &pl->sn, err);
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     return st;

@@ -8,6 +8,7 @@
 #include "flow.h"
 #include "persistence.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -103,9 +104,9 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
     return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
 }
 
-ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
-                              int n_components, double persistence, int use_minima,
-                              ps_supernodes *out, ps_error *err) {
+static ps_status build_once(const ps_graph *g, const double *f, const int *component,
+                            int n_components, double persistence, int use_minima,
+                            ps_supernodes *out, ps_error *err) {
     memset(out, 0, sizeof *out);
     ps_flow up = {0}, down = {0};
     ps_status st = simplified_flow(g, f, component, n_components, persistence, +1, &up, err);
@@ -115,6 +116,18 @@ ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *com
     ps_flow_free(&up);
     ps_flow_free(&down);
     return st;
+}
+
+ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
+                              int n_components, double *persistence, int use_minima,
+                              ps_supernodes *out, ps_error *err) {
+    for (;;) {
+        ps_status st =
+            build_once(g, f, component, n_components, *persistence, use_minima, out, err);
+        if (st != PS_OK || out->m <= PS_MAX_SUPERNODES || *persistence >= 1) return st;
+        ps_supernodes_free(out);
+        *persistence = *persistence > 0 ? fmin(1.0, *persistence * 2) : 0.01;
+    }
 }
 
 void ps_supernodes_free(ps_supernodes *s) {

@@ -14,6 +14,12 @@
 
 #include "knn_graph.h"
 
+/* The hierarchy holds a dense #S by #S similarity: when the persistence
+ * asked for leaves more supernodes than this, it is doubled until they fit
+ * (noisy scans of millions of points), and the result reports the value
+ * used. */
+#define PS_MAX_SUPERNODES 3000
+
 typedef struct ps_supernodes {
     int m;               /* #S */
     uint32_t *sinks;     /* #S representative vertex: the max (or min) */
@@ -22,10 +28,11 @@ typedef struct ps_supernodes {
     int *supernode_of;   /* #P */
 } ps_supernodes;
 
-/* f #P, component #P.  persistence: fraction of each component's f range
- * under which sinks merge (0 keeps every sink). */
+/* f #P, component #P.  *persistence: fraction of each component's f range
+ * under which sinks merge (0 keeps every sink); raised (see
+ * PS_MAX_SUPERNODES) when needed, and the value used is written back. */
 ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
-                              int n_components, double persistence, int use_minima,
+                              int n_components, double *persistence, int use_minima,
                               ps_supernodes *out, ps_error *err);
 void ps_supernodes_free(ps_supernodes *s);
 

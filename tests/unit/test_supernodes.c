@@ -47,8 +47,11 @@ static void test_star_centre_is_a_minimum(void) {
     int nc = star_setup(&c);
     REQUIRE(nc == 1);
     ps_supernodes plain, with_min;
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, 0.1, 0, &plain, NULL) == PS_OK);
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, 0.1, 1, &with_min, NULL) == PS_OK);
+    double persistence = 0.1;
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 0, &plain, NULL) == PS_OK);
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, &with_min, NULL) ==
+            PS_OK);
+    CHECK(persistence == 0.1);
     CHECK_MSG(plain.m == 6, "%d supernodes without minima", plain.m);
     int minima = 0;
     for (int s = 0; s < plain.m; s++) CHECK(!plain.is_minimum[s]);
@@ -105,4 +108,31 @@ static void test_f2_splits_two_ends(void) {
     }
 }
 
-PS_TEST_MAIN(TEST(test_star_centre_is_a_minimum), TEST(test_f2_splits_two_ends))
+/* A zigzag f on a long path has thousands of sharp peaks: the persistence
+ * is raised until the supernodes fit the dense hierarchy, and reported. */
+static void test_supernode_cap(void) {
+    enum { N = 8001 };
+    size_t *off = malloc((N + 1) * sizeof *off);
+    uint32_t *nbr = malloc(2 * N * sizeof *nbr);
+    double *w = malloc(2 * N * sizeof *w), *f = malloc(N * sizeof *f);
+    int *comp = calloc(N, sizeof *comp);
+    size_t e = 0;
+    for (size_t p = 0; p < N; p++) {
+        off[p] = e;
+        if (p > 0) nbr[e] = (uint32_t)(p - 1), w[e++] = 1;
+        if (p + 1 < N) nbr[e] = (uint32_t)(p + 1), w[e++] = 1;
+        f[p] = (double)(p % 2) + (double)p * 1e-6;
+    }
+    off[N] = e;
+    ps_graph g = {N, off, nbr, w};
+    ps_supernodes sn;
+    double persistence = 0;
+    REQUIRE(ps_supernodes_build(&g, f, comp, 1, &persistence, 0, &sn, NULL) == PS_OK);
+    CHECK_MSG(sn.m <= PS_MAX_SUPERNODES, "%d supernodes", sn.m);
+    CHECK(persistence > 0.5);
+    ps_supernodes_free(&sn);
+    free(off), free(nbr), free(w), free(f), free(comp);
+}
+
+PS_TEST_MAIN(TEST(test_star_centre_is_a_minimum), TEST(test_f2_splits_two_ends),
+             TEST(test_supernode_cap))
