@@ -48,7 +48,7 @@ INTEG_BIN := $(patsubst tests/integration/%.c,$(BUILD)/itests/%,$(INTEG_SRC))
 BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
-.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed clean tests-build
+.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-load clean tests-build
 .DEFAULT_GOAL := all
 
 all: $(PROGRAMS)
@@ -113,6 +113,10 @@ bench-quality: deps
 bench-speed: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BUILD)/pointseg
 	@$(BUILD)/bench/bench_speed $(BENCH_ARGS)
+
+bench-load: deps
+	@$(MAKE) --no-print-directory $(BUILD)/bench/bench_load $(BUILD)/pointsegd
+	@$(BUILD)/bench/bench_load $(BENCH_ARGS)
 
 clean:
 	rm -rf $(BUILD)
