@@ -21,7 +21,7 @@ WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -pthread $(WARN) $(CFLAGS) \
              -Icore -Iapi -Iserver -Iclients/c -Itests/unit \
              $(shell pkg-config --cflags libcjson 2>/dev/null) -MMD -MP
-LDLIBS := -lflann $(shell pkg-config --libs $(PKGS) 2>/dev/null) -larpack -lopenblas -lm -pthread
+LDLIBS := -lflann $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lopenblas -lm -pthread
 
 ifeq ($(SAN),1)
 ALL_CFLAGS += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined

@@ -8,7 +8,7 @@
 set -eu
 
 PACKAGES="gcc make pkg-config libflann-dev liblapacke-dev libopenblas-dev
-libarpack2-dev libmicrohttpd-dev libcjson-dev libcurl4-openssl-dev zlib1g-dev
+libmicrohttpd-dev libcjson-dev libcurl4-openssl-dev zlib1g-dev
 curl python3"
 TEST_PACKAGES="clang"
 

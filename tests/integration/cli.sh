@@ -72,14 +72,14 @@ test_help() {
             fail "help" "'pointseg $cmd' exit status $rc"
             return
         fi
-        for p in k centrality samples ncut-threshold feature-threshold minima f2 threads \
+        for p in k centrality samples persistence ncut-threshold feature-threshold minima f2 threads \
                  output include; do
             if ! grep -q -- "--$p" "$tmp/help.out"; then
                 fail "help" "'pointseg $cmd' does not list --$p"
                 return
             fi
         done
-        if ! grep -q "default 0.3" "$tmp/help.out"; then
+        if ! grep -A2 -- "--ncut-threshold" "$tmp/help.out" | grep -q "default 0.6"; then
             fail "help" "'pointseg $cmd' does not show the ncut_threshold default"
             return
         fi
