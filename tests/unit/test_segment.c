@@ -218,6 +218,34 @@ static void check_same_for_threads(ps_centrality_mode mode) {
     free(pts);
 }
 
+/* Exact and approximate centrality give the same supernodes on small
+ * shapes (after persistence): the same count, and at least 90% of the
+ * points in the same one (the saddle levels move a little with f). */
+static void test_exact_approx_supernodes_agree(void) {
+    double *(*const shapes[])(double, size_t *, int **) = {ps_shape_star, ps_shape_dumbbell};
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
+        size_t n;
+        double *pts = shapes[k](0, &n, NULL);
+        ps_params p;
+        ps_params_default(&p);
+        p.centrality = PS_CENTRALITY_EXACT;
+        ps_result *exact = segment_with(pts, n, &p);
+        p.centrality = PS_CENTRALITY_APPROX;
+        ps_result *approx = segment_with(pts, n, &p);
+        REQUIRE(exact && approx);
+        CHECK_MSG(exact->n_supernodes == approx->n_supernodes, "shape %zu: %d vs %d supernodes",
+                  k, exact->n_supernodes, approx->n_supernodes);
+        ps_result as_supernodes = *exact;
+        as_supernodes.labels = exact->point_supernode;
+        as_supernodes.n_segments = exact->n_supernodes;
+        double d = disagreement(&as_supernodes, approx->point_supernode, n);
+        CHECK_MSG(d <= 0.10, "shape %zu: %.3f of the points in another supernode", k, d);
+        ps_result_free(exact);
+        ps_result_free(approx);
+        free(pts);
+    }
+}
+
 static void test_threads_exact(void) { check_same_for_threads(PS_CENTRALITY_EXACT); }
 static void test_threads_approx(void) { check_same_for_threads(PS_CENTRALITY_APPROX); }
 
@@ -319,7 +347,8 @@ static void test_progress_and_cancel(void) {
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_star_six_arms), TEST(test_rotation_translation), TEST(test_scale_small),
-             TEST(test_scale_large), TEST(test_permutation), TEST(test_threads_exact),
+             TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
+             TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
              TEST(test_disconnected_scans), TEST(test_bad_input),
              TEST(test_progress_and_cancel))
