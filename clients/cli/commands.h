@@ -9,5 +9,6 @@
 
 int cli_segment(int argc, char **argv); /* segment.c: segment a file */
 int cli_score(int argc, char **argv);   /* score.c: Rand Index error of labels */
+int cli_render(int argc, char **argv);  /* render.c: draw a coloured PLY as a PNG */
 
 #endif

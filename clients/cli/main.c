@@ -12,6 +12,7 @@
 static const char main_usage[] =
     "usage: pointseg segment INPUT [-o OUT] [--output json|labels|ply] [--NAME VALUE ...]\n"
     "       pointseg score MESH LABELS SEG [SEG...]\n"
+    "       pointseg render IN.ply -o OUT.png [--width W --height H --view X,Y,Z]\n"
     "       pointseg --help | --version\n"
     "\n"
     "Segments point-sampled surfaces into their parts (after \"Segmenting Point\n"
@@ -19,6 +20,7 @@ static const char main_usage[] =
     "\n"
     "  segment   segment a point set; `pointseg segment --help` for details\n"
     "  score     Rand Index error of vertex labels against face segmentations\n"
+    "  render    draw a coloured PLY (segment --output ply) as a PNG picture\n"
     "\n"
     "Parameters of segment (--NAME VALUE or --NAME=VALUE; '-' and '_' alike):\n";
 
@@ -36,6 +38,7 @@ int main(int argc, char **argv) {
     }
     if (strcmp(cmd, "segment") == 0) return cli_segment(argc - 1, argv + 1);
     if (strcmp(cmd, "score") == 0) return cli_score(argc - 1, argv + 1);
+    if (strcmp(cmd, "render") == 0) return cli_render(argc - 1, argv + 1);
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
         print_main_help(stdout);
         return 0;
