@@ -157,9 +157,9 @@ int ps_body_finish(ps_body *b, ps_api_error *err) {
     if (b->failed) return -1;
     if (b->gzip && !b->z_ended) return ps_api_fail(err, 400, "bad gzip body: the stream is truncated");
     if (b->multipart) {
-        if (MHD_destroy_post_processor(b->pp) != MHD_YES && !b->has_file)
-            return b->pp = NULL, ps_api_fail(err, 400, "malformed multipart/form-data body");
+        int complete = MHD_destroy_post_processor(b->pp) == MHD_YES;
         b->pp = NULL;
+        if (!complete) return ps_api_fail(err, 400, "multipart/form-data body is truncated or malformed");
         if (!b->has_file) return ps_api_fail(err, 400, "multipart/form-data body has no 'file' part");
     }
     return 0;

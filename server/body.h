@@ -31,7 +31,8 @@ ps_body *ps_body_new(struct MHD_Connection *conn, size_t max_body, size_t reserv
 int ps_body_feed(ps_body *b, const char *data, size_t len, ps_api_error *err);
 
 /* The upload is complete: checks the gzip stream ended and the multipart
- * body had a `file` part.  Returns 0 or -1 with err. */
+ * body reached its closing boundary and had a `file` part.  Returns 0 or -1
+ * with err (400). */
 int ps_body_finish(ps_body *b, ps_api_error *err);
 
 /* The body bytes (the `file` part for multipart) and the fields. */

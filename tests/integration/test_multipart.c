@@ -1,0 +1,159 @@
+/*
+ * test_multipart.c: pointsegd's multipart/form-data bodies at the edges the
+ * multipart fuzz target (tests/fuzz/fuzz_multipart.c) looks at: a complete
+ * body is segmented, a body cut before its closing boundary is a 400 (even
+ * when the cut falls between two lines of the file part, which would
+ * otherwise decode to fewer points), a body without a `file` part is a 400.
+ * Starts BUILD/pointsegd (beside BUILD/itests/) on a free port.
+ */
+#include "pointseg_client.h"
+#include "testlib.h"
+
+#include <arpa/inet.h>
+#include <cJSON.h>
+#include <fcntl.h>
+#include <libgen.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#define BOUNDARY "testboundary"
+#define N_POINTS 40
+
+static pid_t daemon_pid;
+static char base_url[64];
+
+static void sleep_ms(long ms) {
+    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
+    nanosleep(&ts, NULL);
+}
+
+static int free_port(void) {
+    struct sockaddr_in a = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
+    socklen_t len = sizeof a;
+    int fd = socket(AF_INET, SOCK_STREAM, 0), port = -1;
+    if (fd < 0) return -1;
+    if (!bind(fd, (struct sockaddr *)&a, sizeof a) && !getsockname(fd, (struct sockaddr *)&a, &len))
+        port = ntohs(a.sin_port);
+    close(fd);
+    return port;
+}
+
+static long request(const char *body, size_t len, ps_client_response *r) {
+    ps_client c = {base_url, NULL, 30000};
+    ps_client_body b = {body, len, "multipart/form-data; boundary=" BOUNDARY, NULL};
+    return ps_client_segment(&c, &b, NULL, r) == 0 ? r->status : 0;
+}
+
+/* Starts pointsegd once for every test; 0 or -1. */
+static int need_daemon(void) {
+    char self[4096], path[4200], port_text[16];
+    if (daemon_pid > 0) return 0;
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    int port = free_port();
+    if (n <= 0 || port <= 0) return -1;
+    self[n] = 0;
+    snprintf(path, sizeof path, "%s/../pointsegd", dirname(self));
+    snprintf(port_text, sizeof port_text, "%d", port);
+    snprintf(base_url, sizeof base_url, "http://127.0.0.1:%d", port);
+    daemon_pid = fork();
+    if (daemon_pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        if (fd >= 0) dup2(fd, 2);
+        execl(path, path, "--port", port_text, "--bind", "127.0.0.1", (char *)NULL);
+        _exit(127);
+    }
+    for (int i = 0; daemon_pid > 0 && i < 200; i++) {
+        ps_client c = {base_url, NULL, 1000};
+        ps_client_response r;
+        int up = ps_client_request(&c, "GET", "/healthz", NULL, NULL, &r) == 0 && r.status == 200;
+        ps_client_response_free(&r);
+        if (up) return 0;
+        sleep_ms(25);
+    }
+    return -1;
+}
+
+/* A form with a field k=6 and a `file` part of N_POINTS XYZ lines; *file_end
+ * is the offset just after the file's last line. */
+static char *make_form(size_t *len, size_t *file_end) {
+    char *s = malloc(8192);
+    size_t at = 0;
+    if (!s) return NULL;
+    at += (size_t)sprintf(s + at, "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"k\"\r\n\r\n6\r\n"
+                          "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"; "
+                          "filename=\"p.xyz\"\r\nContent-Type: text/plain\r\n\r\n");
+    for (int i = 0; i < N_POINTS; i++)
+        at += (size_t)sprintf(s + at, "%d %d %d\n", i % 7, (i * 3) % 11, (i * 5) % 13);
+    *file_end = at;
+    at += (size_t)sprintf(s + at, "\r\n--" BOUNDARY "--\r\n");
+    *len = at;
+    return s;
+}
+
+static int problem_says(const ps_client_response *r, const char *words) {
+    return r->body && strstr(r->content_type, "application/problem+json") && strstr(r->body, words);
+}
+
+static void test_complete_form_is_segmented(void) {
+    size_t len, file_end;
+    ps_client_response r;
+    char *form = make_form(&len, &file_end);
+    REQUIRE(form && need_daemon() == 0);
+    CHECK(request(form, len, &r) == 200);
+    cJSON *doc = cJSON_Parse(r.body);
+    const cJSON *n = cJSON_GetObjectItemCaseSensitive(doc, "n_points");
+    CHECK(cJSON_IsNumber(n) && n->valueint == N_POINTS);
+    cJSON_Delete(doc);
+    ps_client_response_free(&r);
+    free(form);
+}
+
+static void test_form_cut_before_closing_boundary_is_400(void) {
+    size_t len, file_end;
+    ps_client_response r;
+    char *form = make_form(&len, &file_end);
+    REQUIRE(form && need_daemon() == 0);
+    size_t cuts[] = {file_end / 2, file_end, len - 4};
+    for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
+        size_t cut = cuts[i];
+        while (i == 0 && form[cut - 1] != '\n') cut++; /* between two lines of the file */
+        CHECK_MSG(request(form, cut, &r) == 400 && problem_says(&r, "truncated"),
+                  "cut at %zu of %zu: status %ld, %s", cut, len, r.status, r.body ? r.body : "");
+        ps_client_response_free(&r);
+    }
+    free(form);
+}
+
+static void test_form_without_file_is_400(void) {
+    static const char form[] = "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"k\"\r\n\r\n6\r\n"
+                               "--" BOUNDARY "--\r\n";
+    ps_client_response r;
+    REQUIRE(need_daemon() == 0);
+    CHECK(request(form, sizeof form - 1, &r) == 400 && problem_says(&r, "no 'file' part"));
+    ps_client_response_free(&r);
+}
+
+static void test_zz_stop_daemon(void) {
+    int status = -1;
+    REQUIRE(daemon_pid > 0);
+    kill(daemon_pid, SIGTERM);
+    CHECK(waitpid(daemon_pid, &status, 0) == daemon_pid && WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    daemon_pid = 0;
+}
+
+int main(int argc, char **argv) {
+    static const ps_test_case tests[] = {
+        TEST(test_complete_form_is_segmented), TEST(test_form_cut_before_closing_boundary_is_400),
+        TEST(test_form_without_file_is_400), TEST(test_zz_stop_daemon)};
+    if (ps_client_global_init()) return 1;
+    int rc = ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
+    if (daemon_pid > 0) kill(daemon_pid, SIGKILL);
+    return rc;
+}
