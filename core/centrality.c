@@ -10,12 +10,14 @@
  *         (64-bit fixed point, one scale per component, chosen so no sum can
  *         overflow) into its own array; the integer sums are exact, hence
  *         identical for any thread count.
- * Both run on a breadth-first relabelled copy of the graph (bfs_order.h):
+ * approx from PS_COARSE_MIN_POINTS vertices on: centrality_coarse.c.
+ * All run on a breadth-first relabelled copy of the graph (bfs_order.h):
  * the Dijkstras touch memory in order and each component is one range.
  */
 #include "centrality.h"
 
 #include "bfs_order.h"
+#include "centrality_coarse.h"
 #include "dijkstra.h"
 #include "parallel.h"
 
@@ -229,10 +231,39 @@ static ps_status fail_status(ps_status st, ps_error *err) {
     return ps_fail(err, st, "centrality: cancelled");
 }
 
-ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
-                        ps_centrality_mode mode, int samples, int threads,
-                        const ps_control *ctl, double *f, uint32_t **sample_ids,
-                        int *samples_used, ps_error *err) {
+/* The two-level scheme of centrality_coarse.h. */
+static ps_status coarse_centrality(const ps_bfs_order *o, size_t samples, int threads,
+                                   const ps_control *ctl, double *f, uint32_t **sample_ids,
+                                   int *samples_used, ps_error *err) {
+    uint32_t *ids = NULL;
+    size_t used = 0;
+    ps_status st = ps_centrality_coarse(o, samples, threads, ctl, f, &ids, &used, err);
+    if (st == PS_OK && samples_used) *samples_used = (int)used;
+    if (st == PS_OK && sample_ids) *sample_ids = ids;
+    else free(ids);
+    return st;
+}
+
+/* Exact, or approx from full Dijkstras (fine level only). */
+static ps_status fine_centrality(const ps_bfs_order *o, const int *component, int exact,
+                                 size_t samples, int threads, const ps_control *ctl, double *f,
+                                 uint32_t **sample_ids, int *samples_used, ps_error *err) {
+    workers w = {0};
+    sampling s = {0};
+    run_ctx r = {.o = o, .w = &w, .component = component, .f = f, .ctl = ctl, .total = o->g.n};
+    ps_status st = workers_build(o->g.n, ps_parallel_threads(threads), !exact, &w);
+    if (st == PS_OK && exact) st = run_parallel(&r, w.count, exact_runs);
+    else if (st == PS_OK) st = approx_centrality(&r, samples, &s);
+    if (st == PS_OK && !exact) give_samples(o, &s, sample_ids, samples_used);
+    sampling_free(&s);
+    workers_free(&w);
+    return st == PS_OK ? PS_OK : fail_status(st, err);
+}
+
+ps_status ps_centrality_with_threshold(const ps_graph *g, const int *component, int n_components,
+                                       ps_centrality_mode mode, int samples, int threads,
+                                       size_t coarse_min, const ps_control *ctl, double *f,
+                                       uint32_t **sample_ids, int *samples_used, ps_error *err) {
     if (sample_ids) *sample_ids = NULL;
     if (samples_used) *samples_used = 0;
     if (mode != PS_CENTRALITY_EXACT && mode != PS_CENTRALITY_APPROX)
@@ -248,16 +279,21 @@ ps_status ps_centrality(const ps_graph *g, const int *component, int n_component
                        n_components, o.n_components);
     }
     int exact = mode == PS_CENTRALITY_EXACT;
-    workers w = {0};
-    sampling s = {0};
-    run_ctx r = {.o = &o, .w = &w, .component = component, .f = f, .ctl = ctl, .total = g->n};
-    st = workers_build(g->n, ps_parallel_threads(threads), !exact, &w);
-    if (st == PS_OK && exact) st = run_parallel(&r, w.count, exact_runs);
-    else if (st == PS_OK)
-        st = approx_centrality(&r, samples ? (size_t)samples : (size_t)ceil(sqrt((double)g->n)), &s);
-    if (st == PS_OK && !exact) give_samples(&o, &s, sample_ids, samples_used);
-    sampling_free(&s);
-    workers_free(&w);
+    size_t count = samples ? (size_t)samples : (size_t)ceil(sqrt((double)g->n));
+    if (!exact && g->n >= coarse_min)
+        st = coarse_centrality(&o, count, threads, ctl, f, sample_ids, samples_used, err);
+    else
+        st = fine_centrality(&o, component, exact, count, threads, ctl, f, sample_ids,
+                             samples_used, err);
     ps_bfs_order_free(&o);
-    return st == PS_OK ? PS_OK : fail_status(st, err);
+    return st;
+}
+
+ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
+                        ps_centrality_mode mode, int samples, int threads,
+                        const ps_control *ctl, double *f, uint32_t **sample_ids,
+                        int *samples_used, ps_error *err) {
+    return ps_centrality_with_threshold(g, component, n_components, mode, samples, threads,
+                                        PS_COARSE_MIN_POINTS, ctl, f, sample_ids, samples_used,
+                                        err);
 }

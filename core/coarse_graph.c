@@ -1,0 +1,420 @@
+/*
+ * coarse_graph.c: cells, local distances and the coarse graph of
+ * coarse_graph.h.
+ *
+ * Steps: the median edge length per component (quickselect), the greedy
+ * cover (sequential: each seed depends on the cover so far), the cells
+ * (one multi-source ps_dijkstra_run), the near lists (cell members by
+ * counting sort), the local distances (one bounded Dijkstra per seed in
+ * parallel; the run from c writes only the slots (p, c), so no two workers
+ * share a slot) and the coarse graph read off the seeds' rows.
+ */
+#include "coarse_graph.h"
+
+#include "dijkstra.h"
+#include "parallel.h"
+
+#include <math.h>
+#include <stdatomic.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NO_SLOT UINT32_MAX
+#define CANCEL_POLL 256 /* seeds between cancel checks in the cover */
+
+/* ---- a bounded Dijkstra (one thread's workspace) ------------------------ */
+
+typedef struct heap_item {
+    double key;
+    uint32_t vertex;
+} heap_item;
+
+typedef struct ball {
+    double *dist;       /* #P, INFINITY outside the current run */
+    uint32_t *reached;  /* #P vertices of the current run, in settling order */
+    size_t n_reached;
+    heap_item *heap;    /* #P binary min-heap */
+    uint32_t *pos;      /* #P heap slot of each vertex or NO_SLOT */
+    size_t size;
+    uint32_t *mark;     /* #M cells of the current region hold its stamp */
+} ball;
+
+static void ball_free(ball *b) {
+    free(b->dist), free(b->reached), free(b->heap), free(b->pos), free(b->mark);
+}
+
+static ps_status ball_init(ball *b, size_t n, size_t n_cells) {
+    size_t alloc_n = n ? n : 1, alloc_m = n_cells ? n_cells : 1;
+    memset(b, 0, sizeof *b);
+    b->dist = malloc(alloc_n * sizeof *b->dist);
+    b->reached = malloc(alloc_n * sizeof *b->reached);
+    b->heap = malloc(alloc_n * sizeof *b->heap);
+    b->pos = malloc(alloc_n * sizeof *b->pos);
+    b->mark = malloc(alloc_m * sizeof *b->mark);
+    if (!b->dist || !b->reached || !b->heap || !b->pos || !b->mark) return PS_ERR_NOMEM;
+    for (size_t v = 0; v < n; v++) b->dist[v] = INFINITY, b->pos[v] = NO_SLOT;
+    for (size_t c = 0; c < n_cells; c++) b->mark[c] = NO_SLOT;
+    return PS_OK;
+}
+
+static void heap_place(ball *b, size_t i, heap_item e) {
+    b->heap[i] = e;
+    b->pos[e.vertex] = (uint32_t)i;
+}
+
+static void heap_set(ball *b, uint32_t v, double key) {
+    size_t i = b->pos[v] == NO_SLOT ? b->size++ : b->pos[v];
+    heap_item e = {key, v};
+    while (i > 0 && b->heap[(i - 1) / 2].key > key) {
+        heap_place(b, i, b->heap[(i - 1) / 2]);
+        i = (i - 1) / 2;
+    }
+    heap_place(b, i, e);
+}
+
+static uint32_t heap_pop(ball *b) {
+    uint32_t top = b->heap[0].vertex;
+    b->pos[top] = NO_SLOT;
+    if (--b->size == 0) return top;
+    heap_item e = b->heap[b->size];
+    size_t i = 0;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= b->size) break;
+        if (c + 1 < b->size && b->heap[c + 1].key < b->heap[c].key) c++;
+        if (b->heap[c].key >= e.key) break;
+        heap_place(b, i, b->heap[c]);
+        i = c;
+    }
+    heap_place(b, i, e);
+    return top;
+}
+
+/* Dijkstra from source over the vertices within radius; with cell_of, only
+ * over vertices whose cell is marked with stamp.  b->reached lists them. */
+static void ball_run(ball *b, const ps_graph *g, uint32_t source, double radius,
+                     const uint32_t *cell_of, uint32_t stamp) {
+    b->n_reached = 0;
+    b->dist[source] = 0.0;
+    heap_set(b, source, 0.0);
+    while (b->size > 0) {
+        uint32_t u = heap_pop(b);
+        b->reached[b->n_reached++] = u;
+        double du = b->dist[u];
+        for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
+            uint32_t v = g->neighbors[e];
+            double nd = du + g->weights[e];
+            if (nd >= b->dist[v] || nd > radius) continue;
+            if (cell_of && b->mark[cell_of[v]] != stamp) continue;
+            b->dist[v] = nd;
+            heap_set(b, v, nd);
+        }
+    }
+}
+
+static void ball_clear(ball *b) {
+    for (size_t i = 0; i < b->n_reached; i++) b->dist[b->reached[i]] = INFINITY;
+}
+
+/* ---- cells --------------------------------------------------------------- */
+
+/* The k-th smallest of x[0..n) (reorders x); Hoare partition, middle pivot. */
+static double select_kth(double *x, size_t n, size_t k) {
+    ptrdiff_t lo = 0, hi = (ptrdiff_t)n - 1, target = (ptrdiff_t)k;
+    while (lo < hi) {
+        double pivot = x[lo + (hi - lo) / 2];
+        ptrdiff_t i = lo, j = hi;
+        while (i <= j) {
+            while (x[i] < pivot) i++;
+            while (x[j] > pivot) j--;
+            if (i > j) break;
+            double t = x[i];
+            x[i++] = x[j];
+            x[j--] = t;
+        }
+        if (target <= j) hi = j;
+        else if (target >= i) lo = i;
+        else break;
+    }
+    return x[k];
+}
+
+/* radius #components: PS_CELL_RADIUS_EDGES x median edge length (0 when
+ * the component has no edge). */
+static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
+    const ps_graph *g = &o->g;
+    double *copy = malloc((g->offsets[g->n] ? g->offsets[g->n] : 1) * sizeof *copy);
+    if (!copy) return PS_ERR_NOMEM;
+    for (int k = 0; k < o->n_components; k++) {
+        size_t first = g->offsets[o->start[k]], end = g->offsets[o->start[k + 1]];
+        size_t count = end - first;
+        memcpy(copy, g->weights + first, count * sizeof *copy);
+        radius[k] = count ? PS_CELL_RADIUS_EDGES * select_kth(copy, count, count / 2) : 0.0;
+    }
+    free(copy);
+    return PS_OK;
+}
+
+static int raised(const volatile int *cancel) {
+    return cancel && *cancel;
+}
+
+/* Greedy cover in vertex order: seed #M out (sized #P), cell_start out. */
+static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
+                       const volatile int *cancel, unsigned char *covered, ps_coarse_graph *cg) {
+    size_t m = 0;
+    for (int k = 0; k < o->n_components; k++) {
+        cg->cell_start[k] = m;
+        for (size_t v = o->start[k]; v < o->start[k + 1]; v++) {
+            if (covered[v]) continue;
+            if (m % CANCEL_POLL == 0 && raised(cancel)) return PS_ERR_CANCELLED;
+            cg->seed[m++] = (uint32_t)v;
+            ball_run(b, &o->g, (uint32_t)v, radius[k], NULL, 0);
+            for (size_t i = 0; i < b->n_reached; i++) covered[b->reached[i]] = 1;
+            ball_clear(b);
+        }
+    }
+    cg->cell_start[o->n_components] = m;
+    cg->n_cells = m;
+    return PS_OK;
+}
+
+/* cell_of from one multi-source Dijkstra over all seeds. */
+static ps_status assign_cells(const ps_bfs_order *o, ps_coarse_graph *cg) {
+    size_t n = o->g.n;
+    ps_dijkstra *dij = ps_dijkstra_new(n);
+    double *dist = malloc(n * sizeof *dist);
+    int *owner = malloc(n * sizeof *owner);
+    ps_status st = dij && dist && owner ? PS_OK : PS_ERR_NOMEM;
+    if (st == PS_OK) {
+        ps_dijkstra_run(dij, &o->g, cg->seed, cg->n_cells, dist, owner);
+        for (size_t v = 0; v < n; v++) cg->cell_of[v] = (uint32_t)owner[v];
+    }
+    ps_dijkstra_free(dij);
+    free(dist), free(owner);
+    return st;
+}
+
+/* ---- near lists ------------------------------------------------------------ */
+
+/* members #P: the vertices of each cell, cell by cell; first #M+1. */
+static void cell_members(const ps_coarse_graph *cg, size_t n, size_t *first, uint32_t *members) {
+    memset(first, 0, (cg->n_cells + 1) * sizeof *first);
+    for (size_t v = 0; v < n; v++) first[cg->cell_of[v] + 1]++;
+    for (size_t c = 0; c < cg->n_cells; c++) first[c + 1] += first[c];
+    for (size_t v = 0; v < n; v++) members[first[cg->cell_of[v]]++] = (uint32_t)v;
+    for (size_t c = cg->n_cells; c > 0; c--) first[c] = first[c - 1];
+    first[0] = 0;
+}
+
+static void sort_cells(uint32_t *x, size_t n) {
+    for (size_t i = 1; i < n; i++) {
+        uint32_t v = x[i];
+        size_t j = i;
+        for (; j > 0 && x[j - 1] > v; j--) x[j] = x[j - 1];
+        x[j] = v;
+    }
+}
+
+static ps_status near_push(ps_coarse_graph *cg, size_t *cap, size_t len, uint32_t cell) {
+    if (len == *cap) {
+        uint32_t *grown = realloc(cg->near, 2 * *cap * sizeof *grown);
+        if (!grown) return PS_ERR_NOMEM;
+        cg->near = grown, *cap *= 2;
+    }
+    cg->near[len] = cell;
+    return PS_OK;
+}
+
+/* near lists from the members of each cell; mark #M scratch (NO_SLOT). */
+static ps_status near_lists(const ps_graph *g, const size_t *first, const uint32_t *members,
+                            uint32_t *mark, ps_coarse_graph *cg) {
+    size_t cap = 8 * cg->n_cells, len = 0;
+    cg->near = malloc(cap * sizeof *cg->near);
+    if (!cg->near) return PS_ERR_NOMEM;
+    for (uint32_t a = 0; a < cg->n_cells; a++) {
+        cg->near_offsets[a] = len;
+        mark[a] = a;
+        if (near_push(cg, &cap, len++, a) != PS_OK) return PS_ERR_NOMEM;
+        for (size_t i = first[a]; i < first[a + 1]; i++)
+            for (size_t e = g->offsets[members[i]]; e < g->offsets[members[i] + 1]; e++) {
+                uint32_t b = cg->cell_of[g->neighbors[e]];
+                if (mark[b] == a) continue;
+                mark[b] = a;
+                if (near_push(cg, &cap, len++, b) != PS_OK) return PS_ERR_NOMEM;
+            }
+        sort_cells(cg->near + cg->near_offsets[a], len - cg->near_offsets[a]);
+    }
+    cg->near_offsets[cg->n_cells] = len;
+    return PS_OK;
+}
+
+static ps_status build_near(const ps_graph *g, uint32_t *mark, ps_coarse_graph *cg) {
+    size_t *first = malloc((cg->n_cells + 1) * sizeof *first);
+    uint32_t *members = malloc((g->n ? g->n : 1) * sizeof *members);
+    ps_status st = first && members ? PS_OK : PS_ERR_NOMEM;
+    if (st == PS_OK) {
+        cell_members(cg, g->n, first, members);
+        st = near_lists(g, first, members, mark, cg);
+    }
+    free(first), free(members);
+    return st;
+}
+
+/* Position of cell c in near(a) (c is there: near is symmetric). */
+static size_t near_index(const ps_coarse_graph *cg, uint32_t a, uint32_t c) {
+    size_t lo = cg->near_offsets[a], hi = cg->near_offsets[a + 1];
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (cg->near[mid] <= c) lo = mid;
+        else hi = mid;
+    }
+    return lo - cg->near_offsets[a];
+}
+
+/* ---- local distances ------------------------------------------------------- */
+
+typedef struct local_ctx {
+    const ps_graph *g;
+    ps_coarse_graph *cg;
+    ball *balls;              /* #threads */
+    const volatile int *cancel;
+    atomic_int stopped;
+} local_ctx;
+
+static void local_from_seed(const ps_graph *g, ps_coarse_graph *cg, ball *b, uint32_t c) {
+    for (size_t i = cg->near_offsets[c]; i < cg->near_offsets[c + 1]; i++) b->mark[cg->near[i]] = c;
+    ball_run(b, g, cg->seed[c], INFINITY, cg->cell_of, c);
+    for (size_t i = 0; i < b->n_reached; i++) {
+        uint32_t p = b->reached[i];
+        size_t j = near_index(cg, cg->cell_of[p], c);
+        cg->local[cg->local_offsets[p] + j] = (float)b->dist[p];
+    }
+    ball_clear(b);
+}
+
+static void local_runs(void *ctx, size_t begin, size_t end, int worker) {
+    local_ctx *l = ctx;
+    for (size_t c = begin; c < end; c++) {
+        if (atomic_load(&l->stopped)) return;
+        if (raised(l->cancel)) {
+            atomic_store(&l->stopped, 1);
+            return;
+        }
+        local_from_seed(l->g, l->cg, &l->balls[worker], (uint32_t)c);
+    }
+}
+
+static ps_status local_distances(const ps_graph *g, ball *balls, int threads,
+                                 const volatile int *cancel, ps_coarse_graph *cg) {
+    cg->local_offsets[0] = 0;
+    for (size_t p = 0; p < g->n; p++) {
+        uint32_t a = cg->cell_of[p];
+        cg->local_offsets[p + 1] =
+            cg->local_offsets[p] + cg->near_offsets[a + 1] - cg->near_offsets[a];
+    }
+    cg->local = malloc((cg->local_offsets[g->n] ? cg->local_offsets[g->n] : 1) * sizeof *cg->local);
+    if (!cg->local) return PS_ERR_NOMEM;
+    local_ctx l = {.g = g, .cg = cg, .balls = balls, .cancel = cancel};
+    atomic_init(&l.stopped, 0);
+    ps_parallel_for(threads, cg->n_cells, 0, local_runs, &l);
+    return atomic_load(&l.stopped) ? PS_ERR_CANCELLED : PS_OK;
+}
+
+/* ---- coarse graph ------------------------------------------------------------ */
+
+/* g(c, seed of a) for c in near(a). */
+static double local_at_seed(const ps_coarse_graph *cg, uint32_t a, uint32_t c) {
+    return cg->local[cg->local_offsets[cg->seed[a]] + near_index(cg, a, c)];
+}
+
+static ps_status coarse_edges(ps_coarse_graph *cg) {
+    size_t m = cg->n_cells, edges = cg->near_offsets[m] - m;
+    ps_graph *cgr = &cg->graph;
+    cgr->n = m;
+    cgr->offsets = malloc((m + 1) * sizeof *cgr->offsets);
+    cgr->neighbors = malloc((edges ? edges : 1) * sizeof *cgr->neighbors);
+    cgr->weights = malloc((edges ? edges : 1) * sizeof *cgr->weights);
+    if (!cgr->offsets || !cgr->neighbors || !cgr->weights) return PS_ERR_NOMEM;
+    size_t out = 0;
+    for (uint32_t a = 0; a < m; a++) {
+        cgr->offsets[a] = out;
+        for (size_t i = cg->near_offsets[a]; i < cg->near_offsets[a + 1]; i++) {
+            uint32_t b = cg->near[i];
+            if (b == a) continue;
+            cgr->neighbors[out] = b;
+            cgr->weights[out++] = fmin(local_at_seed(cg, a, b), local_at_seed(cg, b, a));
+        }
+    }
+    cgr->offsets[m] = out;
+    return PS_OK;
+}
+
+/* ---- build ----------------------------------------------------------------- */
+
+static ps_status alloc_cells(const ps_bfs_order *o, ps_coarse_graph *cg) {
+    size_t n = o->g.n, alloc_n = n ? n : 1;
+    cg->seed = malloc(alloc_n * sizeof *cg->seed);
+    cg->cell_of = malloc(alloc_n * sizeof *cg->cell_of);
+    cg->cell_start = malloc(((size_t)o->n_components + 1) * sizeof *cg->cell_start);
+    cg->local_offsets = malloc((n + 1) * sizeof *cg->local_offsets);
+    return cg->seed && cg->cell_of && cg->cell_start && cg->local_offsets ? PS_OK : PS_ERR_NOMEM;
+}
+
+/* Cells and near lists, sequential; balls[0] serves the cover. */
+static ps_status build_cells(const ps_bfs_order *o, ball *b, const volatile int *cancel,
+                             ps_coarse_graph *cg) {
+    double *radius = malloc(((size_t)o->n_components + 1) * sizeof *radius);
+    ps_status st = radius ? cell_radii(o, radius) : PS_ERR_NOMEM;
+    unsigned char *covered = st == PS_OK ? calloc(o->g.n ? o->g.n : 1, 1) : NULL;
+    if (st == PS_OK) st = covered ? cover(o, radius, b, cancel, covered, cg) : PS_ERR_NOMEM;
+    free(radius), free(covered);
+    if (st != PS_OK) return st;
+    cg->near_offsets = malloc((cg->n_cells + 1) * sizeof *cg->near_offsets);
+    if (!cg->near_offsets) return PS_ERR_NOMEM;
+    st = assign_cells(o, cg);
+    uint32_t *mark = st == PS_OK ? malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mark) : NULL;
+    if (st == PS_OK && !mark) st = PS_ERR_NOMEM;
+    if (st == PS_OK) {
+        for (size_t c = 0; c < cg->n_cells; c++) mark[c] = NO_SLOT;
+        st = build_near(&o->g, mark, cg);
+    }
+    free(mark);
+    return st;
+}
+
+static ps_status build_levels(const ps_bfs_order *o, int threads, const volatile int *cancel,
+                              ball *balls, ps_coarse_graph *cg) {
+    ps_status st = alloc_cells(o, cg);
+    if (st == PS_OK) st = ball_init(&balls[0], o->g.n, 0);
+    if (st == PS_OK) st = build_cells(o, &balls[0], cancel, cg);
+    if (st != PS_OK) return st;
+    ball_free(&balls[0]);
+    for (int t = 0; t < threads && st == PS_OK; t++) st = ball_init(&balls[t], o->g.n, cg->n_cells);
+    if (st == PS_OK) st = local_distances(&o->g, balls, threads, cancel, cg);
+    if (st == PS_OK) st = coarse_edges(cg);
+    return st;
+}
+
+ps_status ps_coarse_graph_build(const ps_bfs_order *o, int threads, const volatile int *cancel,
+                                ps_coarse_graph *cg, ps_error *err) {
+    memset(cg, 0, sizeof *cg);
+    threads = ps_parallel_threads(threads);
+    ball *balls = calloc((size_t)threads, sizeof *balls);
+    ps_status st = balls ? build_levels(o, threads, cancel, balls, cg) : PS_ERR_NOMEM;
+    for (int t = 0; balls && t < threads; t++) ball_free(&balls[t]);
+    free(balls);
+    if (st == PS_OK) return PS_OK;
+    ps_coarse_graph_free(cg);
+    if (st == PS_ERR_CANCELLED) return ps_fail(err, st, "coarse graph: cancelled");
+    return ps_fail(err, st, "coarse graph: out of memory for %zu vertices", o->g.n);
+}
+
+void ps_coarse_graph_free(ps_coarse_graph *cg) {
+    if (!cg) return;
+    free(cg->seed), free(cg->cell_of), free(cg->cell_start);
+    free(cg->near_offsets), free(cg->near), free(cg->local_offsets), free(cg->local);
+    ps_graph_free(&cg->graph);
+    memset(cg, 0, sizeof *cg);
+}
