@@ -45,7 +45,8 @@ static int normalize3(double v[3]) {
 }
 
 static void point_xyz(const cli_scene *s, size_t i, double out[3]) {
-    for (int c = 0; c < 3; c++) out[c] = c < s->dim ? s->points[i * (size_t)s->dim + (size_t)c] : 0.0;
+    const double *x = s->points + i * (size_t)s->dim;
+    for (int c = 0; c < 3; c++) out[c] = c < s->dim ? x[c] : 0.0;
 }
 
 /* right, up, toward from the view; the light comes from above-left of the
@@ -95,7 +96,8 @@ static double lambert(const camera *cam, const double normal[3]) {
 }
 
 static void put_pixel(frame *f, size_t at, const unsigned char rgb[3], double light) {
-    for (int c = 0; c < 3; c++) f->image[3 * at + (size_t)c] = (unsigned char)(rgb[c] * light + 0.5);
+    for (int c = 0; c < 3; c++)
+        f->image[3 * at + (size_t)c] = (unsigned char)(rgb[c] * light + 0.5);
 }
 
 /* ---- triangles ----------------------------------------------------------- */
@@ -116,7 +118,8 @@ static int clamp_int(double v, int lo, int hi) {
 }
 
 /* Fills the pixels whose centres lie inside the projected triangle v. */
-static void fill_triangle(frame *f, const double v[3][3], const unsigned char rgb[3], double light) {
+static void fill_triangle(frame *f, const double v[3][3], const unsigned char rgb[3],
+                          double light) {
     double area = edge(v[0], v[1], v[2][0], v[2][1]);
     if (area == 0) return;
     int x0 = clamp_int(floor(fmin(v[0][0], fmin(v[1][0], v[2][0]))), 0, f->width - 1);

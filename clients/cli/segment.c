@@ -4,14 +4,17 @@
  * writes the result as JSON, labels or a coloured PLY (stdout by default).
  * Every parameter flag is a name of the parameter table and goes through
  * ps_request_param_set; parameters inside a JSON body apply first, flags
- * override them.  Errors: "pointseg: WHAT: message" on stderr, exit 2 for
- * bad input or usage, 1 for an internal failure.
+ * override them.  With --server URL the input goes to a pointsegd daemon
+ * instead (remote.h), the flags in the query string.  Errors:
+ * "pointseg: WHAT: message" on stderr, exit 2 for bad input or usage, 1 for
+ * an internal failure.
  */
 #include "commands.h"
 #include "decode.h"
 #include "encode.h"
 #include "param_help.h"
 #include "params_table.h"
+#include "remote.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -30,6 +33,8 @@ typedef struct segment_args {
     const char *input;     /* path or "-" */
     const char *out_path;  /* NULL = stdout */
     const char *server;    /* --server URL, or NULL */
+    const char *token;     /* --token, else $POINTSEG_TOKEN, or NULL */
+    int async;             /* --async: queue a job on the server and poll it */
     flag_value *flags;     /* #n_flags parameter flags in command-line order */
     int n_flags;
 } segment_args;
@@ -42,7 +47,9 @@ static const char segment_usage[] =
     "parts and writes the result to OUT (default: stdout).\n"
     "\n"
     "  -o OUT          write the result to OUT (\"-\": stdout, the default)\n"
-    "  --server URL    segment on a pointsegd daemon (not supported yet)\n"
+    "  --server URL    segment on a pointsegd daemon instead of locally\n"
+    "  --async         with --server: queue a job (POST /jobs) and poll it\n"
+    "  --token TOKEN   with --server: bearer token (default $POINTSEG_TOKEN)\n"
     "  -h, --help      this text\n"
     "\n"
     "Parameters (--NAME VALUE or --NAME=VALUE; '-' and '_' alike in NAME;\n"
@@ -85,20 +92,26 @@ static int parse_param_flag(int argc, char **argv, int *i, segment_args *a) {
     return 0;
 }
 
-/* "-o OUT", "--server URL" / "--server=URL", "--help"; NOT_HANDLED if
- * argv[*i] is none of them, 0 when handled, else HELP_SHOWN or an exit
- * status. */
+/* "-o OUT", "--server URL" / "--server=URL", "--token TOKEN", "--async",
+ * "--help"; NOT_HANDLED if argv[*i] is none of them, 0 when handled, else
+ * HELP_SHOWN or an exit status. */
 static int parse_fixed_option(int argc, char **argv, int *i, segment_args *a) {
     const char *arg = argv[*i];
     if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) return HELP_SHOWN;
+    if (strcmp(arg, "--async") == 0) {
+        a->async = 1;
+        return 0;
+    }
     if (strncmp(arg, "--server=", 9) == 0) {
         a->server = arg + 9;
         return 0;
     }
-    if (strcmp(arg, "-o") != 0 && strcmp(arg, "--server") != 0) return NOT_HANDLED;
+    if (strcmp(arg, "-o") != 0 && strcmp(arg, "--server") != 0 && strcmp(arg, "--token") != 0)
+        return NOT_HANDLED;
     if (*i + 1 >= argc) return usage_error(arg, "option needs a value");
     if (arg[1] == 'o') a->out_path = argv[++*i];
-    else a->server = argv[++*i];
+    else if (arg[2] == 's') a->server = argv[++*i];
+    else a->token = argv[++*i];
     return 0;
 }
 
@@ -231,8 +244,33 @@ static int segment_file(const segment_args *a) {
     return rc;
 }
 
+/* Sends the input file to a->server and writes the answer. */
+static int segment_remote(const segment_args *a) {
+    const char *what = strcmp(a->input, "-") == 0 ? "<stdin>" : a->input;
+    char *bytes = NULL, *answer = NULL;
+    size_t len = 0, answer_len = 0;
+    ps_api_error err;
+    if (ps_read_file(a->input, &bytes, &len, &err) != 0) return api_exit(what, &err);
+    cli_remote_param *params = malloc((size_t)(a->n_flags + 1) * sizeof *params);
+    int rc = EXIT_INTERNAL;
+    if (params) {
+        for (int i = 0; i < a->n_flags; i++)
+            params[i] = (cli_remote_param){a->flags[i].name, a->flags[i].value};
+        const char *token = a->token ? a->token : getenv("POINTSEG_TOKEN");
+        cli_remote r = {a->server, token && *token ? token : NULL, a->async, params, a->n_flags};
+        rc = cli_remote_segment(&r, bytes, len, what, &answer, &answer_len);
+    } else {
+        fputs("pointseg: out of memory\n", stderr);
+    }
+    if (!rc) rc = write_output(a->out_path, answer, answer_len);
+    free(answer);
+    free(params);
+    free(bytes);
+    return rc;
+}
+
 int cli_segment(int argc, char **argv) {
-    segment_args a = {NULL, NULL, NULL, NULL, 0};
+    segment_args a = {NULL, NULL, NULL, NULL, 0, NULL, 0};
     a.flags = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *a.flags);
     if (!a.flags) {
         fputs("pointseg: out of memory\n", stderr);
@@ -241,8 +279,9 @@ int cli_segment(int argc, char **argv) {
     int rc = parse_args(argc, argv, &a);
     if (rc == HELP_SHOWN) print_segment_help(stdout);
     if (!rc) rc = check_flags(&a);
-    if (!rc && a.server) rc = usage_error("--server", "not supported yet");
-    if (!rc) rc = segment_file(&a);
+    if (!rc && !a.server && (a.async || a.token))
+        rc = usage_error(a.async ? "--async" : "--token", "needs --server");
+    if (!rc) rc = a.server ? segment_remote(&a) : segment_file(&a);
     free(a.flags);
     return rc == HELP_SHOWN ? 0 : rc;
 }

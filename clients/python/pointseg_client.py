@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""pointseg_client.py: a client of pointsegd, standard library only.
+
+Command line:
+    python3 pointseg_client.py segment FILE [--server URL] [--async]
+        [--output json|labels|ply] [-o OUT] [--token TOKEN] [--param NAME=VALUE ...]
+
+As a module:
+    import pointseg_client
+    doc = pointseg_client.segment("scan.ply", server="http://127.0.0.1:8080", k=10)
+    doc = pointseg_client.segment([[0, 0, 0], [1, 0, 0], ...], async_=True)
+
+segment() returns the document: a dict for output="json" (see README), a list
+of int labels for output="labels", the PLY bytes for output="ply".  Errors
+from the daemon raise PointsegError with the HTTP status and the problem's
+detail.
+"""
+
+import argparse
+import json
+import os
+import sys
+import time
+import urllib.error
+import urllib.parse
+import urllib.request
+
+DEFAULT_SERVER = os.environ.get("POINTSEG_SERVER", "http://127.0.0.1:8080")
+FINAL_STATES = ("done", "failed", "cancelled")
+
+
+class PointsegError(Exception):
+    """An error answer from pointsegd (status 0: no answer at all)."""
+
+    def __init__(self, status, detail):
+        super().__init__("HTTP %d: %s" % (status, detail) if status else detail)
+        self.status = status
+        self.detail = detail
+
+
+def _body_of(path_or_points):
+    """The request body and its Content-Type for a path or a list of points."""
+    if isinstance(path_or_points, (str, os.PathLike)):
+        with open(path_or_points, "rb") as f:
+            return f.read(), "application/octet-stream"
+    points = [list(map(float, p)) for p in path_or_points]
+    return json.dumps({"points": points}).encode(), "application/json"
+
+
+def _request(server, method, path, token=None, body=None, content_type=None, timeout=None):
+    """(status, headers, bytes) of one request; raises PointsegError on 4xx/5xx."""
+    request = urllib.request.Request(server.rstrip("/") + path, data=body, method=method)
+    if content_type:
+        request.add_header("Content-Type", content_type)
+    if token:
+        request.add_header("Authorization", "Bearer " + token)
+    try:
+        with urllib.request.urlopen(request, timeout=timeout) as answer:
+            return answer.status, answer.headers, answer.read()
+    except urllib.error.HTTPError as e:
+        raw = e.read()
+        try:
+            detail = json.loads(raw).get("detail", raw.decode(errors="replace"))
+        except ValueError:
+            detail = raw.decode(errors="replace")
+        raise PointsegError(e.code, detail) from None
+    except urllib.error.URLError as e:
+        raise PointsegError(0, "cannot reach %s: %s" % (server, e.reason)) from None
+
+
+def _decode(raw, output):
+    if output == "ply":
+        return raw
+    if output == "labels":
+        return [int(line) for line in raw.split()]
+    return json.loads(raw)
+
+
+def _wait(server, job_id, token, poll_seconds, timeout):
+    """Polls the job until it is final; returns its status document."""
+    deadline = time.monotonic() + timeout if timeout else None
+    while True:
+        _, _, raw = _request(server, "GET", "/jobs/" + job_id, token)
+        status = json.loads(raw)
+        if status["status"] in FINAL_STATES:
+            return status
+        if deadline and time.monotonic() > deadline:
+            raise PointsegError(0, "job %s not finished after %g s" % (job_id, timeout))
+        time.sleep(poll_seconds)
+
+
+def segment(path_or_points, server=DEFAULT_SERVER, token=None, output="json",
+            async_=False, poll_seconds=0.2, timeout=None, **params):
+    """Segments a file (path) or a list of points on pointsegd.
+
+    params are segmentation parameters (k=10, persistence=0.05, ...), sent in
+    the query string.  With async_=True the job is queued (POST /jobs) and
+    polled every poll_seconds until done.  Returns the document (see the
+    module comment).
+    """
+    body, content_type = _body_of(path_or_points)
+    query = dict(params, output=output)
+    query = urllib.parse.urlencode({k: _param_text(v) for k, v in query.items()})
+    if not async_:
+        _, _, raw = _request(server, "POST", "/segment?" + query, token, body, content_type,
+                             timeout)
+        return _decode(raw, output)
+    _, _, raw = _request(server, "POST", "/jobs?" + query, token, body, content_type, timeout)
+    job_id = json.loads(raw)["id"]
+    _wait(server, job_id, token, poll_seconds, timeout)
+    _, _, raw = _request(server, "GET", "/jobs/%s/result" % job_id, token)
+    return _decode(raw, output)
+
+
+def _param_text(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
+
+
+def _write(doc, output, out):
+    if output == "ply":
+        raw = doc
+    elif output == "labels":
+        raw = "".join("%d\n" % label for label in doc).encode()
+    else:
+        raw = (json.dumps(doc) + "\n").encode()
+    if out in (None, "-"):
+        sys.stdout.buffer.write(raw)
+        sys.stdout.buffer.flush()
+    else:
+        with open(out, "wb") as f:
+            f.write(raw)
+
+
+def _parse_args(argv):
+    parser = argparse.ArgumentParser(prog="pointseg_client.py",
+                                     description="Segment a point set on pointsegd.")
+    commands = parser.add_subparsers(dest="command", required=True)
+    seg = commands.add_parser("segment", help="segment FILE on the daemon")
+    seg.add_argument("file", help="PLY, OFF, OBJ, XYZ/CSV or JSON point set")
+    seg.add_argument("--server", default=DEFAULT_SERVER, help="daemon URL (%(default)s)")
+    seg.add_argument("--async", dest="async_", action="store_true",
+                     help="queue a job (POST /jobs) and poll it")
+    seg.add_argument("--output", choices=("json", "labels", "ply"), default="json")
+    seg.add_argument("-o", dest="out", help="write the result here (default stdout)")
+    seg.add_argument("--token", default=os.environ.get("POINTSEG_TOKEN"),
+                     help="bearer token (default $POINTSEG_TOKEN)")
+    seg.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                     help="a segmentation parameter, e.g. --param k=10 (repeatable)")
+    return parser.parse_args(argv)
+
+
+def main(argv=None):
+    args = _parse_args(sys.argv[1:] if argv is None else argv)
+    params = {}
+    for item in args.param:
+        name, sep, value = item.partition("=")
+        if not sep:
+            print("pointseg_client.py: --param %s: expected NAME=VALUE" % item, file=sys.stderr)
+            return 2
+        params[name] = value
+    try:
+        doc = segment(args.file, server=args.server, token=args.token, output=args.output,
+                      async_=args.async_, **params)
+    except PointsegError as e:
+        print("pointseg_client.py: %s: %s" % (args.file, e), file=sys.stderr)
+        return 2 if 400 <= e.status < 500 else 1
+    except OSError as e:
+        print("pointseg_client.py: %s" % e, file=sys.stderr)
+        return 2
+    _write(doc, args.output, args.out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

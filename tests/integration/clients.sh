@@ -1,0 +1,137 @@
+#!/bin/sh
+# clients.sh: the clients of clients/ against a running daemon.
+#   tests/integration/clients.sh BUILD     uses BUILD/pointsegd, BUILD/pointseg
+# Starts two pointsegd on free ports (one with --token), runs every curl
+# script, the Python client (CLI sync and async, and imported) and
+# `pointseg segment --server` (sync, async, token), and checks each answer's
+# labels equal a local `pointseg segment --output labels` of the same input.
+# Prints "PASS clients:NAME" / "FAIL clients:NAME: why"; exits 1 on any
+# failure; stops both daemons.
+set -u
+BUILD=${1:-build}
+PS=$BUILD/pointseg
+PSD=$BUILD/pointsegd
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+SAMPLE=$ROOT/clients/curl/sample.xyz
+TOKEN=clients-test-token
+tmp=$(mktemp -d)
+pids=""
+trap 'for p in $pids; do kill "$p" 2>/dev/null; done; rm -rf "$tmp"' EXIT
+failures=0
+
+pass() { echo "PASS clients:$1"; }
+fail() { echo "FAIL clients:$1: $2"; failures=$((failures + 1)); }
+
+# start_daemon NAME ARGS...: starts pointsegd on a free port; sets $url.
+start_daemon() {
+    name=$1
+    shift
+    : >"$tmp/$name.log"
+    "$PSD" --port 0 --quiet "$@" >"$tmp/$name.log" 2>&1 &
+    pids="$pids $!"
+    url=""
+    for _ in $(seq 50); do
+        url=$(sed -n 's/^pointsegd: listening on \(http:[^ ]*\).*/\1/p' "$tmp/$name.log")
+        [ -n "$url" ] && return 0
+        sleep 0.1
+    done
+    fail "$name" "daemon did not start: $(head -c 300 "$tmp/$name.log")"
+    return 1
+}
+
+# same_labels NAME FILE: FILE holds labels (one per line) equal to the
+# local ones.
+same_labels() {
+    if cmp -s "$2" "$tmp/local.labels"; then pass "$1"
+    else fail "$1" "labels differ from local: $(head -c 120 "$2" | tr '\n' ' ')"; fi
+}
+
+# json_labels FILE: the "labels" array of a JSON document, one per line.
+json_labels() {
+    python3 -c 'import json, sys; print(*json.load(open(sys.argv[1]))["labels"], sep="\n")' "$1"
+}
+
+# check NAME CMD...: runs CMD with stdout to $tmp/NAME.out; fails NAME on a
+# non-zero exit (returns 1), else returns 0.
+check() {
+    name=$1
+    shift
+    if "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"; then return 0; fi
+    fail "$name" "exit status $?: $(tail -c 300 "$tmp/$name.err")"
+    return 1
+}
+
+for f in "$PS" "$PSD"; do
+    [ -x "$f" ] || { fail setup "$f is not built"; exit 1; }
+done
+"$PS" segment "$SAMPLE" --output labels >"$tmp/local.labels" || { fail setup "local segment"; exit 1; }
+[ "$(sort -u "$tmp/local.labels" | wc -l)" -ge 2 ] || fail setup "the sample has one segment"
+
+start_daemon plain || exit 1
+plain=$url
+start_daemon token --token "$TOKEN" || exit 1
+secured=$url
+
+# ---- curl scripts ----
+curl_dir=$ROOT/clients/curl
+check curl-segment "$curl_dir/segment.sh" "$plain" &&
+    json_labels "$tmp/curl-segment.out" >"$tmp/a" && same_labels curl-segment "$tmp/a"
+PARAMS=output=labels check curl-segment-labels "$curl_dir/segment.sh" "$plain" "$SAMPLE" &&
+    same_labels curl-segment-labels "$tmp/curl-segment-labels.out"
+PARAMS=output=labels check curl-jobs "$curl_dir/jobs.sh" "$plain" &&
+    same_labels curl-jobs "$tmp/curl-jobs.out"
+if check curl-ply "$curl_dir/ply.sh" "$plain" "$SAMPLE" "$tmp/parts.ply"; then
+    if head -c 200 "$tmp/parts.ply" | grep -q '^element vertex 2000$' &&
+        "$PS" render "$tmp/parts.ply" -o "$tmp/parts.png" 2>/dev/null; then pass curl-ply
+    else fail curl-ply "not a 2000-vertex PLY that renders: $(head -c 100 "$tmp/parts.ply")"; fi
+fi
+PARAMS=output=labels POINTSEG_TOKEN=$TOKEN check curl-token "$curl_dir/token.sh" "$secured" &&
+    same_labels curl-token "$tmp/curl-token.out"
+if POINTSEG_TOKEN=wrong "$curl_dir/token.sh" "$secured" >/dev/null 2>&1; then
+    fail curl-token-wrong "a wrong token was accepted"
+else pass curl-token-wrong; fi
+
+# ---- Python client ----
+py=$ROOT/clients/python/pointseg_client.py
+check python-sync python3 "$py" segment "$SAMPLE" --server "$plain" --output labels &&
+    same_labels python-sync "$tmp/python-sync.out"
+check python-async python3 "$py" segment "$SAMPLE" --server "$plain" --async --output labels &&
+    same_labels python-async "$tmp/python-async.out"
+check python-token python3 "$py" segment "$SAMPLE" --server "$secured" --token "$TOKEN" \
+    --output json -o "$tmp/py.json" && json_labels "$tmp/py.json" >"$tmp/b" &&
+    same_labels python-token "$tmp/b"
+check python-import python3 -c '
+import sys
+sys.path.insert(0, sys.argv[1])
+import pointseg_client as pc
+points = [list(map(float, line.split())) for line in open(sys.argv[2])]
+doc = pc.segment(points, server=sys.argv[3])
+assert doc["n_points"] == len(points), doc["n_points"]
+print(*doc["labels"], sep="\n")
+labels = pc.segment(sys.argv[2], server=sys.argv[3], output="labels", async_=True)
+assert labels == doc["labels"], "async labels differ"
+try:
+    pc.segment(sys.argv[2], server=sys.argv[3], k=0)
+    sys.exit("k=0 was accepted")
+except pc.PointsegError as e:
+    assert e.status == 422, e.status
+' "$ROOT/clients/python" "$SAMPLE" "$plain" && same_labels python-import "$tmp/python-import.out"
+
+# ---- pointseg segment --server ----
+check cli-server "$PS" segment "$SAMPLE" --server "$plain" --output labels &&
+    same_labels cli-server "$tmp/cli-server.out"
+check cli-server-async "$PS" segment "$SAMPLE" --server "$plain" --async --output labels &&
+    same_labels cli-server-async "$tmp/cli-server-async.out"
+POINTSEG_TOKEN=$TOKEN check cli-server-token "$PS" segment "$SAMPLE" --server "$secured" \
+    --output labels && same_labels cli-server-token "$tmp/cli-server-token.out"
+"$PS" segment "$SAMPLE" --server "$secured" >/dev/null 2>"$tmp/e"
+rc=$?
+if [ "$rc" -eq 2 ] && grep -q 'answered 401' "$tmp/e"; then pass cli-server-no-token
+else fail cli-server-no-token "exit status $rc: $(head -c 200 "$tmp/e")"; fi
+printf 'not a point set\n' >"$tmp/bad.xyz"
+"$PS" segment "$tmp/bad.xyz" --server "$plain" --async >/dev/null 2>"$tmp/e"
+rc=$?
+if [ "$rc" -eq 2 ] && grep -q 'answered 4' "$tmp/e"; then pass cli-server-bad-input
+else fail cli-server-bad-input "exit status $rc: $(head -c 200 "$tmp/e")"; fi
+
+[ "$failures" -eq 0 ]
