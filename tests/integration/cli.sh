@@ -202,8 +202,7 @@ test_errors() {
     expect_usage_error missing_value "--k" "$PS" segment "$tmp/spheres.xyz" --k
     expect_usage_error no_input "no INPUT" "$PS" segment
     expect_usage_error unknown_command "frob" "$PS" frob
-    expect_usage_error server "not supported yet" "$PS" segment "$tmp/spheres.xyz" \
-        --server http://localhost:1
+    expect_usage_error server "needs --server" "$PS" segment "$tmp/spheres.xyz" --async
 }
 
 test_help
