@@ -48,7 +48,8 @@ INTEG_BIN := $(patsubst tests/integration/%.c,$(BUILD)/itests/%,$(INTEG_SRC))
 BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
-.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-load clean tests-build
+.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-load clean tests-build \
+        install uninstall test-scale
 .DEFAULT_GOAL := all
 
 all: $(PROGRAMS)
@@ -117,6 +118,36 @@ bench-speed: deps
 bench-load: deps
 	@$(MAKE) --no-print-directory $(BUILD)/bench/bench_load $(BUILD)/pointsegd
 	@$(BUILD)/bench/bench_load $(BENCH_ARGS)
+
+# ---- installing and scale-out ----------------------------------------------
+# make install [PREFIX=/usr/local] [DESTDIR=]: both programs, their man pages,
+# the systemd unit (docker/pointsegd.service) and the web client if present.
+PREFIX ?= /usr/local
+BINDIR = $(PREFIX)/bin
+MANDIR = $(PREFIX)/share/man
+WEBDIR = $(PREFIX)/share/pointseg/web
+UNITDIR ?= $(PREFIX)/lib/systemd/system
+
+install: all
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man8 $(DESTDIR)$(UNITDIR)
+	install -m 755 $(PROGRAMS) $(DESTDIR)$(BINDIR)/
+	install -m 644 docs/man/pointseg.1 $(DESTDIR)$(MANDIR)/man1/
+	install -m 644 docs/man/pointsegd.8 $(DESTDIR)$(MANDIR)/man8/
+	sed -e 's|@BINDIR@|$(BINDIR)|' -e 's|@WEBDIR@|$(WEBDIR)|' docker/pointsegd.service \
+	    >$(DESTDIR)$(UNITDIR)/pointsegd.service
+	if [ -d clients/web ]; then install -d $(DESTDIR)$(WEBDIR) && cp -R clients/web/. $(DESTDIR)$(WEBDIR)/; fi
+
+uninstall:
+	rm -f $(DESTDIR)$(BINDIR)/pointseg $(DESTDIR)$(BINDIR)/pointsegd
+	rm -f $(DESTDIR)$(MANDIR)/man1/pointseg.1 $(DESTDIR)$(MANDIR)/man8/pointsegd.8
+	rm -f $(DESTDIR)$(UNITDIR)/pointsegd.service
+	rm -rf $(DESTDIR)$(PREFIX)/share/pointseg
+
+# Three pointsegd behind a real nginx on loopback, routed like
+# docker/compose.yaml (installs nginx when root, else skips).  Not part of
+# `make test` (the script is not executable, so tests/run.sh passes it by).
+test-scale: all
+	@sh tests/integration/scale.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD)

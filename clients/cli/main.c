@@ -12,7 +12,7 @@
 static const char main_usage[] =
     "usage: pointseg segment INPUT [-o OUT] [--output json|labels|ply] [--NAME VALUE ...]\n"
     "       pointseg score MESH LABELS SEG [SEG...]\n"
-    "       pointseg render IN.ply -o OUT.png [--width W --height H --view X,Y,Z]\n"
+    "       pointseg render IN.ply -o OUT.png [--width W --height H --view X,Y,Z --up X,Y,Z]\n"
     "       pointseg --help | --version\n"
     "\n"
     "Segments point-sampled surfaces into their parts (after \"Segmenting Point\n"
