@@ -121,7 +121,8 @@ bench-load: deps
 
 # ---- installing and scale-out ----------------------------------------------
 # make install [PREFIX=/usr/local] [DESTDIR=]: both programs, their man pages,
-# the systemd unit (docker/pointsegd.service) and the web client if present.
+# the systemd unit (docker/pointsegd.service) and the web client's served
+# files (*.html, *.js, *.css, vendor/) if present.
 PREFIX ?= /usr/local
 BINDIR = $(PREFIX)/bin
 MANDIR = $(PREFIX)/share/man
@@ -135,7 +136,13 @@ install: all
 	install -m 644 docs/man/pointsegd.8 $(DESTDIR)$(MANDIR)/man8/
 	sed -e 's|@BINDIR@|$(BINDIR)|' -e 's|@WEBDIR@|$(WEBDIR)|' docker/pointsegd.service \
 	    >$(DESTDIR)$(UNITDIR)/pointsegd.service
-	if [ -d clients/web ]; then install -d $(DESTDIR)$(WEBDIR) && cp -R clients/web/. $(DESTDIR)$(WEBDIR)/; fi
+	if [ -d clients/web ]; then \
+	    install -d $(DESTDIR)$(WEBDIR) && \
+	    for f in clients/web/*.html clients/web/*.js clients/web/*.css; do \
+	        if [ -f "$$f" ]; then install -m 644 "$$f" $(DESTDIR)$(WEBDIR)/ || exit 1; fi; \
+	    done; \
+	    if [ -d clients/web/vendor ]; then cp -R clients/web/vendor $(DESTDIR)$(WEBDIR)/; fi; \
+	fi
 
 uninstall:
 	rm -f $(DESTDIR)$(BINDIR)/pointseg $(DESTDIR)$(BINDIR)/pointsegd
