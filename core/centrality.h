@@ -22,7 +22,9 @@
 
 #include "knn_graph.h"
 
-#define PS_COARSE_MIN_POINTS 20000 /* approx uses the two-level scheme from here */
+#ifndef PS_COARSE_MIN_POINTS
+#define PS_COARSE_MIN_POINTS 20000 /* approx uses the two-level scheme from here (-D to tune) */
+#endif
 
 /* component #P from ps_graph_components.  mode is EXACT or APPROX (the
  * caller resolves AUTO).  f #P out.  sample_ids, if not NULL, receives a

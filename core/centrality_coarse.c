@@ -23,6 +23,9 @@
 #define LANES 8            /* floats per step of the inner loops */
 #define BLOCK 16           /* samples per coarse Dijkstra task */
 #define FINE_CHUNK 256     /* vertices per fine-level task */
+#ifndef SMOOTH_STEPS
+#define SMOOTH_STEPS 5     /* neighbour-averaging steps on f (-D to tune) */
+#endif
 #define BUILD_SHARE 0.3    /* progress after the coarse graph */
 #define SAMPLES_SHARE 0.35 /* ... after the sampling */
 #define COARSE_SHARE 0.6   /* ... after the coarse Dijkstras */
@@ -43,6 +46,8 @@ typedef struct two_level {
     size_t *task_first;  /* #tasks+1: coarse tasks as sample indices */
     const ps_control *ctl;
     double *f;           /* #P out, old ids */
+    double *fine;        /* #P f in new ids, then smoothed */
+    double *spare;       /* #P the smoothing's other buffer */
     atomic_int cancelled;
     atomic_size_t done;
     size_t total;
@@ -302,7 +307,7 @@ static void fine_tasks(void *ctx, size_t begin, size_t end, int worker) {
         int k = component_of_vertex(o, first);
         for (size_t p = first; p < last; p++) {
             while (o->start[k + 1] <= p) k++;
-            x->f[o->old_of[p]] = vertex_mean(x, (uint32_t)p, k, c->scratch[worker]);
+            x->fine[p] = vertex_mean(x, (uint32_t)p, k, c->scratch[worker]);
         }
         finish_items(x, 1, worker);
     }
@@ -327,6 +332,39 @@ static ps_status fine_level(two_level *x, int threads) {
     return st;
 }
 
+/* ---- smoothing -------------------------------------------------------------- */
+
+typedef struct smooth_ctx {
+    two_level *x;
+    const double *in;
+    double *out;
+} smooth_ctx;
+
+static void smooth_tasks(void *ctx, size_t begin, size_t end, int worker) {
+    smooth_ctx *c = ctx;
+    const ps_graph *g = &c->x->o->g;
+    (void)worker;
+    for (size_t chunk = begin; chunk < end; chunk++) {
+        size_t first = chunk * FINE_CHUNK, last = first + FINE_CHUNK < g->n ? first + FINE_CHUNK : g->n;
+        for (size_t p = first; p < last; p++) {
+            double sum = c->in[p];
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) sum += c->in[g->neighbors[e]];
+            c->out[p] = sum / (double)(g->offsets[p + 1] - g->offsets[p] + 1);
+        }
+    }
+}
+
+static void smooth(two_level *x, int threads) {
+    size_t chunks = (x->o->g.n + FINE_CHUNK - 1) / FINE_CHUNK;
+    for (int step = 0; step < SMOOTH_STEPS; step++) {
+        smooth_ctx c = {x, x->fine, x->spare};
+        ps_parallel_for(threads, chunks, 1, smooth_tasks, &c);
+        double *t = x->fine;
+        x->fine = x->spare, x->spare = t;
+    }
+    for (size_t p = 0; p < x->o->g.n; p++) x->f[x->o->old_of[p]] = x->fine[p];
+}
+
 /* ---- entry ---------------------------------------------------------------------- */
 
 static ps_status sample_and_solve(two_level *x, size_t samples, int threads) {
@@ -341,6 +379,7 @@ static ps_status sample_and_solve(two_level *x, size_t samples, int threads) {
     free(mind);
     if (st == PS_OK) st = coarse_distances(x, threads);
     if (st == PS_OK) st = fine_level(x, threads);
+    if (st == PS_OK) smooth(x, threads);
     return st;
 }
 
@@ -369,7 +408,10 @@ ps_status ps_centrality_coarse(const ps_bfs_order *o, size_t samples, int thread
     two_level x = {.o = o, .cg = &cg, .ctl = ctl, .f = f};
     atomic_init(&x.cancelled, 0);
     atomic_init(&x.done, 0);
-    st = sample_and_solve(&x, samples, threads);
+    x.fine = malloc(o->g.n * sizeof *x.fine);
+    x.spare = malloc(o->g.n * sizeof *x.spare);
+    st = x.fine && x.spare ? sample_and_solve(&x, samples, threads) : PS_ERR_NOMEM;
+    free(x.fine), free(x.spare);
     if (st == PS_OK) st = give_samples(&x, sample_ids, samples_used);
     table_free(&x.t);
     free(x.task_first);

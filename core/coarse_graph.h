@@ -24,7 +24,9 @@
 
 #include "bfs_order.h"
 
-#define PS_CELL_RADIUS_EDGES 2.0 /* cell radius in median kNN edge lengths */
+#ifndef PS_CELL_RADIUS_EDGES
+#define PS_CELL_RADIUS_EDGES 3.0 /* cell radius in median kNN edge lengths (-D to tune) */
+#endif
 
 typedef struct ps_coarse_graph {
     size_t n_cells;         /* #M */
