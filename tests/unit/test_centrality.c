@@ -1,12 +1,14 @@
 /* test_centrality.c: exact centrality has the path graph's closed form,
- * approx is close to exact on the shapes (RMS of normalized f < 0.08), both
- * are bit-identical for any thread count, and cancel / progress behave. */
+ * approx (full Dijkstras and the two-level scheme) is close to exact on the
+ * shapes (RMS of normalized f < 0.08), all are bit-identical for any thread
+ * count, and cancel / progress behave. */
 #include "centrality.h"
 #include "knn_graph.h"
 #include "shapes.h"
 #include "testlib.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -113,7 +115,7 @@ static double normalized_rms(const shape_graph *s, const double *f, const double
     return sqrt(sq / (double)s->n);
 }
 
-static void check_approx_close(double *pts, size_t n, const char *name) {
+static void check_approx_close(double *pts, size_t n, size_t coarse_min, const char *name) {
     shape_graph s;
     REQUIRE(shape_graph_make(pts, n, &s));
     REQUIRE(s.n_comp < 64);
@@ -122,26 +124,33 @@ static void check_approx_close(double *pts, size_t n, const char *name) {
     int used = 0;
     REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_EXACT, 0, 2, NULL, exact, NULL,
                           NULL, NULL) == PS_OK);
-    REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2, NULL, approx, NULL,
-                          &used, NULL) == PS_OK);
+    uint32_t *ids = NULL;
+    REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2,
+                                         coarse_min, NULL, approx, &ids, &used, NULL) == PS_OK);
     CHECK(used >= (int)ceil(sqrt((double)n)) && used <= (int)ceil(sqrt((double)n)) + s.n_comp);
+    CHECK(ids && ids[0] == 0); /* the first component's lowest vertex */
     double rms = normalized_rms(&s, exact, approx);
-    CHECK_MSG(rms < 0.08, "%s: RMS of normalized approx - exact = %g", name, rms);
+    CHECK_MSG(rms < 0.08, "%s (coarse from %zu): RMS of normalized approx - exact = %g", name,
+              coarse_min, rms);
+    free(ids);
     free(exact), free(approx);
     shape_graph_free(&s);
 }
 
-static void test_approx_close_to_exact(void) {
+static void check_shapes_close(size_t coarse_min) {
     size_t n;
     double *p = ps_shape_dumbbell(0.0, &n, NULL);
-    check_approx_close(p, n, "dumbbell");
+    check_approx_close(p, n, coarse_min, "dumbbell");
     p = ps_shape_star(0.0, &n, NULL);
-    check_approx_close(p, n, "star");
+    check_approx_close(p, n, coarse_min, "star");
     p = ps_shape_hand(40.0, &n, NULL);
-    check_approx_close(p, n, "hand");
+    check_approx_close(p, n, coarse_min, "hand");
 }
 
-static void check_threads_identical(ps_centrality_mode mode) {
+static void test_approx_close_to_exact(void) { check_shapes_close(SIZE_MAX); }
+static void test_two_level_close_to_exact(void) { check_shapes_close(0); }
+
+static void check_threads_identical(ps_centrality_mode mode, size_t coarse_min) {
     size_t n;
     shape_graph s;
     double *pts = ps_shape_hand(30.0, &n, NULL);
@@ -150,8 +159,8 @@ static void check_threads_identical(ps_centrality_mode mode) {
     for (int t = 0; t < 3; t++) {
         f[t] = malloc(n * sizeof *f[t]);
         REQUIRE(f[t]);
-        REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, mode, 50, t + 1, NULL, f[t], NULL, NULL,
-                              NULL) == PS_OK);
+        REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 50, t + 1, coarse_min,
+                                             NULL, f[t], NULL, NULL, NULL) == PS_OK);
     }
     CHECK(memcmp(f[0], f[1], n * sizeof *f[0]) == 0);
     CHECK(memcmp(f[0], f[2], n * sizeof *f[0]) == 0);
@@ -160,8 +169,15 @@ static void check_threads_identical(ps_centrality_mode mode) {
     shape_graph_free(&s);
 }
 
-static void test_threads_identical_exact(void) { check_threads_identical(PS_CENTRALITY_EXACT); }
-static void test_threads_identical_approx(void) { check_threads_identical(PS_CENTRALITY_APPROX); }
+static void test_threads_identical_exact(void) {
+    check_threads_identical(PS_CENTRALITY_EXACT, 0);
+}
+static void test_threads_identical_approx(void) {
+    check_threads_identical(PS_CENTRALITY_APPROX, SIZE_MAX);
+}
+static void test_threads_identical_two_level(void) {
+    check_threads_identical(PS_CENTRALITY_APPROX, 0);
+}
 
 typedef struct progress_log {
     int calls, monotone, wrong_phase;
@@ -178,33 +194,60 @@ static void on_progress(void *user, ps_phase phase, double fraction) {
     if (log->cancel_at_half && fraction >= 0.5) *log->cancel_at_half = 1;
 }
 
-static void test_progress_and_cancel(void) {
+static void check_progress_and_cancel(ps_centrality_mode mode, size_t coarse_min) {
     size_t n;
     shape_graph s;
     double *pts = ps_shape_star(20.0, &n, NULL);
     REQUIRE(shape_graph_make(pts, n, &s));
     double *f = malloc(n * sizeof *f);
     REQUIRE(f);
-    for (int mode = PS_CENTRALITY_EXACT; mode <= PS_CENTRALITY_APPROX; mode++) {
-        progress_log log = {0, 1, 0, 0.0, 0.0, NULL};
-        ps_control ctl = {on_progress, &log, NULL};
-        REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, (ps_centrality_mode)mode, 40, 2, &ctl, f,
-                              NULL, NULL, NULL) == PS_OK);
-        CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
-        CHECK(log.first < 0.05);
+    progress_log log = {0, 1, 0, 0.0, 0.0, NULL};
+    ps_control ctl = {on_progress, &log, NULL};
+    REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 40, 2, coarse_min, &ctl, f,
+                                         NULL, NULL, NULL) == PS_OK);
+    CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
+    CHECK(log.first < 0.05);
 
-        volatile int cancel = 0;
-        progress_log stop = {0, 1, 0, 0.0, 0.0, &cancel};
-        ps_control cctl = {on_progress, &stop, &cancel};
-        ps_error err = {0};
-        CHECK(ps_centrality(&s.g, s.comp, s.n_comp, (ps_centrality_mode)mode, 40, 2, &cctl, f,
-                            NULL, NULL, &err) == PS_ERR_CANCELLED);
-        CHECK(err.status == PS_ERR_CANCELLED && stop.last < 1.0);
-    }
+    volatile int cancel = 0;
+    progress_log stop = {0, 1, 0, 0.0, 0.0, &cancel};
+    ps_control cctl = {on_progress, &stop, &cancel};
+    ps_error err = {0};
+    CHECK(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 40, 2, coarse_min, &cctl, f,
+                                       NULL, NULL, &err) == PS_ERR_CANCELLED);
+    CHECK(err.status == PS_ERR_CANCELLED && stop.last < 1.0);
     free(f);
     shape_graph_free(&s);
 }
 
+static void test_progress_and_cancel(void) {
+    check_progress_and_cancel(PS_CENTRALITY_EXACT, SIZE_MAX);
+    check_progress_and_cancel(PS_CENTRALITY_APPROX, SIZE_MAX);
+}
+
+static void test_progress_and_cancel_two_level(void) {
+    check_progress_and_cancel(PS_CENTRALITY_APPROX, 0);
+}
+
+/* Above the threshold ps_centrality takes the two-level path by itself. */
+static void test_default_threshold(void) {
+    size_t n;
+    shape_graph s;
+    double *pts = ps_shape_hand(450.0, &n, NULL);
+    REQUIRE(n >= PS_COARSE_MIN_POINTS);
+    REQUIRE(shape_graph_make(pts, n, &s));
+    double *f = malloc(n * sizeof *f), *h = malloc(n * sizeof *h);
+    REQUIRE(f && h);
+    REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2, NULL, f, NULL, NULL,
+                          NULL) == PS_OK);
+    REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2, 0,
+                                         NULL, h, NULL, NULL, NULL) == PS_OK);
+    CHECK(memcmp(f, h, n * sizeof *f) == 0);
+    free(f), free(h);
+    shape_graph_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_exact_path_closed_form), TEST(test_approx_all_samples_is_exact),
-             TEST(test_approx_close_to_exact), TEST(test_threads_identical_exact),
-             TEST(test_threads_identical_approx), TEST(test_progress_and_cancel))
+             TEST(test_approx_close_to_exact), TEST(test_two_level_close_to_exact),
+             TEST(test_threads_identical_exact), TEST(test_threads_identical_approx),
+             TEST(test_threads_identical_two_level), TEST(test_progress_and_cancel),
+             TEST(test_progress_and_cancel_two_level), TEST(test_default_threshold))
