@@ -9,6 +9,8 @@
  * The fine level loops over vertices (outer, parallel) and samples (inner,
  * LANES at a time, a loop gcc and clang vectorize at -O2 with SSE2); the
  * sum over samples is in double with LANES partial sums in a fixed order.
+ * Last, SMOOTH_STEPS Jacobi rounds replace f(p) by the mean of f over p and
+ * its graph neighbours (two buffers: the order of workers does not matter).
  */
 #include "centrality_coarse.h"
 
@@ -140,7 +142,8 @@ static ps_status choose_samples(const ps_coarse_graph *cg, int n_components, ps_
             uint32_t c = i == t->first[k] ? (uint32_t)begin : farthest_cell(begin, end, mind);
             ps_dijkstra_lower(dij, &cg->graph, c, mind);
             t->cells[i] = c;
-            report(ctl, BUILD_SHARE + (SAMPLES_SHARE - BUILD_SHARE) * (double)(i + 1) / (double)total);
+            double done = (double)(i + 1) / (double)total;
+            report(ctl, BUILD_SHARE + (SAMPLES_SHARE - BUILD_SHARE) * done);
         }
     }
     return PS_OK;
@@ -345,10 +348,12 @@ static void smooth_tasks(void *ctx, size_t begin, size_t end, int worker) {
     const ps_graph *g = &c->x->o->g;
     (void)worker;
     for (size_t chunk = begin; chunk < end; chunk++) {
-        size_t first = chunk * FINE_CHUNK, last = first + FINE_CHUNK < g->n ? first + FINE_CHUNK : g->n;
+        size_t first = chunk * FINE_CHUNK, last = first + FINE_CHUNK;
+        if (last > g->n) last = g->n;
         for (size_t p = first; p < last; p++) {
             double sum = c->in[p];
-            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) sum += c->in[g->neighbors[e]];
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
+                sum += c->in[g->neighbors[e]];
             c->out[p] = sum / (double)(g->offsets[p + 1] - g->offsets[p] + 1);
         }
     }

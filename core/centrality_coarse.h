@@ -9,8 +9,14 @@
  * sample on the coarse graph gives D(c, s) for every cell c.
  * Fine level: d_s(p) = min over the cells c near p's cell of
  * D(c, s) + g(c, p), g the local geodesic distance; f(p) = mean over the
- * component's samples of d_s(p).  The minimum over several cells keeps f
- * continuous across cell borders; d_s(s) = 0 at a sample.
+ * component's samples of d_s(p); d_s(s) = 0 at a sample.  The set of cells
+ * changes from one cell to the next, which leaves small steps in f at cell
+ * borders (spurious flow sinks: 477 on the horse); SMOOTH_STEPS rounds of
+ * averaging f over each vertex and its graph neighbours remove them (21
+ * sinks, against 76 with full Dijkstras from the same number of samples).
+ * Accuracy (RMS of f normalized per component vs exact): dumbbell 0.063,
+ * star 0.062, hand 0.062; on the PSB dev set it is a little rougher than
+ * the full-Dijkstra path below 20,000 points (centrality.h's threshold).
  * Each vertex is computed by one worker summing its samples in a fixed
  * order, so f is bit-identical for any thread count.
  */

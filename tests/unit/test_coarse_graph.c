@@ -27,7 +27,8 @@ static int fixture_make(int two, fixture *fx) {
     int ok = one && pts;
     if (ok) {
         memcpy(pts, one, n * 3 * sizeof *pts);
-        for (size_t i = 0; two && i < 3 * n; i++) pts[3 * n + i] = one[i] + (i % 3 == 0 ? 10.0 : 0.0);
+        for (size_t i = 0; two && i < 3 * n; i++)
+            pts[3 * n + i] = one[i] + (i % 3 == 0 ? 10.0 : 0.0); /* shifted along x */
     }
     ok = ok && ps_knn_graph_build(pts, total, 3, 7, 2, &fx->g, NULL) == PS_OK;
     free(one), free(pts);
@@ -142,7 +143,8 @@ static void test_two_components(void) {
     CHECK(split > 0 && split < cg->n_cells && cg->cell_start[2] == cg->n_cells);
     CHECK(cg->seed[0] == 0 && cg->seed[split] == fx.o.start[1]);
     int crossing = 0;
-    for (size_t v = 0; v < fx.g.n; v++) crossing += (cg->cell_of[v] >= split) != (component_of(&fx.o, v) == 1);
+    for (size_t v = 0; v < fx.g.n; v++)
+        crossing += (cg->cell_of[v] >= split) != (component_of(&fx.o, v) == 1);
     for (uint32_t a = 0; a < cg->n_cells; a++)
         for (size_t i = cg->near_offsets[a]; i < cg->near_offsets[a + 1]; i++)
             crossing += (cg->near[i] >= split) != (a >= split);
