@@ -51,12 +51,12 @@ json_labels() {
     python3 -c 'import json, sys; print(*json.load(open(sys.argv[1]))["labels"], sep="\n")' "$1"
 }
 
-# check NAME CMD...: runs CMD with stdout to $tmp/NAME.out; fails NAME on a
-# non-zero exit (returns 1), else returns 0.
+# check NAME CMD...: runs CMD (at most 60 s) with stdout to $tmp/NAME.out;
+# fails NAME on a non-zero exit (returns 1), else returns 0.
 check() {
     name=$1
     shift
-    if "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"; then return 0; fi
+    if timeout 60 "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"; then return 0; fi
     fail "$name" "exit status $?: $(tail -c 300 "$tmp/$name.err")"
     return 1
 }
