@@ -147,7 +147,8 @@ static int add_merges(cJSON *doc, const ps_result *r) {
 
 static int add_params(cJSON *doc, const ps_params *p) {
     cJSON *o = cJSON_AddObjectToObject(doc, "params");
-    return !o || add_number(o, "k", p->k) ||
+    return !o || !cJSON_AddStringToObject(o, "method", ps_method_name(p->method)) ||
+                   add_number(o, "k", p->k) ||
                    !cJSON_AddStringToObject(o, "centrality", ps_centrality_name(p->centrality)) ||
                    add_number(o, "samples", p->samples) ||
                    add_number(o, "persistence", p->persistence) ||

@@ -15,6 +15,7 @@
 
 /* Position of each parameter in the table. */
 typedef enum param_id {
+    P_METHOD,
     P_K,
     P_CENTRALITY,
     P_SAMPLES,
@@ -30,6 +31,7 @@ typedef enum param_id {
 } param_id;
 
 /* Choice lists, in the order of their C enums / bits. */
+static const char *const method_choices[] = {"auto", "paper", NULL};
 static const char *const centrality_choices[] = {"auto", "exact", "approx", NULL};
 static const char *const output_choices[] = {"json", "labels", "ply", NULL};
 static const char *const include_choices[] = {"centrality", "point_supernode", NULL};
@@ -37,6 +39,8 @@ static const char *const include_choices[] = {"centrality", "point_supernode", N
 /* default_text mirrors ps_params_default (core/params.c); a unit test
  * checks that they agree. */
 static const ps_param_spec table[P_COUNT] = {
+    [P_METHOD] = {"method", PS_PT_ENUM, "auto", 0, 0, method_choices,
+                  "auto (crease-aware, persistence, minima) or paper (the published method)"},
     [P_K] = {"k", PS_PT_INT, "7", 1, 64, NULL,
              "neighbours per point in the kNN graph"},
     [P_CENTRALITY] = {"centrality", PS_PT_ENUM, "auto", 0, 0, centrality_choices,
@@ -217,6 +221,7 @@ static void store_number(ps_request_params *rp, param_id id, double v) {
 
 static void store_choice(ps_request_params *rp, param_id id, int index, unsigned bits) {
     switch (id) {
+    case P_METHOD: rp->core.method = (ps_method)index; break;
     case P_CENTRALITY: rp->core.centrality = (ps_centrality_mode)index; break;
     case P_OUTPUT: rp->output = (ps_output)index; break;
     case P_INCLUDE: rp->include = bits; break;

@@ -94,7 +94,9 @@ ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double pers
         ps_dijkstra_run(w, &h, src, n_src, f2, NULL);
         st = ps_flow_build(&h, f2, +1, &basins, err);
     }
-    if (st == PS_OK) st = ps_flow_simplify(&h, f2, piece, n_pieces, persistence, &basins, err);
+    if (st == PS_OK)
+        st = ps_flow_simplify(&h, f2, piece, n_pieces, persistence, PS_PERSISTENCE_MIN_BASIN,
+                              &basins, err);
     if (st == PS_OK) st = rebuild(&basins, f, sn, g->n, err);
     ps_flow_free(&basins);
     ps_graph_free(&h);

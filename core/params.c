@@ -29,6 +29,7 @@ const char *ps_status_name(ps_status status) {
 
 void ps_params_default(ps_params *p) {
     *p = (ps_params){
+        .method = PS_METHOD_AUTO,
         .k = 7,
         .centrality = PS_CENTRALITY_AUTO,
         .samples = 0,
@@ -42,6 +43,8 @@ void ps_params_default(ps_params *p) {
 }
 
 ps_status ps_params_check(const ps_params *p, ps_error *err) {
+    if (p->method < PS_METHOD_AUTO || p->method > PS_METHOD_PAPER)
+        return ps_fail(err, PS_ERR_INVALID, "unknown method %d", (int)p->method);
     if (p->k < 1 || p->k > 64)
         return ps_fail(err, PS_ERR_INVALID, "k must be in [1, 64], got %d", p->k);
     if (p->centrality < PS_CENTRALITY_AUTO || p->centrality > PS_CENTRALITY_APPROX)
@@ -69,6 +72,10 @@ const char *ps_centrality_name(ps_centrality_mode mode) {
     case PS_CENTRALITY_APPROX: return "approx";
     }
     return "unknown";
+}
+
+const char *ps_method_name(ps_method method) {
+    return method == PS_METHOD_PAPER ? "paper" : method == PS_METHOD_AUTO ? "auto" : "unknown";
 }
 
 const char *ps_phase_name(ps_phase phase) {

@@ -74,20 +74,25 @@ static int peak_below(const ps_flow *flow, const double *f, int a, int b) {
 }
 
 static void merge_sweep(const saddle *s, size_t count, const double *f, const int *component,
-                        const double *threshold, const ps_flow *flow, int *parent) {
+                        const double *threshold, const ps_flow *flow, int *parent,
+                        size_t *size, size_t min_size) {
     for (size_t i = 0; i < count; i++) {
         int a = find_root(parent, flow->sink_of[s[i].p]);
         int b = find_root(parent, flow->sink_of[s[i].q]);
         if (a == b) continue;
         int low = peak_below(flow, f, a, b) ? a : b, high = low == a ? b : a;
         double persistence = f[flow->sinks[low]] - s[i].height;
-        if (persistence < threshold[component[s[i].p]]) parent[low] = high;
+        if (persistence < threshold[component[s[i].p]] || size[low] < min_size ||
+            size[high] < min_size) {
+            int keep = size[high] < min_size && size[low] >= min_size ? low : high;
+            int gone = keep == high ? low : high;
+            parent[gone] = keep;
+            size[keep] += size[gone];
+        }
     }
 }
 
-/* Keeps the surviving sinks (in increasing vertex order) and remaps;
- * new_id #S scratch. */
-static void compact(ps_flow *flow, int *parent, int *new_id, size_t n) {
+void ps_flow_merge(ps_flow *flow, int *parent, int *new_id, size_t n) {
     int m = flow->n_sinks, kept = 0;
     for (int s = 0; s < m; s++) parent[s] = find_root(parent, s);
     for (int s = 0; s < m; s++)
@@ -97,23 +102,26 @@ static void compact(ps_flow *flow, int *parent, int *new_id, size_t n) {
 }
 
 ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *component,
-                           int n_components, double fraction, ps_flow *flow,
-                           ps_error *err) {
+                           int n_components, double fraction, size_t min_size,
+                           ps_flow *flow, ps_error *err) {
     if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     size_t count = 0;
     saddle *s = border_saddles(g, f, flow, &count);
     double *threshold = component_thresholds(g, f, component, n_components, fraction);
     int m = flow->n_sinks;
     int *parent = malloc((size_t)m * sizeof *parent), *new_id = malloc((size_t)m * sizeof *new_id);
-    int ok = s && threshold && parent && new_id;
+    size_t *size = calloc((size_t)m, sizeof *size);
+    int ok = s && threshold && parent && new_id && size;
     if (ok) {
         for (int k = 0; k < m; k++) parent[k] = k;
-        merge_sweep(s, count, f, component, threshold, flow, parent);
-        compact(flow, parent, new_id, g->n);
+        for (size_t p = 0; p < g->n; p++) size[flow->sink_of[p]]++;
+        merge_sweep(s, count, f, component, threshold, flow, parent, size, min_size);
+        ps_flow_merge(flow, parent, new_id, g->n);
     }
     free(s);
     free(threshold);
     free(parent);
     free(new_id);
+    free(size);
     return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
 }

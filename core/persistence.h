@@ -8,18 +8,29 @@
  * min(f(p), f(q)).  Sweeping the saddles from high to low, the basin whose
  * peak is lower merges into the other when its persistence, f(peak) - h, is
  * below `fraction` times the range of f in its component.  Significant
- * peaks (limb tips) survive; ripples join their neighbour.
+ * peaks (limb tips) survive; ripples join their neighbour.  A basin of
+ * fewer than PS_PERSISTENCE_MIN_BASIN points is noise whatever its height
+ * (a spike next to a crease, say) and joins its neighbour at its highest
+ * saddle too; the merged basin is represented by the larger peak's sink
+ * when the higher peak's basin is the tiny one.
  */
+#define PS_PERSISTENCE_MIN_BASIN 16
 #ifndef PS_PERSISTENCE_H
 #define PS_PERSISTENCE_H
 
 #include "flow.h"
 
 /* f #P, component #P (n_components of them).  flow is updated in place:
- * fewer sinks (still increasing vertex ids), sink_of remapped.  fraction 0
- * changes nothing. */
+ * fewer sinks (still increasing vertex ids), sink_of remapped.  Basins of
+ * fewer than min_size points merge whatever their persistence (pass
+ * PS_PERSISTENCE_MIN_BASIN, or 0 for none).  fraction 0 changes nothing. */
 ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *component,
-                           int n_components, double fraction, ps_flow *flow,
-                           ps_error *err);
+                           int n_components, double fraction, size_t min_size,
+                           ps_flow *flow, ps_error *err);
+
+/* Merges the basins as the union-find forest parent (#S) says: each tree
+ * becomes its root's basin; surviving sinks keep increasing order and
+ * sink_of (#n) is remapped.  new_id #S scratch. */
+void ps_flow_merge(ps_flow *flow, int *parent, int *new_id, size_t n);
 
 #endif

@@ -59,7 +59,15 @@ typedef enum ps_centrality_mode {
 
 #define PS_EXACT_AUTO_LIMIT 4096
 
+typedef enum ps_method {
+    PS_METHOD_AUTO = 0, /* the default: crease-aware metric (3-D), persistence,
+                           minima (README, "How it works") */
+    PS_METHOD_PAPER     /* the published pipeline: Euclidean geodesics, every
+                           sink a supernode, no minima, no f2 */
+} ps_method;
+
 typedef struct ps_params {
+    ps_method method;
     int k;                    /* neighbours per point in the kNN graph (default 7) */
     ps_centrality_mode centrality;
     int samples;              /* approx centrality samples; 0 = ceil(sqrt(n)) */
@@ -83,6 +91,7 @@ void ps_params_default(ps_params *p);
 ps_status ps_params_check(const ps_params *p, ps_error *err);
 
 const char *ps_centrality_name(ps_centrality_mode mode);
+const char *ps_method_name(ps_method method);
 
 /* ---- input ------------------------------------------------------------- */
 

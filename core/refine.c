@@ -247,12 +247,22 @@ static void final_groups(const segments *s, const ps_tree_node *tree, int *group
     }
 }
 
+/* A segment holding a minimum's supernode is a central region, not a
+ * feature: its f is flat by nature, so it never merges away. */
+static void protect_cores(segments *s, const int *supernode_of, const int *is_minimum,
+                          const int *seg_of_point, size_t n) {
+    for (size_t p = 0; is_minimum && p < n; p++)
+        if (is_minimum[supernode_of[p]]) s->threshold[seg_of_point[p]] = 0;
+}
+
 static ps_status refine_with(segments *s, const ps_graph *g, const double *f,
                              const int *component, const ps_tree_node *tree,
-                             const int *seg_of_point, double feature_threshold,
+                             const int *seg_of_point, const int *supernode_of,
+                             const int *is_minimum, double feature_threshold,
                              int *group_of_leaf, ps_merge *merges, int *n_merges,
                              ps_error *err) {
     ps_status st = measure(s, tree, g->n, f, component, seg_of_point, feature_threshold, err);
+    if (st == PS_OK) protect_cores(s, supernode_of, is_minimum, seg_of_point, g->n);
     if (st == PS_OK) st = count_borders(s, g, seg_of_point, err);
     if (st == PS_OK) st = merge_all(s, merges, n_merges, err);
     if (st == PS_OK) final_groups(s, tree, group_of_leaf);
@@ -280,7 +290,8 @@ static ps_status point_leaves(const ps_tree_node *tree, int n_tree, const int *s
 }
 
 ps_status ps_refine(const ps_graph *g, const double *f, const int *supernode_of,
-                    const int *component, const ps_tree_node *tree, int n_tree,
+                    const int *is_minimum, const int *component,
+                    const ps_tree_node *tree, int n_tree,
                     double feature_threshold, int *group_of_leaf,
                     ps_merge **merges, int *n_merges, ps_error *err) {
     *merges = NULL;
@@ -293,7 +304,8 @@ ps_status ps_refine(const ps_graph *g, const double *f, const int *supernode_of,
                        ? point_leaves(tree, n_tree, supernode_of, g->n, seg_of_point, err)
                        : ps_fail(err, PS_ERR_NOMEM, "refine: out of memory");
     if (st == PS_OK)
-        st = refine_with(&s, g, f, component, tree, seg_of_point, feature_threshold,
+        st = refine_with(&s, g, f, component, tree, seg_of_point, supernode_of, is_minimum,
+                         feature_threshold,
                          group_of_leaf, list, n_merges, err);
     segments_free(&s);
     free(seg_of_point);

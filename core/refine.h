@@ -6,17 +6,19 @@
  * (range of f in its component), it merges into the adjacent segment (kNN
  * edges crossing) that has the longest shared boundary and a large feature
  * size, as in the paper; smallest features merge first.  Deterministic.
+ * A segment holding a minimum's supernode (supernodes.h) is a central
+ * region, not a feature, and never merges away (others may merge into it).
  */
 #ifndef PS_REFINE_H
 #define PS_REFINE_H
 
 #include "knn_graph.h"
 
-/* supernode_of #P, f #P, component #P.  group_of_leaf #n_tree out: for each
+/* supernode_of #P, is_minimum #S (or NULL), f #P, component #P.  group_of_leaf #n_tree out: for each
  * leaf, the tree id of the leaf whose segment it ends in (itself when not
  * merged); -1 for inner nodes.  merges: malloc'ed, #n_merges, in order. */
 ps_status ps_refine(const ps_graph *g, const double *f, const int *supernode_of,
-                    const int *component, const ps_tree_node *tree, int n_tree,
+                    const int *is_minimum, const int *component, const ps_tree_node *tree, int n_tree,
                     double feature_threshold, int *group_of_leaf,
                     ps_merge **merges, int *n_merges, ps_error *err);
 

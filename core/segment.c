@@ -9,10 +9,12 @@
  * answers.
  */
 #include "centrality.h"
+#include "crease.h"
 #include "dedup.h"
 #include "f2_split.h"
 #include "knn_graph.h"
 #include "ncut.h"
+#include "normals.h"
 #include "parallel.h"
 #include "pointseg.h"
 #include "refine.h"
@@ -99,6 +101,28 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
+/* Normals (given, or PCA) of the distinct points, then the crease metric. */
+static ps_status crease_metric(pipeline *pl, ps_error *err) {
+    size_t u = pl->dedup.n_unique;
+    double *normals = malloc(u * 3 * sizeof *normals), *given = NULL;
+    if (!normals) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
+    if (pl->in->normals) {
+        given = malloc(u * 3 * sizeof *given);
+        if (!given) {
+            free(normals);
+            return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
+        }
+        for (size_t i = 0; i < u; i++)
+            memcpy(given + 3 * i, pl->in->normals + 3 * pl->dedup.first[i], 3 * sizeof *given);
+    }
+    ps_status st = ps_normals_build(&pl->graph, pl->points, given, pl->component,
+                                    pl->n_components, normals, err);
+    if (st == PS_OK) ps_crease_weights(&pl->graph, pl->points, normals);
+    free(normals);
+    free(given);
+    return st;
+}
+
 static ps_status phase_knn(pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     ps_status st = ps_knn_graph_build(pl->points, u, pl->in->dim, pl->params.k, pl->threads,
@@ -107,6 +131,7 @@ static ps_status phase_knn(pipeline *pl, ps_error *err) {
     pl->component = malloc(u * sizeof *pl->component);
     if (!pl->component) return ps_fail(err, PS_ERR_NOMEM, "out of memory (components)");
     pl->n_components = ps_graph_components(&pl->graph, pl->component);
+    if (pl->params.method == PS_METHOD_AUTO && pl->in->dim == 3) return crease_metric(pl, err);
     return PS_OK;
 }
 
@@ -150,7 +175,7 @@ static ps_status phase_hierarchy(pipeline *pl, ps_error *err) {
 static ps_status phase_refine(pipeline *pl, ps_error *err) {
     pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
     if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
-    return ps_refine(&pl->graph, pl->f, pl->sn.supernode_of, pl->component, pl->tree, pl->n_tree,
+    return ps_refine(&pl->graph, pl->f, pl->sn.supernode_of, pl->sn.is_minimum, pl->component, pl->tree, pl->n_tree,
                      pl->params.feature_threshold, pl->group_of_leaf, &pl->merges,
                      &pl->n_merges, err);
 }
@@ -213,6 +238,8 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     pipeline pl = {.in = in, .ctl = ctl};
     if (params) pl.params = *params;
     else ps_params_default(&pl.params);
+    if (pl.params.method == PS_METHOD_PAPER)
+        pl.params.persistence = 0, pl.params.use_minima = pl.params.use_f2 = 0;
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
     pl.points = (double *)in->points;

@@ -24,24 +24,74 @@ static ps_status simplified_flow(const ps_graph *g, const double *f, const int *
     const double *h = signed_f ? signed_f : f;
     ps_status st = ps_flow_build(g, h, +1, flow, err);
     if (st == PS_OK)
-        st = ps_flow_simplify(g, h, component, n_components, persistence, flow, err);
+        st = ps_flow_simplify(g, h, component, n_components, persistence,
+                              PS_PERSISTENCE_MIN_BASIN, flow, err);
     free(signed_f);
     return st;
 }
 
 /* level #S out: each basin's highest saddle, min(f(p), f(q)) over edges to
- * other basins; -INFINITY-like (-1e300) for a basin that meets none. */
+ * other basins; -INFINITY-like (-1e300) for a basin that meets none.
+ * across, if not NULL, #S out: the basin on the other side (-1 if none). */
 static void highest_saddles(const ps_graph *g, const double *f, const ps_flow *up,
-                            double *level) {
-    for (int s = 0; s < up->n_sinks; s++) level[s] = -1e300;
+                            double *level, int *across) {
+    for (int s = 0; s < up->n_sinks; s++) {
+        level[s] = -1e300;
+        if (across) across[s] = -1;
+    }
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
             int a = up->sink_of[p], b = up->sink_of[q];
             if (a == b) continue;
             double h = f[p] < f[q] ? f[p] : f[q];
-            if (h > level[a]) level[a] = h;
+            if (h > level[a] || (h == level[a] && across && b < across[a])) {
+                level[a] = h;
+                if (across) across[a] = b;
+            }
         }
+}
+
+static int find_root(int *parent, int s) {
+    while (parent[s] != s) s = parent[s] = parent[parent[s]];
+    return s;
+}
+
+/* One round: every basin with fewer than min_size points above its highest
+ * saddle joins the basin across that saddle.  Returns how many joined. */
+static int merge_round(const ps_graph *g, const double *f, ps_flow *up, size_t min_size,
+                       double *level, int *across, int *parent, int *scratch) {
+    int m = up->n_sinks, merged = 0;
+    highest_saddles(g, f, up, level, across);
+    for (int s = 0; s < m; s++) parent[s] = s, scratch[s] = 0;
+    for (size_t p = 0; p < g->n; p++) scratch[up->sink_of[p]] += f[p] >= level[up->sink_of[p]];
+    for (int s = 0; s < m; s++) {
+        if ((size_t)scratch[s] >= min_size || across[s] < 0) continue;
+        int a = find_root(parent, s), b = find_root(parent, across[s]);
+        if (a != b) parent[a] = b, merged++;
+    }
+    if (merged) ps_flow_merge(up, parent, scratch, g->n);
+    return merged;
+}
+
+/* A basin whose part above its highest saddle is a handful of points (a
+ * bump beside a crease) would set its neighbour's saddle level, and so cut
+ * a limb too high: such basins join their neighbour, until none is left. */
+static ps_status merge_shallow_tops(const ps_graph *g, const double *f, ps_flow *up,
+                                    size_t min_size, ps_error *err) {
+    int m = up->n_sinks;
+    double *level = malloc((size_t)(m ? m : 1) * sizeof *level);
+    int *across = malloc((size_t)(m ? m : 1) * sizeof *across);
+    int *parent = malloc((size_t)(m ? m : 1) * sizeof *parent);
+    int *scratch = malloc((size_t)(m ? m : 1) * sizeof *scratch);
+    ps_status st = level && across && parent && scratch
+                       ? PS_OK
+                       : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    while (st == PS_OK && up->n_sinks > 1 &&
+           merge_round(g, f, up, min_size, level, across, parent, scratch) > 0) {
+    }
+    free(level), free(across), free(parent), free(scratch);
+    return st;
 }
 
 static ps_status allocate(ps_supernodes *out, size_t n, int m, ps_error *err) {
@@ -80,8 +130,32 @@ static int finish(ps_supernodes *out, const double *f, size_t n) {
     return 0;
 }
 
+/* Points of supernodes under min_size join the neighbouring supernode
+ * (nearest kNN neighbour first) until none is left that can: a basin's part
+ * above its saddle can be a handful of points across a crease. */
+static void absorb_tiny(const ps_graph *g, ps_supernodes *out, size_t min_size) {
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (size_t p = 0; p < g->n; p++) {
+            int s = out->supernode_of[p], best = -1;
+            double best_w = 0;
+            if (out->sizes[s] >= min_size) continue;
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+                int t = out->supernode_of[g->neighbors[e]];
+                if (out->sizes[t] >= min_size && (best < 0 || g->weights[e] < best_w))
+                    best = t, best_w = g->weights[e];
+            }
+            if (best < 0) continue;
+            out->supernode_of[p] = best;
+            out->sizes[s]--, out->sizes[best]++;
+            changed = 1;
+        }
+    }
+}
+
 static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
-                         const ps_flow *down, ps_supernodes *out, ps_error *err) {
+                         const ps_flow *down, size_t min_size, ps_supernodes *out,
+                         ps_error *err) {
     int n_up = up->n_sinks, n_down = down ? down->n_sinks : 0;
     ps_status st = allocate(out, g->n, n_up + n_down, err);
     double *level = down ? malloc((size_t)n_up * sizeof *level) : NULL;
@@ -90,7 +164,7 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
         if (st == PS_OK) ps_supernodes_free(out);
         return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     }
-    if (down) highest_saddles(g, f, up, level);
+    if (down) highest_saddles(g, f, up, level, NULL);
     for (int s = 0; s < n_down; s++) out->is_minimum[n_up + s] = 1;
     for (size_t p = 0; p < g->n; p++) {
         int a = up->sink_of[p];
@@ -99,6 +173,7 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
         out->sizes[s]++;
     }
     free(level);
+    if (min_size) absorb_tiny(g, out, min_size);
     if (finish(out, f, g->n) == 0) return PS_OK;
     ps_supernodes_free(out);
     return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
@@ -110,9 +185,12 @@ static ps_status build_once(const ps_graph *g, const double *f, const int *compo
     memset(out, 0, sizeof *out);
     ps_flow up = {0}, down = {0};
     ps_status st = simplified_flow(g, f, component, n_components, persistence, +1, &up, err);
+    if (st == PS_OK && use_minima && persistence > 0)
+        st = merge_shallow_tops(g, f, &up, PS_PERSISTENCE_MIN_BASIN, err);
     if (st == PS_OK && use_minima)
         st = simplified_flow(g, f, component, n_components, persistence, -1, &down, err);
-    if (st == PS_OK) st = combine(g, f, &up, use_minima ? &down : NULL, out, err);
+    size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;
+    if (st == PS_OK) st = combine(g, f, &up, use_minima ? &down : NULL, min_size, out, err);
     ps_flow_free(&up);
     ps_flow_free(&down);
     return st;

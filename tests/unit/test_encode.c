@@ -168,7 +168,9 @@ static void test_json_params_and_timings(void) {
     CHECK(num(p, "persistence") == r.params.persistence);
     CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(p, "minima")));
     CHECK(is_true(p, "f2"));
-    CHECK(cJSON_GetArraySize(p) == 9);
+    CHECK(cJSON_GetArraySize(p) == 10);
+    const cJSON *method = cJSON_GetObjectItemCaseSensitive(p, "method");
+    CHECK(cJSON_IsString(method) && strcmp(method->valuestring, "auto") == 0);
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(doc, "timings_ms");
     CHECK(num(t, "knn") == 0.5 && num(t, "centrality") == 1.5 && num(t, "supernodes") == 2.5);
     CHECK(num(t, "hierarchy") == 3.5 && num(t, "refine") == 4.5 && num(t, "total") == 12.5);

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const all_names[] = {"k", "centrality", "samples", "persistence",
+static const char *const all_names[] = {"method", "k", "centrality", "samples", "persistence",
                                         "ncut_threshold",
                                         "feature_threshold", "minima", "f2", "threads",
                                         "output", "include"};
@@ -42,7 +42,7 @@ static void test_find_both_spellings(void) {
 }
 
 static int same_request_params(const ps_request_params *a, const ps_request_params *b) {
-    return a->core.k == b->core.k && a->core.centrality == b->core.centrality &&
+    return a->core.method == b->core.method && a->core.k == b->core.k && a->core.centrality == b->core.centrality &&
            a->core.samples == b->core.samples &&
            a->core.persistence == b->core.persistence &&
            a->core.ncut_threshold == b->core.ncut_threshold &&
@@ -59,7 +59,7 @@ static void test_defaults_agree_with_core(void) {
     size_t count;
     const ps_param_spec *t = ps_param_table(&count);
     ps_request_params_default(&def);
-    from_text = (ps_request_params){{64, PS_CENTRALITY_EXACT, 9, 0.7, 1.5, 0.9, 0, 1, 3},
+    from_text = (ps_request_params){{PS_METHOD_PAPER, 64, PS_CENTRALITY_EXACT, 9, 0.7, 1.5, 0.9, 0, 1, 3},
                                     PS_OUTPUT_PLY, 3};
     for (size_t i = 0; i < count; i++)
         CHECK_MSG(ps_request_param_set(&from_text, t[i].name, t[i].default_text, &err) == 0,

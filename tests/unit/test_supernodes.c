@@ -73,45 +73,48 @@ static void test_star_centre_is_a_minimum(void) {
     star_free(&c);
 }
 
-/* One supernode covering a path 0..10 with its representative at 4: f2
- * peaks at both ends (4 and 6 away), so it splits in two; a persistence of
- * 1 (the shorter end's 4 is under the range 6) keeps it whole. */
+/* One supernode covering a path 0..40 with its representative at 16: f2
+ * peaks at both ends (16 and 24 away; both basins above the minimum basin
+ * size), so it splits in two; a persistence of 1 (the shorter end's 16 is
+ * under the range 24) keeps it whole. */
 static void test_f2_splits_two_ends(void) {
-    static size_t off[12];
-    static uint32_t nbr[20];
-    static double w[20];
+    enum { N = 41, REP = 16 };
+    static size_t off[N + 1];
+    static uint32_t nbr[2 * N];
+    static double w[2 * N];
     size_t e = 0;
-    for (size_t p = 0; p < 11; p++) {
+    for (size_t p = 0; p < N; p++) {
         off[p] = e;
         if (p > 0) nbr[e] = (uint32_t)(p - 1), w[e++] = 1;
-        if (p < 10) nbr[e] = (uint32_t)(p + 1), w[e++] = 1;
+        if (p + 1 < N) nbr[e] = (uint32_t)(p + 1), w[e++] = 1;
     }
-    off[11] = e;
-    ps_graph g = {11, off, nbr, w};
-    double f[11];
-    for (int p = 0; p < 11; p++) f[p] = 10 - (p - 4) * (p - 4) * 0.1;
+    off[N] = e;
+    ps_graph g = {N, off, nbr, w};
+    double f[N];
+    for (int p = 0; p < N; p++) f[p] = 100 - (p - REP) * (p - REP) * 0.1;
     for (int pass = 0; pass < 2; pass++) {
         ps_supernodes sn = {1, malloc(sizeof(uint32_t)), calloc(1, sizeof(int)),
-                            malloc(sizeof(size_t)), calloc(11, sizeof(int))};
-        sn.sinks[0] = 4, sn.sizes[0] = 11;
+                            malloc(sizeof(size_t)), calloc(N, sizeof(int))};
+        sn.sinks[0] = REP, sn.sizes[0] = N;
         double persistence = pass == 0 ? 0.1 : 1.0;
         REQUIRE(ps_supernodes_split_f2(&g, f, persistence, &sn, NULL) == PS_OK);
         if (pass == 0) {
             REQUIRE(sn.m == 2);
-            CHECK(sn.supernode_of[0] != sn.supernode_of[10]);
-            CHECK(sn.sizes[0] + sn.sizes[1] == 11);
-            CHECK(sn.sizes[0] >= 4 && sn.sizes[1] >= 4);
+            CHECK(sn.supernode_of[0] != sn.supernode_of[N - 1]);
+            CHECK(sn.sizes[0] + sn.sizes[1] == N);
+            CHECK(sn.sizes[0] >= 16 && sn.sizes[1] >= 16);
         } else {
-            CHECK(sn.m == 1 && sn.sinks[0] == 4);
+            CHECK(sn.m == 1 && sn.sinks[0] == REP);
         }
         ps_supernodes_free(&sn);
     }
 }
 
-/* A zigzag f on a long path has thousands of sharp peaks: the persistence
- * is raised until the supernodes fit the dense hierarchy, and reported. */
+/* A sawtooth f on a long path has 3,100 sharp peaks, each basin 20 points:
+ * the persistence is raised until the supernodes fit the dense hierarchy,
+ * and reported. */
 static void test_supernode_cap(void) {
-    enum { N = 8001 };
+    enum { N = 62001 };
     size_t *off = malloc((N + 1) * sizeof *off);
     uint32_t *nbr = malloc(2 * N * sizeof *nbr);
     double *w = malloc(2 * N * sizeof *w), *f = malloc(N * sizeof *f);
@@ -121,7 +124,7 @@ static void test_supernode_cap(void) {
         off[p] = e;
         if (p > 0) nbr[e] = (uint32_t)(p - 1), w[e++] = 1;
         if (p + 1 < N) nbr[e] = (uint32_t)(p + 1), w[e++] = 1;
-        f[p] = (double)(p % 2) + (double)p * 1e-6;
+        f[p] = (double)(p % 20) + (double)p * 1e-6;
     }
     off[N] = e;
     ps_graph g = {N, off, nbr, w};

@@ -1,0 +1,150 @@
+/*
+ * normals.c: PCA normals and their MST orientation (normals.h).
+ */
+#include "normals.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Smallest-eigenvalue eigenvector of the symmetric 3x3 matrix a (Jacobi). */
+static void smallest_eigenvector(double a[3][3], double v[3]) {
+    double e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int sweep = 0; sweep < 32; sweep++) {
+        double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
+        if (off < 1e-30) break;
+        for (int p = 0; p < 2; p++)
+            for (int q = p + 1; q < 3; q++) {
+                if (fabs(a[p][q]) < 1e-300) continue;
+                double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+                double t = (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
+                double c = 1 / sqrt(t * t + 1), s = t * c;
+                for (int k = 0; k < 3; k++) {
+                    double akp = a[k][p], akq = a[k][q];
+                    a[k][p] = c * akp - s * akq, a[k][q] = s * akp + c * akq;
+                }
+                for (int k = 0; k < 3; k++) {
+                    double apk = a[p][k], aqk = a[q][k];
+                    a[p][k] = c * apk - s * aqk, a[q][k] = s * apk + c * aqk;
+                }
+                for (int k = 0; k < 3; k++) {
+                    double ekp = e[k][p], ekq = e[k][q];
+                    e[k][p] = c * ekp - s * ekq, e[k][q] = s * ekp + c * ekq;
+                }
+            }
+    }
+    int best = 0;
+    for (int i = 1; i < 3; i++)
+        if (a[i][i] < a[best][best]) best = i;
+    for (int k = 0; k < 3; k++) v[k] = e[k][best];
+}
+
+static void pca_normal(const ps_graph *g, const double *points, size_t p, double n[3]) {
+    double mean[3] = {0, 0, 0}, cov[3][3] = {{0}};
+    size_t count = g->offsets[p + 1] - g->offsets[p] + 1;
+    for (size_t e = g->offsets[p]; e <= g->offsets[p + 1]; e++) {
+        const double *x = points + 3 * (e < g->offsets[p + 1] ? g->neighbors[e] : p);
+        for (int i = 0; i < 3; i++) mean[i] += x[i] / (double)count;
+    }
+    for (size_t e = g->offsets[p]; e <= g->offsets[p + 1]; e++) {
+        const double *x = points + 3 * (e < g->offsets[p + 1] ? g->neighbors[e] : p);
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) cov[i][j] += (x[i] - mean[i]) * (x[j] - mean[j]);
+    }
+    smallest_eigenvector(cov, n);
+}
+
+static void normalize(double n[3]) {
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len > 0) n[0] /= len, n[1] /= len, n[2] /= len;
+    else n[0] = 1, n[1] = n[2] = 0;
+}
+
+/* A binary min-heap of (cost, vertex, parent) for Prim's algorithm. */
+typedef struct prim_item {
+    double cost;
+    uint32_t vertex, parent;
+} prim_item;
+
+static int item_less(const prim_item *a, const prim_item *b) {
+    return a->cost < b->cost || (a->cost == b->cost && a->vertex < b->vertex);
+}
+
+static void heap_push(prim_item *h, size_t *len, prim_item x) {
+    size_t i = (*len)++;
+    while (i > 0 && item_less(&x, &h[(i - 1) / 2])) h[i] = h[(i - 1) / 2], i = (i - 1) / 2;
+    h[i] = x;
+}
+
+static prim_item heap_pop(prim_item *h, size_t *len) {
+    prim_item top = h[0], x = h[--*len];
+    size_t i = 0;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= *len) break;
+        if (c + 1 < *len && item_less(&h[c + 1], &h[c])) c++;
+        if (!item_less(&h[c], &x)) break;
+        h[i] = h[c], i = c;
+    }
+    if (*len > 0) h[i] = x;
+    return top;
+}
+
+static double dot3(const double *a, const double *b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Prim's tree from root over the unvisited part of its component: each
+ * vertex is flipped to agree with its tree parent. */
+static void orient_from(const ps_graph *g, uint32_t root, double *n, unsigned char *done,
+                        prim_item *heap) {
+    size_t len = 0;
+    heap_push(heap, &len, (prim_item){0, root, root});
+    while (len > 0) {
+        prim_item it = heap_pop(heap, &len);
+        uint32_t v = it.vertex;
+        if (done[v]) continue;
+        done[v] = 1;
+        if (v != it.parent && dot3(n + 3 * v, n + 3 * it.parent) < 0)
+            for (int i = 0; i < 3; i++) n[3 * v + i] = -n[3 * v + i];
+        for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
+            uint32_t q = g->neighbors[e];
+            if (!done[q])
+                heap_push(heap, &len, (prim_item){1 - fabs(dot3(n + 3 * v, n + 3 * q)), q, v});
+        }
+    }
+}
+
+ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
+                           const int *component, int n_components, double *normals,
+                           ps_error *err) {
+    size_t n = g->n;
+    for (size_t p = 0; p < n; p++) {
+        if (given) memcpy(normals + 3 * p, given + 3 * p, 3 * sizeof *normals);
+        else pca_normal(g, points, p, normals + 3 * p);
+        normalize(normals + 3 * p);
+    }
+    uint32_t *extreme = malloc((size_t)n_components * sizeof *extreme);
+    unsigned char *done = calloc(n ? n : 1, 1);
+    prim_item *heap = malloc((g->offsets[n] + 1) * sizeof *heap);
+    if (!extreme || !done || !heap) {
+        free(extreme), free(done), free(heap);
+        return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
+    }
+    for (int c = 0; c < n_components; c++) extreme[c] = UINT32_MAX;
+    for (size_t p = 0; p < n; p++) {
+        uint32_t *x = &extreme[component[p]];
+        if (*x == UINT32_MAX || points[3 * p] > points[3 * *x]) *x = (uint32_t)p;
+    }
+    for (int c = 0; c < n_components; c++) {
+        double *root = normals + 3 * extreme[c];
+        if (root[0] < 0 && !given)
+            for (int i = 0; i < 3; i++) root[i] = -root[i];
+        if (!given) orient_from(g, extreme[c], normals, done, heap);
+    }
+    for (size_t p = 0; given && p < n; p++) /* given: consistent, maybe inward */
+        if (given[3 * extreme[component[p]]] < 0)
+            for (int i = 0; i < 3; i++) normals[3 * p + i] = -normals[3 * p + i];
+    free(extreme), free(done), free(heap);
+    return PS_OK;
+}

@@ -1,0 +1,22 @@
+/*
+ * normals.h: consistently oriented unit normals of a 3-D point set.
+ *
+ * Given normals (from the input file) are kept; otherwise each point's
+ * normal is the least-variance direction (PCA) of itself and its kNN
+ * neighbours.  Orientation is then made consistent by propagation over a
+ * minimum spanning tree of the kNN graph with edge cost 1 - |n_p . n_q|
+ * (Hoppe et al. 1992), and made outward per component: the point with the
+ * largest x must have a normal with positive x (true of any closed surface;
+ * input normals that point inward, as some meshes' do, are flipped).
+ */
+#ifndef PS_NORMALS_H
+#define PS_NORMALS_H
+
+#include "knn_graph.h"
+
+/* points #P by 3; given #P by 3 or NULL; component #P.  normals #P by 3 out. */
+ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
+                           const int *component, int n_components, double *normals,
+                           ps_error *err);
+
+#endif

@@ -1,0 +1,64 @@
+/* test_crease.c: the convexity test and the crease metric: an edge across
+ * a concave valley grows, one across a convex ridge of the same angle or a
+ * flat one does not; on the star the edges where the arms meet the centre
+ * (a known concave crease) come out much longer than the rest. */
+#include "crease.h"
+#include "knn_graph.h"
+#include "normals.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Three separate unit edges: 0-1 across a valley, 2-3 across a ridge, 4-5
+ * flat. */
+static void test_valley_ridge_flat(void) {
+    const double r = sqrt(0.5);
+    const double pts[18] = {-0.5, 0, 0.5, 0.5, 0, 0.5, -0.5, 0, -0.5,
+                            0.5,  0, -0.5, 0, 0, 0,     1,   0, 0};
+    const double nrm[18] = {r, 0, r, -r, 0, r, -r, 0, r, r, 0, r, 0, 0, 1, 0, 0, 1};
+    size_t off[7] = {0, 1, 2, 3, 4, 5, 6};
+    uint32_t nbr[6] = {1, 0, 3, 2, 5, 4};
+    double w[6] = {1, 1, 1, 1, 1, 1};
+    ps_graph g = {6, off, nbr, w};
+    ps_crease_weights(&g, pts, nrm);
+    CHECK(w[0] == w[1] && w[2] == w[3] && w[4] == w[5]);
+    CHECK_MSG(w[0] > 1.5 * w[2], "valley %g, ridge %g", w[0], w[2]);
+    CHECK_NEAR(w[2], w[4], 1e-12); /* convex edges weigh no more than flat */
+    CHECK(w[4] > 0);
+}
+
+/* Mean length of edges crossing the arm/centre boundary over the mean of
+ * the others, with the crease metric divided by the same ratio without. */
+static void test_star_crease_edges_grow(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_star(0, &n, &part);
+    ps_graph g;
+    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
+    int *comp = malloc(n * sizeof *comp);
+    int nc = ps_graph_components(&g, comp);
+    double *nrm = malloc(n * 3 * sizeof *nrm);
+    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, nrm, NULL) == PS_OK);
+    double ratio[2];
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) ps_crease_weights(&g, pts, nrm);
+        double cross = 0, rest = 0;
+        size_t n_cross = 0, n_rest = 0;
+        for (size_t p = 0; p < n; p++)
+            for (size_t e = g.offsets[p]; e < g.offsets[p + 1]; e++) {
+                int at_crease = part[p] != part[g.neighbors[e]];
+                if (at_crease) cross += g.weights[e], n_cross++;
+                else rest += g.weights[e], n_rest++;
+            }
+        REQUIRE(n_cross > 0 && n_rest > 0);
+        ratio[pass] = (cross / (double)n_cross) / (rest / (double)n_rest);
+    }
+    CHECK_MSG(ratio[1] > 2 * ratio[0], "crease edges %.2fx the rest with the metric, %.2fx without",
+              ratio[1], ratio[0]);
+    ps_graph_free(&g);
+    free(pts), free(part), free(comp), free(nrm);
+}
+
+PS_TEST_MAIN(TEST(test_valley_ridge_flat), TEST(test_star_crease_edges_grow))

@@ -1,0 +1,65 @@
+/* test_normals.c: PCA normals on a sphere come out unit and outward, given
+ * normals that point inward are flipped outward, and a shifted, rotated
+ * copy keeps its orientation. */
+#include "knn_graph.h"
+#include "normals.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Fraction of points whose normal points away from centre c. */
+static double outward_share(const double *pts, const double *nrm, size_t n, const double c[3]) {
+    size_t out = 0;
+    for (size_t p = 0; p < n; p++) {
+        double d = 0;
+        for (int i = 0; i < 3; i++) d += (pts[3 * p + i] - c[i]) * nrm[3 * p + i];
+        out += d > 0;
+    }
+    return (double)out / (double)n;
+}
+
+static void check_sphere(double shift, double angle) {
+    size_t n;
+    double *pts = ps_shape_sphere(0, &n, NULL);
+    const double t[3] = {shift, -2 * shift, 0.5 * shift};
+    ps_shape_transform(pts, n, 0.2, 0.9, -0.4, angle, 3.0, t);
+    ps_graph g;
+    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
+    int *comp = malloc(n * sizeof *comp);
+    int nc = ps_graph_components(&g, comp);
+    double *nrm = malloc(n * 3 * sizeof *nrm);
+    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, nrm, NULL) == PS_OK);
+    for (size_t p = 0; p < n; p++)
+        CHECK_NEAR(sqrt(nrm[3 * p] * nrm[3 * p] + nrm[3 * p + 1] * nrm[3 * p + 1] +
+                        nrm[3 * p + 2] * nrm[3 * p + 2]), 1.0, 1e-9);
+    double share = outward_share(pts, nrm, n, t);
+    CHECK_MSG(share > 0.99, "only %.3f outward (shift %g, angle %g)", share, shift, angle);
+    ps_graph_free(&g);
+    free(pts), free(comp), free(nrm);
+}
+
+static void test_pca_sphere_outward(void) { check_sphere(0, 0); }
+static void test_pca_moved_sphere_outward(void) { check_sphere(40, 2.2); }
+
+static void test_given_inward_flipped(void) {
+    size_t n;
+    double *pts = ps_shape_sphere(0, &n, NULL);
+    double *inward = malloc(n * 3 * sizeof *inward), *nrm = malloc(n * 3 * sizeof *nrm);
+    for (size_t i = 0; i < 3 * n; i++) inward[i] = -2 * pts[i]; /* not unit either */
+    ps_graph g;
+    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
+    int *comp = calloc(n, sizeof *comp);
+    REQUIRE(ps_normals_build(&g, pts, inward, comp, 1, nrm, NULL) == PS_OK);
+    const double c[3] = {0, 0, 0};
+    CHECK(outward_share(pts, nrm, n, c) == 1.0);
+    for (size_t p = 0; p < n; p++) /* the given direction, made unit and outward */
+        CHECK_NEAR(nrm[3 * p] * pts[3 * p] + nrm[3 * p + 1] * pts[3 * p + 1] +
+                       nrm[3 * p + 2] * pts[3 * p + 2], 1.0, 1e-6);
+    ps_graph_free(&g);
+    free(pts), free(inward), free(nrm), free(comp);
+}
+
+PS_TEST_MAIN(TEST(test_pca_sphere_outward), TEST(test_pca_moved_sphere_outward),
+             TEST(test_given_inward_flipped))
