@@ -147,7 +147,6 @@ static struct MHD_Daemon *start_daemon(ps_http *h, const struct sockaddr_in *add
                             MHD_OPTION_THREAD_POOL_SIZE, pool,
                             MHD_OPTION_NOTIFY_COMPLETED, on_completed, &h->srv,
                             MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)120,
-                            MHD_OPTION_LISTENING_ADDRESS_REUSE, (unsigned)1,
                             MHD_OPTION_END);
 }
 

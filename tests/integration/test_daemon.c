@@ -644,6 +644,22 @@ static void test_help_lists_flags(void) {
         CHECK_MSG(strstr(out, flags[i]), "--help lacks %s", flags[i]);
 }
 
+/* A second pointsegd on a port in use must fail, not share the port (a
+ * job polled there would go to the wrong daemon). */
+static void test_port_in_use_refused(void) {
+    ps_daemon d;
+    char path[4200], cmd[4400];
+    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    REQUIRE(daemon_path(path, sizeof path) == 0);
+    snprintf(cmd, sizeof cmd, "timeout 10 %s --port %d --bind 127.0.0.1 --quiet 2>/dev/null",
+             path, d.port);
+    int status = system(cmd);
+    CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 1,
+              "second daemon on port %d: status %d", d.port, status);
+    CHECK(ps_daemon_healthy(&d));
+    CHECK(ps_daemon_stop(&d, 20) == 0);
+}
+
 static void test_zz_cleanup(void) {
     free_sample(&small);
     CHECK(1);
@@ -655,7 +671,7 @@ int main(int argc, char **argv) {
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
         TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
-        TEST(test_sigterm_drains), TEST(test_zz_cleanup)};
+        TEST(test_sigterm_drains), TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);
     if (ps_client_global_init()) return 1;
     return ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
