@@ -3,7 +3,9 @@
  * the vertices of every off/ID.off with ps_segment, turns vertex labels
  * into face labels by majority, and prints the Rand Index error against the
  * model's human segmentations: one row per model, the category means, the
- * overall means and the published references.  See tests/bench/README.md.
+ * overall means and the published references.  Unless --single, every
+ * model is segmented twice, with the given parameters and with the paper's
+ * method (method=paper), printed side by side.  See tests/bench/README.md.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,32 +17,36 @@
 #include "psb_data.h"
 
 #define N_CATEGORIES 20
+#define MAX_RUNS 2 /* the given parameters, then method=paper */
 
 typedef struct quality_options {
     const char *dir_arg;       /* PSB directory given on the command line */
     const char *ids_arg;       /* --ids list, or NULL for every model */
     const char *out_dir;       /* --out: write ID.lab predictions here */
     int baseline_none;         /* --baseline none: every vertex labelled 0 */
+    int runs;                  /* 1 with --single (or a baseline), else 2 */
     ps_request_params params;  /* defaults + --param + --threads */
 } quality_options;
 
 typedef struct model_row {
     int id;
     size_t points;
-    int segments;
     double human_segments;
-    double error;
-    double ms;
+    int segments[MAX_RUNS];
+    double error[MAX_RUNS];
+    double ms[MAX_RUNS];
 } model_row;
 
 typedef struct category_sums {
-    double error[N_CATEGORIES];
+    double error[MAX_RUNS][N_CATEGORIES];
     int models[N_CATEGORIES];
 } category_sums;
 
 static const char usage[] =
     "usage: bench_quality [PSB_DIR] [--ids 1,2,21] [--param name=value]...\n"
-    "                     [--threads N] [--out DIR] [--baseline none]\n"
+    "                     [--threads N] [--out DIR] [--baseline none] [--single]\n"
+    "Prints the given parameters (default: method auto) next to method=paper;\n"
+    "--single runs the given parameters only.\n"
     "PSB_DIR defaults to $POINTSEG_SHARED/psb-dev, else ../shared/data/psb-dev.\n";
 
 static double now_ms(void) {
@@ -84,16 +90,18 @@ static const char *flag_value(int argc, char **argv, int *i) {
 static int parse_options(int argc, char **argv, quality_options *o) {
     memset(o, 0, sizeof *o);
     ps_request_params_default(&o->params);
+    o->runs = MAX_RUNS;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); exit(0); }
+        if (!strcmp(a, "--single")) { o->runs = 1; continue; }
         if (a[0] != '-') { o->dir_arg = a; continue; }
         if (!(v = flag_value(argc, argv, &i))) return -1;
         if (!strcmp(a, "--ids")) o->ids_arg = v;
         else if (!strcmp(a, "--out")) o->out_dir = v;
         else if (!strcmp(a, "--param")) { if (apply_assignment(&o->params, v)) return -1; }
         else if (!strcmp(a, "--threads")) { if (set_param(&o->params, "threads", v)) return -1; }
-        else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1;
+        else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1, o->runs = 1;
         else { fprintf(stderr, "bench_quality: unknown option %s %s\n%s", a, v, usage); return -1; }
     }
     return 0;
@@ -125,26 +133,34 @@ static int write_labels(const char *dir, int id, const int *labels, size_t n) {
     return 0;
 }
 
+/* The parameters of run `run`: the given ones, or the paper's method. */
+static ps_params run_params(const quality_options *o, int run) {
+    ps_params p = o->params.core;
+    if (run == 1) p.method = PS_METHOD_PAPER;
+    return p;
+}
+
 /* Vertex labels of the mesh (malloc'ed #P) by ps_segment, or all 0 for the
  * "none" baseline; fills the row's segment count and time.  NULL on failure. */
-static int *label_vertices(const ps_pointset *mesh, const quality_options *o,
+static int *label_vertices(const ps_pointset *mesh, const quality_options *o, int run,
                            model_row *row) {
     double start = now_ms();
     if (o->baseline_none) {
-        row->segments = 1;
+        row->segments[run] = 1;
         int *zeros = calloc(mesh->n, sizeof *zeros);
-        row->ms = now_ms() - start;
+        row->ms[run] = now_ms() - start;
         return zeros;
     }
     ps_input in = {mesh->points, mesh->n, mesh->dim, mesh->normals};
+    ps_params params = run_params(o, run);
     ps_result *r = NULL;
     ps_error err;
-    if (ps_segment(&in, &o->params.core, NULL, &r, &err) != PS_OK) {
+    if (ps_segment(&in, &params, NULL, &r, &err) != PS_OK) {
         fprintf(stderr, "model %d: %s\n", row->id, err.message);
         return NULL;
     }
-    row->ms = now_ms() - start;
-    row->segments = r->n_segments;
+    row->ms[run] = now_ms() - start;
+    row->segments[run] = r->n_segments;
     int *labels = malloc(mesh->n * sizeof *labels);
     if (labels) memcpy(labels, r->labels, mesh->n * sizeof *labels);
     ps_result_free(r);
@@ -159,13 +175,17 @@ static int run_model(const char *dir, const quality_options *o, model_row *row) 
     int rc = -1;
     row->points = mesh.n;
     if (ps_psb_load_humans(dir, row->id, mesh.n_faces, &humans) == 0) {
-        int *labels = label_vertices(&mesh, o, row);
-        if (labels && (!o->out_dir || write_labels(o->out_dir, row->id, labels, mesh.n) == 0)) {
-            row->human_segments = ps_psb_mean_segments(&humans);
-            row->error = ps_psb_score(&mesh, labels, &humans);
-            rc = 0;
+        row->human_segments = ps_psb_mean_segments(&humans);
+        rc = 0;
+        for (int run = 0; run < o->runs && rc == 0; run++) {
+            int *labels = label_vertices(&mesh, o, run, row);
+            int write = o->out_dir && run == 0;
+            rc = labels && (!write || write_labels(o->out_dir, row->id, labels, mesh.n) == 0)
+                     ? 0
+                     : -1;
+            if (rc == 0) row->error[run] = ps_psb_score(&mesh, labels, &humans);
+            free(labels);
         }
-        free(labels);
         ps_psb_humans_free(&humans);
     }
     ps_pointset_free(&mesh);
@@ -179,26 +199,60 @@ static void print_params(const char *dir, const quality_options *o) {
         printf("labelling: baseline none (every vertex the same label)\n\n");
         return;
     }
-    printf("params: k=%d centrality=%s samples=%d ncut_threshold=%g "
-           "feature_threshold=%g minima=%d f2=%d threads=%d\n\n",
-           p->k, ps_centrality_name(p->centrality), p->samples, p->ncut_threshold,
-           p->feature_threshold, p->use_minima, p->use_f2, p->threads);
+    printf("params: method=%s k=%d centrality=%s samples=%d persistence=%g ncut_threshold=%g "
+           "feature_threshold=%g minima=%d f2=%d threads=%d\n",
+           ps_method_name(p->method), p->k, ps_centrality_name(p->centrality), p->samples,
+           p->persistence, p->ncut_threshold, p->feature_threshold, p->use_minima, p->use_f2,
+           p->threads);
+    if (o->runs > 1) printf("compared with: the same, method=paper\n");
+    printf("\n");
 }
 
-static void print_summary(const category_sums *c, double total, int models, int failed) {
-    double category_total = 0;
+static const char *run_name(const quality_options *o, int run) {
+    if (o->baseline_none) return "none";
+    return ps_method_name(run_params(o, run).method);
+}
+
+static void print_header(const quality_options *o) {
+    printf("%5s %-10s %7s %10s", "id", "category", "points", "human segs");
+    for (int run = 0; run < o->runs; run++)
+        printf(" | %-6s %5s %7s %9s", run_name(o, run), "segs", "1-RI", "time ms");
+    printf("\n");
+}
+
+static void print_row(const quality_options *o, const model_row *row) {
+    printf("%5d %-10s %7zu %10.1f", row->id, ps_psb_category(row->id), row->points,
+           row->human_segments);
+    for (int run = 0; run < o->runs; run++)
+        printf(" | %-6s %5d %7.4f %9.1f", "", row->segments[run], row->error[run], row->ms[run]);
+    printf("\n");
+}
+
+static void print_summary(const quality_options *o, const category_sums *c,
+                          const double *total, int models, int failed) {
+    double category_total[MAX_RUNS] = {0};
     int categories = 0;
-    printf("\n%-10s %6s %7s\n", "category", "models", "1-RI");
+    printf("\n%-10s %6s", "category", "models");
+    for (int run = 0; run < o->runs; run++) printf(" %7s", run_name(o, run));
+    printf("\n");
     for (int k = 0; k < N_CATEGORIES; k++) {
         if (!c->models[k]) continue;
-        double mean = c->error[k] / c->models[k];
-        printf("%-10s %6d %7.4f\n", ps_psb_category(20 * k + 1), c->models[k], mean);
-        category_total += mean;
+        printf("%-10s %6d", ps_psb_category(20 * k + 1), c->models[k]);
+        for (int run = 0; run < o->runs; run++) {
+            double mean = c->error[run][k] / c->models[k];
+            printf(" %7.4f", mean);
+            category_total[run] += mean;
+        }
+        printf("\n");
         categories++;
     }
     printf("\nmodels scored:          %d (failed: %d)\n", models, failed);
-    printf("mean over models:       %.4f\n", models ? total / models : 0.0);
-    printf("mean of category means: %.4f\n", categories ? category_total / categories : 0.0);
+    for (int run = 0; run < o->runs; run++) {
+        printf("%-6s mean over models:       %.4f\n", run_name(o, run),
+               models ? total[run] / models : 0.0);
+        printf("%-6s mean of category means: %.4f\n", run_name(o, run),
+               categories ? category_total[run] / categories : 0.0);
+    }
     printf("references (1-RI, mean over the 38 dev models): human 0.092, "
            "k-means 0.268, none 0.6645\n");
 }
@@ -215,12 +269,11 @@ int main(int argc, char **argv) {
     int *ids = ps_psb_model_ids(dir, &n_ids);
     category_sums cats;
     memset(&cats, 0, sizeof cats);
-    double total = 0;
+    double total[MAX_RUNS] = {0};
     int models = 0, failed = 0;
     setvbuf(stdout, NULL, _IOLBF, 0);
     print_params(dir, &o);
-    printf("%5s %-10s %7s %6s %10s %7s %10s\n", "id", "category", "points", "segs",
-           "human segs", "1-RI", "time ms");
+    print_header(&o);
     for (size_t m = 0; m < n_ids; m++) {
         model_row row = {.id = ids[m]};
         if (!id_selected(o.ids_arg, row.id)) continue;
@@ -229,17 +282,16 @@ int main(int argc, char **argv) {
             failed++;
             continue;
         }
-        printf("%5d %-10s %7zu %6d %10.1f %7.4f %10.1f\n", row.id, ps_psb_category(row.id),
-               row.points, row.segments, row.human_segments, row.error, row.ms);
+        print_row(&o, &row);
         int k = category_index(row.id);
-        if (k >= 0) {
-            cats.error[k] += row.error;
-            cats.models[k]++;
+        for (int run = 0; run < o.runs; run++) {
+            if (k >= 0) cats.error[run][k] += row.error[run];
+            total[run] += row.error[run];
         }
-        total += row.error;
+        if (k >= 0) cats.models[k]++;
         models++;
     }
     free(ids);
-    print_summary(&cats, total, models, failed);
+    print_summary(&o, &cats, total, models, failed);
     return failed ? 1 : 0;
 }
