@@ -3,10 +3,8 @@
  */
 #include "crease.h"
 
-
-
-static double angular(const double *x, const double *nx, const double *y, const double *ny,
-                      double eta_convex) {
+double ps_crease_angular(const double *x, const double *nx, const double *y, const double *ny,
+                         double eta_convex) {
     double cosine = nx[0] * ny[0] + nx[1] * ny[1] + nx[2] * ny[2];
     double opening = (ny[0] - nx[0]) * (y[0] - x[0]) + (ny[1] - nx[1]) * (y[1] - x[1]) +
                      (ny[2] - nx[2]) * (y[2] - x[2]);
@@ -22,14 +20,16 @@ void ps_crease_weights(ps_graph *g, const double *points, const double *normals)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             sum_len += g->weights[e];
-            sum_ang += angular(points + 3 * p, normals + 3 * p, points + 3 * q, normals + 3 * q, eta);
+            sum_ang += ps_crease_angular(points + 3 * p, normals + 3 * p, points + 3 * q,
+                                         normals + 3 * q, eta);
         }
     double L = sum_len / (double)edges, A = sum_ang / (double)edges;
     if (A <= 0) return;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
-            double ang = angular(points + 3 * p, normals + 3 * p, points + 3 * q, normals + 3 * q, eta);
+            double ang = ps_crease_angular(points + 3 * p, normals + 3 * p, points + 3 * q,
+                                           normals + 3 * q, eta);
             g->weights[e] = delta * g->weights[e] + (1 - delta) * L * ang / A;
             if (!(g->weights[e] > 0)) g->weights[e] = 1e-12 * L;
         }

@@ -29,4 +29,10 @@
 /* points #P by 3, normals #P by 3 (outward, unit).  Rewrites g->weights. */
 void ps_crease_weights(ps_graph *g, const double *points, const double *normals);
 
+/* The angular term of one edge: eta * (1 - n_p . n_q), eta 1 when the edge
+ * is concave, eta_convex otherwise.  p, q: 3 coordinates; np, nq: their
+ * unit normals.  Symmetric in (p, np) and (q, nq). */
+double ps_crease_angular(const double *p, const double *np, const double *q,
+                         const double *nq, double eta_convex);
+
 #endif

@@ -1,0 +1,175 @@
+/*
+ * maxflow.c: Dinic's maximum flow on a symmetric CSR graph (maxflow.h).
+ *
+ * Residual capacities live per arc: pushing x along p->q lowers r(p->q) and
+ * raises r(q->p) by x, which is exactly an undirected edge of capacity c
+ * with r = c on both arcs at the start.  Residuals at or below a tolerance
+ * (1e-12 of the largest capacity) count as saturated, so rounding never
+ * leaves endless tiny augmenting paths.
+ */
+#include "maxflow.h"
+
+#include <stdlib.h>
+
+typedef struct flow_state {
+    const ps_flow_graph *g;
+    size_t *reverse;   /* #E index of the reverse arc */
+    double *residual;  /* #E */
+    int *level;        /* #V BFS depth from the source, -1 unreached or dead */
+    size_t *next_arc;  /* #V current arc of each node in the blocking flow */
+    uint32_t *queue;   /* #V */
+    size_t *path;      /* #V arcs of the current path from the source */
+    double tolerance;
+} flow_state;
+
+static int compare_u32(const void *a, const void *b) {
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Reverse arcs by binary search in the sorted rows; -1 if one is missing. */
+static int find_reverse_arcs(flow_state *st) {
+    const ps_flow_graph *g = st->g;
+    for (uint32_t p = 0; p < g->n; p++)
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            uint32_t q = g->heads[e];
+            const uint32_t *row = g->heads + g->offsets[q];
+            const uint32_t *hit = bsearch(&p, row, g->offsets[q + 1] - g->offsets[q],
+                                          sizeof *row, compare_u32);
+            if (!hit) return -1;
+            st->reverse[e] = (size_t)(hit - g->heads);
+        }
+    return 0;
+}
+
+/* Levels from the source over unsaturated arcs; 1 if the sink is reached. */
+static int build_levels(flow_state *st, uint32_t source, uint32_t sink) {
+    const ps_flow_graph *g = st->g;
+    for (size_t v = 0; v < g->n; v++) st->level[v] = -1;
+    size_t head = 0, tail = 0;
+    st->level[source] = 0;
+    st->queue[tail++] = source;
+    while (head < tail) {
+        uint32_t v = st->queue[head++];
+        for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
+            uint32_t u = g->heads[e];
+            if (st->level[u] >= 0 || st->residual[e] <= st->tolerance) continue;
+            st->level[u] = st->level[v] + 1;
+            st->queue[tail++] = u;
+        }
+    }
+    return st->level[sink] >= 0;
+}
+
+/* Node at depth k of the current path. */
+static uint32_t path_node(const flow_state *st, uint32_t source, size_t k) {
+    return k == 0 ? source : st->g->heads[st->path[k - 1]];
+}
+
+/* Pushes the bottleneck along the path; returns it and the depth of the
+ * first arc it saturated. */
+static double push_path(flow_state *st, size_t depth, size_t *saturated) {
+    double bottleneck = st->residual[st->path[0]];
+    for (size_t i = 1; i < depth; i++)
+        if (st->residual[st->path[i]] < bottleneck) bottleneck = st->residual[st->path[i]];
+    *saturated = depth;
+    for (size_t i = 0; i < depth; i++) {
+        size_t e = st->path[i];
+        st->residual[e] -= bottleneck;
+        st->residual[st->reverse[e]] += bottleneck;
+        if (*saturated == depth && st->residual[e] <= st->tolerance) *saturated = i;
+    }
+    return bottleneck;
+}
+
+/* An admissible arc out of v (unsaturated, one level deeper), advancing
+ * v's current arc; the row's end when there is none. */
+static size_t admissible_arc(flow_state *st, uint32_t v) {
+    const ps_flow_graph *g = st->g;
+    for (; st->next_arc[v] < g->offsets[v + 1]; st->next_arc[v]++) {
+        size_t e = st->next_arc[v];
+        if (st->residual[e] > st->tolerance && st->level[g->heads[e]] == st->level[v] + 1)
+            break;
+    }
+    return st->next_arc[v];
+}
+
+/* One phase: augment along shortest paths until none is left. */
+static double blocking_flow(flow_state *st, uint32_t source, uint32_t sink) {
+    const ps_flow_graph *g = st->g;
+    for (size_t v = 0; v < g->n; v++) st->next_arc[v] = g->offsets[v];
+    double total = 0;
+    size_t depth = 0;
+    uint32_t v = source;
+    for (;;) {
+        if (v == sink) {
+            total += push_path(st, depth, &depth);
+            v = path_node(st, source, depth);
+            continue;
+        }
+        size_t e = admissible_arc(st, v);
+        if (e < g->offsets[v + 1]) {
+            st->path[depth++] = e;
+            v = g->heads[e];
+            continue;
+        }
+        if (v == source) return total;
+        st->level[v] = -1;
+        v = path_node(st, source, --depth);
+        st->next_arc[v]++;
+    }
+}
+
+static double largest_capacity(const ps_flow_graph *g) {
+    double largest = 0;
+    for (size_t e = 0; e < g->offsets[g->n]; e++)
+        if (g->capacity[e] > largest) largest = g->capacity[e];
+    return largest;
+}
+
+static void state_free(flow_state *st) {
+    free(st->reverse);
+    free(st->residual);
+    free(st->level);
+    free(st->next_arc);
+    free(st->queue);
+    free(st->path);
+}
+
+static int state_init(flow_state *st, const ps_flow_graph *g) {
+    size_t arcs = g->offsets[g->n] ? g->offsets[g->n] : 1, nodes = g->n;
+    *st = (flow_state){.g = g, .tolerance = 1e-12 * largest_capacity(g)};
+    st->reverse = malloc(arcs * sizeof *st->reverse);
+    st->residual = malloc(arcs * sizeof *st->residual);
+    st->level = malloc(nodes * sizeof *st->level);
+    st->next_arc = malloc(nodes * sizeof *st->next_arc);
+    st->queue = malloc(nodes * sizeof *st->queue);
+    st->path = malloc(nodes * sizeof *st->path);
+    if (!st->reverse || !st->residual || !st->level || !st->next_arc || !st->queue || !st->path)
+        return -1;
+    for (size_t e = 0; e < g->offsets[g->n]; e++) st->residual[e] = g->capacity[e];
+    return 0;
+}
+
+ps_status ps_maxflow(const ps_flow_graph *g, uint32_t source, uint32_t sink, double *flow,
+                     unsigned char *source_side, ps_error *err) {
+    if (source >= g->n || sink >= g->n || source == sink)
+        return ps_fail(err, PS_ERR_INVALID, "max flow: bad source %u or sink %u of %zu nodes",
+                       source, sink, g->n);
+    flow_state st;
+    if (state_init(&st, g) != 0) {
+        state_free(&st);
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (max flow)");
+    }
+    if (find_reverse_arcs(&st) != 0) {
+        state_free(&st);
+        return ps_fail(err, PS_ERR_INVALID, "max flow: the graph is not symmetric");
+    }
+    double total = 0;
+    while (build_levels(&st, source, sink)) total += blocking_flow(&st, source, sink);
+    if (source_side)
+        for (size_t v = 0; v < g->n; v++) source_side[v] = st.level[v] >= 0;
+    *flow = total;
+    state_free(&st);
+    return PS_OK;
+}

@@ -1,0 +1,33 @@
+/*
+ * maxflow.h: maximum flow and minimum s-t cut on an undirected graph in CSR
+ * form (Dinic's algorithm: breadth-first level graph, then blocking flows by
+ * depth-first search with current-arc pointers; O(V^2 E), fast on the small
+ * band graphs of boundary_cut.h).  Deterministic: arcs are visited in row
+ * order, no threads, no randomness.
+ *
+ * The graph is symmetric: row p holds q iff row q holds p, each row sorted
+ * by neighbour index (as ps_graph rows are).  capacity[e] is the capacity of
+ * the edge {p, q} of arc e and must equal that of the reverse arc; flow may
+ * go either way.
+ */
+#ifndef PS_MAXFLOW_H
+#define PS_MAXFLOW_H
+
+#include "pointseg.h"
+
+typedef struct ps_flow_graph {
+    size_t n;                /* #V nodes */
+    const size_t *offsets;   /* #V+1 row p is [offsets[p], offsets[p+1]) */
+    const uint32_t *heads;   /* #E neighbour of each arc, rows sorted */
+    const double *capacity;  /* #E >= 0, equal on an arc and its reverse */
+} ps_flow_graph;
+
+/* Maximum flow from source to sink (source != sink).  source_side, if not
+ * NULL, #V out: 1 for the nodes on the source side of the minimum cut (those
+ * reachable from source in the residual graph), 0 otherwise.  *flow out:
+ * the flow value, which equals the capacity of that cut.  Fails only when
+ * out of memory. */
+ps_status ps_maxflow(const ps_flow_graph *g, uint32_t source, uint32_t sink, double *flow,
+                     unsigned char *source_side, ps_error *err);
+
+#endif
