@@ -1,0 +1,87 @@
+// api.js: the daemon's HTTP interface as the page uses it: the parameter
+// specs from /openapi.json, POST /jobs (FormData), polling GET /jobs/{id},
+// GET /jobs/{id}/result, and RFC 9457 problem+json turned into readable
+// errors.
+
+// Parameters the page shows (the rest: threads, output, include, it sets).
+const SHOWN = ['k', 'centrality', 'samples', 'persistence', 'ncut_threshold', 'feature_threshold', 'minima', 'f2'];
+const INCLUDE = 'centrality,point_supernode';
+const POLL_MS = 200;
+
+export class ServerError extends Error {
+  constructor(status, title, detail) {
+    super(detail ? `${title}: ${detail}` : title);
+    this.status = status;
+    this.title = title;
+    this.detail = detail;
+  }
+}
+
+// A readable error from a non-2xx response (problem+json or anything else).
+async function errorOf(resp) {
+  const text = await resp.text();
+  try {
+    const p = JSON.parse(text);
+    return new ServerError(p.status || resp.status, p.title || resp.statusText, p.detail || '');
+  } catch {
+    return new ServerError(resp.status, `HTTP ${resp.status} ${resp.statusText}`, text.slice(0, 300));
+  }
+}
+
+async function request(url, options) {
+  let resp;
+  try {
+    resp = await fetch(url, options);
+  } catch (e) {
+    throw new ServerError(0, 'The server cannot be reached', e.message);
+  }
+  if (!resp.ok) throw await errorOf(resp);
+  return resp;
+}
+
+// [{name, type, default, min, max, choices, help}] of the shown parameters.
+export async function fetchParamSpecs() {
+  const doc = await (await request('openapi.json')).json();
+  const params = doc.paths['/jobs'].post.parameters || [];
+  return SHOWN.map((name) => params.find((p) => p.name === name))
+    .filter(Boolean)
+    .map((p) => ({
+      name: p.name,
+      type: p.schema.type,
+      default: p.schema.default,
+      min: p.schema.minimum,
+      max: p.schema.maximum,
+      choices: p.schema.enum || null,
+      help: p.description,
+    }));
+}
+
+// Posts the file as a job; params: {name: text} sent as form fields.
+// Returns the job id.
+export async function submitJob(blob, filename, params) {
+  const form = new FormData();
+  form.append('file', blob, filename);
+  for (const [name, value] of Object.entries(params)) form.append(name, value);
+  const resp = await request(`jobs?include=${INCLUDE}`, { method: 'POST', body: form });
+  return (await resp.json()).id;
+}
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+// Polls until the job ends; onProgress({phase, fraction, status}).
+// Returns {doc, text} of the result document.
+export async function waitForJob(id, onProgress, isCancelled) {
+  for (;;) {
+    const st = await (await request(`jobs/${id}`)).json();
+    onProgress({ status: st.status, phase: st.progress.phase, fraction: st.progress.fraction });
+    if (st.status === 'done') break;
+    if (st.status === 'failed') throw new ServerError(st.error.status, 'The segmentation failed', st.error.detail);
+    if (st.status === 'cancelled') throw new ServerError(0, 'Cancelled', `job ${id} was cancelled`);
+    if (isCancelled()) {
+      await request(`jobs/${id}`, { method: 'DELETE' });
+    }
+    await sleep(POLL_MS);
+  }
+  const text = await (await request(`jobs/${id}/result`)).text();
+  return { doc: JSON.parse(text), text };
+}

@@ -1,0 +1,283 @@
+// app.js: the viewer page's controller.  Reads the chosen file (or makes a
+// synthetic example), posts it to /jobs, follows the job, then shows the
+// result: colours by segment, by a level of the hierarchy or by centrality,
+// the legend, merges, sinks and downloads.  Its state is exposed as
+// window.pointseg for scripted checks (tests/browser/viewer.test.mjs).
+
+import { fetchParamSpecs, submitJob, waitForJob } from './api.js';
+import { paint, rampCss, rampIndex, rampTable, segmentTable } from './colours.js';
+import { colouredPlyBlob, jsonBlob, labelsBlob, pointsPlyBlob, saveBlob } from './downloads.js';
+import { parsePointFile } from './formats.js';
+import { levelTable, nodeDepths } from './hierarchy.js';
+import { buildParamsForm, fillLegend, fillMerges } from './panels.js';
+import { makeDumbbell, makeHand } from './shapes.js';
+
+const $ = (id) => document.getElementById(id);
+
+const state = {
+  input: null,      // {name, blob, count, positions, faces}
+  doc: null,        // the result document
+  text: '',         // ... as the server sent it
+  depth: null,      // {depth: Int32Array, max} of the hierarchy
+  level: 0,         // 0..depth.max = a tree level; depth.max + 1 = final segments
+  highlight: -1,    // hovered segment
+  cancelled: false,
+  viewer: null,
+  params: null,
+  ramp: null,       // {index, lo, hi} of centrality
+};
+
+function setState(name) {
+  document.body.dataset.state = name;
+}
+
+function showError(err) {
+  const box = $('error');
+  box.replaceChildren();
+  const title = document.createElement('strong');
+  title.textContent = err.title || 'Error';
+  const detail = document.createElement('span');
+  detail.textContent = err.title ? err.detail || '' : err.message;
+  box.append(title, detail);
+  box.hidden = false;
+  setState('error');
+}
+
+function clearError() {
+  $('error').hidden = true;
+}
+
+// ---- colours ---------------------------------------------------------------
+
+function finalLevel() {
+  return state.depth.max + 1;
+}
+
+// The per-point index and colour table of the current view.
+function colourSource() {
+  const doc = state.doc;
+  if ($('show-centrality').checked && state.ramp) return { index: state.ramp.index, table: rampTable() };
+  if (state.level >= finalLevel() || !doc.point_supernode)
+    return { index: doc.labels, table: segmentTable(doc.n_segments) };
+  return { index: doc.point_supernode, table: levelTable(doc, state.depth.depth, state.level).table };
+}
+
+function repaint() {
+  const viewer = state.viewer;
+  if (!viewer || !state.doc) return;
+  const { index, table } = colourSource();
+  paint(viewer.colors, index, table, state.doc.labels, state.highlight);
+  viewer.colorsChanged();
+  const sinks = state.doc.supernodes.map((s) => s.sink);
+  const rgb = new Uint8Array(3 * sinks.length);
+  sinks.forEach((p, i) => rgb.set(viewer.colors.subarray(3 * p, 3 * p + 3), 3 * i));
+  viewer.setSinks(sinks, rgb, $('show-sinks').checked);
+}
+
+function updateLevelLabel() {
+  const label = $('level-label');
+  if (state.level >= finalLevel()) {
+    label.textContent = `final: ${state.doc.n_segments} segments`;
+    return;
+  }
+  const { parts } = levelTable(state.doc, state.depth.depth, state.level);
+  label.textContent = `level ${state.level}: ${parts} part${parts === 1 ? '' : 's'}`;
+}
+
+// ---- showing a result -------------------------------------------------------
+
+function showSummary(doc) {
+  const t = doc.timings_ms;
+  $('summary').textContent =
+    `${doc.n_points.toLocaleString('en')} points · ${doc.n_segments} segments · ` +
+    `${doc.supernodes.length} supernodes · ${(t.total / 1000).toFixed(2)} s`;
+}
+
+function showResult(doc, text) {
+  if (doc.n_points !== state.input.count)
+    throw new Error(`the page read ${state.input.count} points but the server ${doc.n_points}`);
+  Object.assign(state, { doc, text, highlight: -1, depth: nodeDepths(doc.hierarchy.nodes) });
+  state.level = finalLevel();
+  state.ramp = doc.centrality ? rampIndex(doc.centrality) : null;
+  const level = $('level');
+  level.max = String(finalLevel());
+  level.value = String(state.level);
+  $('show-centrality').disabled = !state.ramp;
+  $('segment-count').textContent = String(doc.n_segments);
+  $('merge-count').textContent = String(doc.merges.length);
+  fillLegend($('legend').querySelector('tbody'), doc, (id) => {
+    state.highlight = id;
+    repaint();
+  });
+  fillMerges($('merges'), doc);
+  showSummary(doc);
+  updateLevelLabel();
+  updateRamp();
+  for (const id of ['view-box', 'legend-box', 'download-box']) $(id).hidden = false;
+  repaint();
+  setState('done');
+}
+
+function updateRamp() {
+  const on = $('show-centrality').checked && state.ramp;
+  $('ramp').hidden = !on;
+  $('level').disabled = Boolean(on);
+  if (!on) return;
+  $('ramp-lo').textContent = state.ramp.lo.toPrecision(3);
+  $('ramp-hi').textContent = state.ramp.hi.toPrecision(3);
+}
+
+// ---- running a job ---------------------------------------------------------
+
+function showProgress({ status, phase, fraction }) {
+  $('progress').hidden = false;
+  $('phase').textContent = status === 'queued' ? 'queued' : phase;
+  $('percent').textContent = status === 'queued' ? '' : `${Math.round(100 * fraction)}%`;
+  $('bar-fill').style.width = `${Math.round(100 * fraction)}%`;
+}
+
+async function run() {
+  if (!state.input) return;
+  clearError();
+  setState('running');
+  state.cancelled = false;
+  $('run').disabled = true;
+  $('cancel').hidden = false;
+  showProgress({ status: 'queued', phase: '', fraction: 0 });
+  try {
+    const params = state.params ? state.params.values() : {};
+    const id = await submitJob(state.input.blob, state.input.name, params);
+    state.jobId = id;
+    const { doc, text } = await waitForJob(id, showProgress, () => state.cancelled);
+    showResult(doc, text);
+  } catch (err) {
+    showError(err);
+  } finally {
+    $('run').disabled = false;
+    $('cancel').hidden = true;
+    $('progress').hidden = true;
+  }
+}
+
+// Shows the new input at once (grey), then segments it.
+function useInput(name, blob, parsed) {
+  state.input = { name, blob, ...parsed };
+  state.doc = null;
+  $('input-name').textContent = `${name}: ${parsed.count.toLocaleString('en')} points` +
+    (parsed.faces ? `, ${(parsed.faces.length / 3).toLocaleString('en')} triangles` : '');
+  $('placeholder').hidden = true;
+  for (const id of ['view-box', 'legend-box', 'download-box']) $(id).hidden = true;
+  $('summary').textContent = '';
+  if (state.viewer) {
+    state.viewer.setShape(parsed.positions, parsed.faces).fill(170);
+    state.viewer.colorsChanged();
+    $('surface-toggle').hidden = !parsed.faces;
+  }
+  $('run').disabled = false;
+  return run();
+}
+
+async function useFile(file) {
+  clearError();
+  try {
+    const parsed = parsePointFile(new Uint8Array(await file.arrayBuffer()));
+    await useInput(file.name, file, parsed);
+  } catch (err) {
+    showError({ title: `Cannot read ${file.name}`, detail: err.message });
+  }
+}
+
+function useExample(shape) {
+  const positions = shape === 'hand' ? makeHand() : makeDumbbell();
+  return useInput(`${shape}.ply`, pointsPlyBlob(positions), { count: positions.length / 3, positions, faces: null });
+}
+
+// ---- wiring -----------------------------------------------------------------
+
+function baseName() {
+  return state.input.name.replace(/\.[^.]*$/, '');
+}
+
+function wireDownloads() {
+  $('dl-labels').onclick = () => saveBlob(labelsBlob(state.doc.labels), `${baseName()}-labels.txt`);
+  $('dl-json').onclick = () => saveBlob(jsonBlob(state.text), `${baseName()}.json`);
+  $('dl-ply').onclick = () => {
+    const rgb = new Uint8Array(3 * state.doc.n_points);
+    paint(rgb, state.doc.labels, segmentTable(state.doc.n_segments), state.doc.labels, -1);
+    saveBlob(colouredPlyBlob(state.input.positions, rgb, state.input.faces), `${baseName()}-segments.ply`);
+  };
+}
+
+function wireView() {
+  $('level').oninput = (e) => {
+    state.level = Number(e.target.value);
+    updateLevelLabel();
+    repaint();
+  };
+  $('point-size').oninput = (e) => state.viewer && state.viewer.setPointScale(Number(e.target.value));
+  $('show-sinks').onchange = (e) => state.viewer && state.viewer.showSinks(e.target.checked);
+  $('show-centrality').onchange = () => {
+    updateRamp();
+    repaint();
+  };
+  $('show-surface').onchange = (e) => state.viewer && state.viewer.showSurface(e.target.checked);
+  $('fit').onclick = () => state.viewer && state.viewer.fit();
+  document.querySelector('.ramp-bar').style.background = rampCss();
+}
+
+function wireInput() {
+  $('file').onchange = (e) => e.target.files[0] && useFile(e.target.files[0]);
+  for (const b of document.querySelectorAll('.example')) b.onclick = () => useExample(b.dataset.shape);
+  $('run').onclick = run;
+  $('cancel').onclick = () => (state.cancelled = true);
+  $('reset-params').onclick = () => state.params && state.params.reset();
+  document.addEventListener('dragover', (e) => {
+    e.preventDefault();
+    $('drop').classList.add('over');
+  });
+  document.addEventListener('dragleave', () => $('drop').classList.remove('over'));
+  document.addEventListener('drop', (e) => {
+    e.preventDefault();
+    $('drop').classList.remove('over');
+    if (e.dataTransfer.files[0]) useFile(e.dataTransfer.files[0]);
+  });
+}
+
+// three.js is copied into vendor/ by `make web`; say so when it is missing.
+async function loadViewer() {
+  let module;
+  try {
+    module = await import('./viewer.js');
+  } catch (err) {
+    const vendor = await fetch('vendor/three.module.js', { method: 'HEAD' }).catch(() => null);
+    if (!vendor || !vendor.ok)
+      throw { title: 'three.js is missing', detail: 'clients/web/vendor/ is empty: run `make web`, then reload.' };
+    throw { title: 'The 3D view failed to load', detail: err.message };
+  }
+  try {
+    return new module.Viewer($('canvas'));
+  } catch (err) {
+    throw { title: 'WebGL is not available', detail: err.message };
+  }
+}
+
+async function start() {
+  wireInput();
+  wireView();
+  wireDownloads();
+  window.pointseg = { state, repaint };
+  try {
+    state.params = buildParamsForm($('params'), await fetchParamSpecs());
+  } catch (err) {
+    showError({ title: 'Cannot read the parameters from /openapi.json', detail: err.message });
+  }
+  try {
+    state.viewer = await loadViewer();
+  } catch (err) {
+    showError(err);
+    return;
+  }
+  setState('ready');
+}
+
+start();

@@ -1,0 +1,99 @@
+// panels.js: the side panel's generated parts: the parameter inputs (from
+// the OpenAPI specs, with defaults and one-line help), the legend of
+// segments and the list of refinement merges.
+
+import { rgbCss, segmentRgb } from './colours.js';
+import { segmentOfNode } from './hierarchy.js';
+
+function element(tag, props = {}, children = []) {
+  const e = Object.assign(document.createElement(tag), props);
+  e.append(...children);
+  return e;
+}
+
+function inputFor(spec) {
+  if (spec.choices) {
+    const select = element('select', {}, spec.choices.map((c) => element('option', { value: c, textContent: c })));
+    select.value = spec.default;
+    return select;
+  }
+  if (spec.type === 'boolean') return element('input', { type: 'checkbox', checked: spec.default === 'true' });
+  const integer = spec.type === 'integer';
+  return element('input', {
+    type: 'number', value: spec.default, min: spec.min, max: spec.max, step: integer ? 1 : 0.01,
+    inputMode: integer ? 'numeric' : 'decimal',
+  });
+}
+
+function valueOf(input) {
+  return input.type === 'checkbox' ? String(input.checked) : input.value.trim();
+}
+
+// Fills `box` with one input per spec.  Returns {values(), reset()}:
+// values() gives the parameters that differ from their defaults.
+export function buildParamsForm(box, specs) {
+  const inputs = specs.map((spec) => {
+    const input = inputFor(spec);
+    input.id = `param-${spec.name}`;
+    input.name = spec.name;
+    const range = spec.min !== undefined ? ` (${spec.min} to ${spec.max})` : '';
+    box.append(element('div', { className: 'param' }, [
+      element('label', { htmlFor: input.id, textContent: spec.name }),
+      input,
+      element('small', { textContent: `${spec.help}${range}; default ${spec.default}` }),
+    ]));
+    return { spec, input };
+  });
+  return {
+    values() {
+      const out = {};
+      for (const { spec, input } of inputs) {
+        const v = valueOf(input);
+        if (v !== '' && v !== spec.default) out[spec.name] = v;
+      }
+      return out;
+    },
+    reset() {
+      for (const { spec, input } of inputs) {
+        if (input.type === 'checkbox') input.checked = spec.default === 'true';
+        else input.value = spec.default;
+      }
+    },
+  };
+}
+
+function formatSize(v) {
+  return Number(v).toPrecision(3);
+}
+
+// Rows of the legend; onHover(segment id or -1).
+export function fillLegend(tbody, doc, onHover) {
+  tbody.replaceChildren();
+  for (const seg of doc.segments) {
+    const share = ((100 * seg.size) / doc.n_points).toFixed(1);
+    const swatch = element('span', { className: 'swatch' });
+    swatch.style.background = rgbCss(segmentRgb(seg.id));
+    const row = element('tr', {}, [
+      element('td', {}, [swatch]),
+      element('td', { textContent: `#${seg.id}` }),
+      element('td', { textContent: `${seg.size.toLocaleString('en')} (${share}%)` }),
+      element('td', { textContent: formatSize(seg.feature_size) }),
+    ]);
+    row.dataset.segment = seg.id;
+    row.addEventListener('mouseenter', () => onHover(seg.id));
+    row.addEventListener('mouseleave', () => onHover(-1));
+    tbody.append(row);
+  }
+}
+
+export function fillMerges(list, doc) {
+  list.replaceChildren();
+  if (!doc.merges.length) list.append(element('li', { className: 'muted', textContent: 'none' }));
+  for (const m of doc.merges) {
+    const seg = segmentOfNode(doc, m.into);
+    list.append(element('li', {
+      textContent: `tree node ${m.segment} into node ${m.into}` +
+        `${seg >= 0 ? ` (segment #${seg})` : ''}, feature size ${formatSize(m.feature_size)}`,
+    }));
+  }
+}

@@ -1,0 +1,302 @@
+// viewer.test.mjs: the web viewer in a real (headless Chromium) browser.
+// Starts pointsegd on a free port serving clients/web, uploads the horse
+// (../shared/data/models, or the synthetic hand when that is absent), and
+// checks the legend, the hierarchy slider, toggles, downloads, a server
+// error, the missing-vendor message and a million-point result.  Prints
+// "PASS browser:<name>" / "FAIL browser:<name>: why" and "N passed, N failed".
+//   node tests/browser/viewer.test.mjs BUILD    (pointsegd in BUILD,
+//   screenshots in BUILD/browser-artifacts)
+
+import { spawn } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const BUILD = resolve(ROOT, process.argv[2] || 'build');
+const ARTIFACTS = join(BUILD, 'browser-artifacts');
+const SHARED = process.env.POINTSEG_SHARED || resolve(ROOT, '../shared/data');
+const HORSE = join(SHARED, 'models/horse.ply');
+const CHROMIUM_ARGS = [
+  '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync',
+];
+const LONG = 60000;
+
+let passed = 0, failed = 0;
+
+async function check(name, fn) {
+  try {
+    await fn();
+    console.log(`PASS browser:${name}`);
+    passed++;
+  } catch (err) {
+    console.log(`FAIL browser:${name}: ${String(err.message || err).split('\n')[0]}`);
+    failed++;
+  }
+}
+
+function assert(cond, why) {
+  if (!cond) throw new Error(why);
+}
+
+// Starts pointsegd on a free port; resolves {proc, base}.
+function startDaemon() {
+  const proc = spawn(join(BUILD, 'pointsegd'),
+    ['--port', '0', '--static-dir', join(ROOT, 'clients/web'), '--quiet', '--threads', '1'],
+    { stdio: ['ignore', 'inherit', 'pipe'] });
+  process.on('exit', () => proc.kill('SIGKILL'));
+  return new Promise((ok, fail) => {
+    const timer = setTimeout(() => fail(new Error('pointsegd did not say where it listens')), 10000);
+    let out = '';
+    proc.stderr.on('data', (chunk) => {
+      out += chunk;
+      const m = out.match(/listening on (http:\/\/[\d.]+:\d+)/);
+      if (m) {
+        clearTimeout(timer);
+        ok({ proc, base: m[1] });
+      }
+    });
+    proc.on('exit', (code) => fail(new Error(`pointsegd exited with ${code}`)));
+  });
+}
+
+async function shot(page, name) {
+  await page.screenshot({ path: join(ARTIFACTS, `${name}.png`) });
+}
+
+// Digest of the colours the app computed, and of the canvas pixels.
+function colourDigest(page) {
+  return page.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => {
+    const c = window.pointseg.state.viewer.colors;
+    let h = 0;
+    for (let i = 0; i < c.length; i++) h = (h * 31 + c[i]) >>> 0;
+    const gl = document.querySelector('#canvas canvas');
+    const probe = document.createElement('canvas');
+    probe.width = gl.width;
+    probe.height = gl.height;
+    const g = probe.getContext('2d');
+    g.drawImage(gl, 0, 0);
+    const px = g.getImageData(0, 0, probe.width, probe.height).data;
+    let p = 0, drawn = 0;
+    for (let i = 0; i < px.length; i += 4) {
+      p = (p * 31 + px[i] + 7 * px[i + 1] + 13 * px[i + 2]) >>> 0;
+      if (Math.abs(px[i] - 0xf4) + Math.abs(px[i + 1] - 0xf5) + Math.abs(px[i + 2] - 0xf7) > 12) drawn++;
+    }
+    ok({ colours: h, pixels: p, drawn });
+  }))));
+}
+
+async function setLevel(page, level) {
+  await page.$eval('#level', (el, v) => {
+    el.value = String(v);
+    el.dispatchEvent(new Event('input'));
+  }, level);
+}
+
+async function uploadAndWait(page) {
+  if (existsSync(HORSE)) await page.setInputFiles('#file', HORSE);
+  else {
+    console.log('SKIP browser:horse: ../shared/data/models/horse.ply absent, using the synthetic hand');
+    await page.click('button[data-shape=hand]');
+  }
+  await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+  const error = await page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
+  assert(!error, `the page shows an error: ${error}`);
+}
+
+async function mainFlow(context, base) {
+  const page = await context.newPage();
+  const consoleErrors = [];
+  page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
+  page.on('pageerror', (e) => consoleErrors.push(e.message));
+  await page.setViewportSize({ width: 1280, height: 800 });
+  let doc = null, before = null;
+
+  await check('page-loads', async () => {
+    await page.goto(base + '/');
+    await page.waitForSelector('body[data-state=ready]', { timeout: 20000 });
+    const params = await page.$$eval('#params .param', (p) => p.length);
+    assert(params >= 6, `${params} parameter inputs from /openapi.json`);
+    await shot(page, 'start');
+  });
+  await check('segment-upload', async () => {
+    await uploadAndWait(page);
+    await shot(page, 'result');
+    const id = await page.evaluate(() => window.pointseg.state.jobId);
+    doc = await (await fetch(`${base}/jobs/${id}/result`)).json();
+    before = await colourDigest(page);
+    assert(before.drawn > 2000, `only ${before.drawn} pixels drawn on the canvas`);
+  });
+  await check('legend-count', async () => {
+    const rows = await page.$$eval('#legend tbody tr', (r) => r.length);
+    const shown = await page.textContent('#segment-count');
+    assert(doc && rows === doc.n_segments, `legend rows ${rows}, JSON n_segments ${doc && doc.n_segments}`);
+    assert(Number(shown) === doc.n_segments, `count shows ${shown}`);
+  });
+  await check('hierarchy-slider', async () => {
+    await setLevel(page, 0);
+    const root = await colourDigest(page);
+    const label = await page.textContent('#level-label');
+    assert(/1 part\b/.test(label), `level 0 label '${label}'`);
+    assert(root.colours !== before.colours, 'colours did not change at level 0');
+    assert(root.pixels !== before.pixels, 'the canvas did not change at level 0');
+    await setLevel(page, 1);
+    await shot(page, 'level1');
+    const one = await colourDigest(page);
+    assert(one.colours !== root.colours, 'colours did not change at level 1');
+    const max = Number(await page.getAttribute('#level', 'max'));
+    await setLevel(page, max);
+    const back = await colourDigest(page);
+    assert(back.colours === before.colours, 'the final level does not give the segments back');
+  });
+  await check('legend-hover', async () => {
+    await page.hover('#legend tbody tr:nth-child(2)');
+    const lit = await colourDigest(page);
+    assert(lit.colours !== before.colours, 'hovering a segment changed nothing');
+    await shot(page, 'hover');
+    await page.mouse.move(900, 400);
+    assert((await colourDigest(page)).colours === before.colours, 'leaving the legend did not restore colours');
+  });
+  await check('toggles', async () => {
+    await page.check('#show-sinks');
+    assert(await page.evaluate(() => window.pointseg.state.viewer.sinks.visible), 'sinks hidden');
+    await page.check('#show-centrality');
+    const ramp = await colourDigest(page);
+    assert(ramp.colours !== before.colours, 'centrality did not recolour');
+    assert(await page.isVisible('#ramp'), 'no centrality ramp legend');
+    await shot(page, 'centrality');
+    await page.uncheck('#show-centrality');
+    await page.uncheck('#show-sinks');
+    await page.click('#fit');
+  });
+  await check('downloads', async () => {
+    const [labels] = await Promise.all([page.waitForEvent('download'), page.click('#dl-labels')]);
+    const lines = readFileSync(await labels.path(), 'utf8').trim().split('\n');
+    assert(lines.length === doc.n_points, `${lines.length} labels for ${doc.n_points} points`);
+    assert(lines.every((l, i) => Number(l) === doc.labels[i]), 'labels differ from the JSON');
+    const [ply] = await Promise.all([page.waitForEvent('download'), page.click('#dl-ply')]);
+    const head = readFileSync(await ply.path()).subarray(0, 200).toString('latin1');
+    assert(head.includes(`element vertex ${doc.n_points}`) && head.includes('property uchar red'), 'bad PLY header');
+    const [json] = await Promise.all([page.waitForEvent('download'), page.click('#dl-json')]);
+    assert(JSON.parse(readFileSync(await json.path(), 'utf8')).n_segments === doc.n_segments, 'bad JSON');
+  });
+  await check('server-error', async () => {
+    await page.click('#params-box summary');
+    await page.fill('#param-k', '1000');
+    await page.click('#run');
+    await page.waitForSelector('body[data-state=error]', { timeout: LONG });
+    const text = await page.textContent('#error');
+    assert(text.includes("parameter 'k'") && text.includes('[1, 64]'), `error shown: '${text}'`);
+    await shot(page, 'error');
+  });
+  await check('no-console-errors', async () => {
+    const real = consoleErrors.filter((e) => !/422|Unprocessable/.test(e));
+    assert(!real.length, real.join(' | '));
+  });
+  await page.close();
+}
+
+async function missingVendor(context, base) {
+  await check('missing-vendor-message', async () => {
+    const page = await context.newPage();
+    await page.route('**/vendor/**', (r) => r.fulfill({ status: 404, body: 'gone' }));
+    await page.goto(base + '/');
+    await page.waitForSelector('body[data-state=error]', { timeout: 20000 });
+    const text = await page.textContent('#error');
+    assert(text.includes('make web'), `error shown: '${text}'`);
+    await page.close();
+  });
+}
+
+// A binary PLY of n points on a sphere, and a fake result of 4 segments.
+function millionCase(n) {
+  const header = Buffer.from(`ply\nformat binary_little_endian 1.0\nelement vertex ${n}\n` +
+    'property float x\nproperty float y\nproperty float z\nend_header\n');
+  const xyz = new Float32Array(3 * n);
+  const labels = new Array(n), ps = new Array(n), f = new Array(n);
+  for (let i = 0; i < n; i++) {
+    const z = 1 - (2 * i + 1) / n, r = Math.sqrt(1 - z * z), phi = i * 2.399963;
+    xyz.set([r * Math.cos(phi), r * Math.sin(phi), z], 3 * i);
+    ps[i] = (z > 0 ? 2 : 0) + (Math.cos(phi) > 0 ? 1 : 0);
+    labels[i] = ps[i];
+    f[i] = Math.abs(z);
+  }
+  const seg = (id) => ({ id, size: n / 4, feature_size: 0.5, supernodes: [id], tree_node: 3 + id });
+  const node = (id, parent, children, supernodes) => ({ id, parent, children, supernodes, ncut: 0.1 });
+  const doc = {
+    n_points: n, dimension: 3, n_components: 1, labels, n_segments: 4,
+    segments: [0, 1, 2, 3].map(seg),
+    supernodes: [0, 1, 2, 3].map((id) => ({ id, sink: ps.indexOf(id), size: n / 4, centrality: 1, is_minimum: false, segment: id })),
+    hierarchy: { nodes: [node(0, -1, [1, 2], [0, 1, 2, 3]), node(1, 0, [3, 4], [0, 1]), node(2, 0, [5, 6], [2, 3]),
+      node(3, 1, [], [0]), node(4, 1, [], [1]), node(5, 2, [], [2]), node(6, 2, [], [3])] },
+    merges: [], params: {}, timings_ms: { total: 1 }, point_supernode: ps, centrality: f,
+  };
+  return { ply: Buffer.concat([header, Buffer.from(xyz.buffer)]), doc: JSON.stringify(doc) };
+}
+
+async function millionPoints(context, base) {
+  await check('million-points', async () => {
+    const n = 1000000;
+    const { ply, doc } = millionCase(n);
+    const page = await context.newPage();
+    await page.setViewportSize({ width: 1280, height: 800 });
+    await page.route(/\/jobs\?/, (r) => r.fulfill({ status: 202, contentType: 'application/json', body: '{"id":"big","status":"queued"}' }));
+    await page.route(/\/jobs\/big$/, (r) => r.fulfill({ contentType: 'application/json',
+      body: '{"id":"big","status":"done","progress":{"phase":"refine","fraction":1},"points":1000000}' }));
+    await page.route(/\/jobs\/big\/result$/, (r) => r.fulfill({ contentType: 'application/json', body: doc }));
+    await page.goto(base + '/');
+    await page.waitForSelector('body[data-state=ready]', { timeout: 20000 });
+    const t0 = Date.now();
+    await page.setInputFiles('#file', { name: 'million.ply', mimeType: 'application/ply', buffer: ply });
+    await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+    const shown = Date.now() - t0;
+    const rows = await page.$$eval('#legend tbody tr', (r) => r.length);
+    assert(rows === 4, `${rows} legend rows`);
+    const a = await colourDigest(page);
+    const recolour = await page.evaluate(() => {
+      const t = performance.now();
+      const level = document.getElementById('level');
+      level.value = '1';
+      level.dispatchEvent(new Event('input'));
+      return Math.round(performance.now() - t);
+    });
+    const b = await colourDigest(page);
+    assert(a.drawn > 2000 && a.colours !== b.colours, 'a million points not drawn or not recoloured');
+    await shot(page, 'million');
+    console.log(`  1M points: shown in ${shown} ms, level recoloured in ${recolour} ms`);
+    assert(shown < 30000, `took ${shown} ms to show`);
+    assert(recolour < 1500, `took ${recolour} ms to recolour`);
+    await page.close();
+  });
+}
+
+async function main() {
+  mkdirSync(ARTIFACTS, { recursive: true });
+  const { proc, base } = await startDaemon();
+  const profile = mkdtempSync(join(tmpdir(), 'pointseg-chromium-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: CHROMIUM_ARGS,
+    acceptDownloads: true,
+  });
+  try {
+    await mainFlow(context, base);
+    await missingVendor(context, base);
+    await millionPoints(context, base);
+  } finally {
+    await context.close();
+    proc.kill('SIGTERM');
+    rmSync(profile, { recursive: true, force: true });
+  }
+  console.log(`screenshots in ${ARTIFACTS}`);
+  console.log(`${passed} passed, ${failed} failed`);
+  process.exit(failed ? 1 : 0);
+}
+
+main().catch((err) => {
+  console.log(`FAIL browser:setup: ${err.message}`);
+  console.log(`${passed} passed, ${failed + 1} failed`);
+  process.exit(1);
+});
