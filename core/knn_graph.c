@@ -12,8 +12,10 @@
  */
 #include "knn_graph.h"
 
+
 #include "morton.h"
 #include "parallel.h"
+#include "union_find.h"
 
 #include <flann/flann.h>
 #include <math.h>
@@ -275,21 +277,14 @@ void ps_graph_free(ps_graph *g) {
     memset(g, 0, sizeof *g);
 }
 
-/* Union-find root with path halving; parents always point to lower ids. */
-static int find_root(int *parent, int v) {
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]];
-        v = parent[v];
-    }
-    return v;
-}
-
+/* Union-find with parents always pointing to lower ids. */
 int ps_graph_components(const ps_graph *g, int *component) {
     int n = (int)g->n;
     for (int p = 0; p < n; p++) component[p] = p;
     for (int p = 0; p < n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            int a = find_root(component, p), b = find_root(component, (int)g->neighbors[e]);
+            int a = ps_union_find_root(component, p);
+            int b = ps_union_find_root(component, (int)g->neighbors[e]);
             if (a < b) component[b] = a;
             if (b < a) component[a] = b;
         }

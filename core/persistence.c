@@ -6,6 +6,7 @@
  */
 #include "persistence.h"
 
+#include "union_find.h"
 #include <stdlib.h>
 
 typedef struct saddle {
@@ -18,11 +19,6 @@ static int by_height_desc(const void *a, const void *b) {
     if (x->height != y->height) return x->height > y->height ? -1 : 1;
     if (x->p != y->p) return x->p < y->p ? -1 : 1;
     return (x->q > y->q) - (x->q < y->q);
-}
-
-static int find_root(int *parent, int s) {
-    while (parent[s] != s) s = parent[s] = parent[parent[s]];
-    return s;
 }
 
 /* Edges whose ends lie in different basins, sorted; *count out. */
@@ -77,8 +73,8 @@ static void merge_sweep(const saddle *s, size_t count, const double *f, const in
                         const double *threshold, const ps_flow *flow, int *parent,
                         size_t *size, size_t min_size) {
     for (size_t i = 0; i < count; i++) {
-        int a = find_root(parent, flow->sink_of[s[i].p]);
-        int b = find_root(parent, flow->sink_of[s[i].q]);
+        int a = ps_union_find_root(parent, flow->sink_of[s[i].p]);
+        int b = ps_union_find_root(parent, flow->sink_of[s[i].q]);
         if (a == b) continue;
         int low = peak_below(flow, f, a, b) ? a : b, high = low == a ? b : a;
         double persistence = f[flow->sinks[low]] - s[i].height;
@@ -94,7 +90,7 @@ static void merge_sweep(const saddle *s, size_t count, const double *f, const in
 
 void ps_flow_merge(ps_flow *flow, int *parent, int *new_id, size_t n) {
     int m = flow->n_sinks, kept = 0;
-    for (int s = 0; s < m; s++) parent[s] = find_root(parent, s);
+    for (int s = 0; s < m; s++) parent[s] = ps_union_find_root(parent, s);
     for (int s = 0; s < m; s++)
         if (parent[s] == s) new_id[s] = kept, flow->sinks[kept++] = flow->sinks[s];
     for (size_t p = 0; p < n; p++) flow->sink_of[p] = new_id[parent[flow->sink_of[p]]];

@@ -7,6 +7,7 @@
 
 #include "flow.h"
 #include "persistence.h"
+#include "union_find.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -52,11 +53,6 @@ static void highest_saddles(const ps_graph *g, const double *f, const ps_flow *u
         }
 }
 
-static int find_root(int *parent, int s) {
-    while (parent[s] != s) s = parent[s] = parent[parent[s]];
-    return s;
-}
-
 /* One round: every basin with fewer than min_size points above its highest
  * saddle joins the basin across that saddle.  Returns how many joined. */
 static int merge_round(const ps_graph *g, const double *f, ps_flow *up, size_t min_size,
@@ -67,7 +63,7 @@ static int merge_round(const ps_graph *g, const double *f, ps_flow *up, size_t m
     for (size_t p = 0; p < g->n; p++) scratch[up->sink_of[p]] += f[p] >= level[up->sink_of[p]];
     for (int s = 0; s < m; s++) {
         if ((size_t)scratch[s] >= min_size || across[s] < 0) continue;
-        int a = find_root(parent, s), b = find_root(parent, across[s]);
+        int a = ps_union_find_root(parent, s), b = ps_union_find_root(parent, across[s]);
         if (a != b) parent[a] = b, merged++;
     }
     if (merged) ps_flow_merge(up, parent, scratch, g->n);
