@@ -4,6 +4,7 @@
 #   make run        install missing packages, build, start the daemon (or, until
 #                   it exists, segment a sample)
 #   make test       install missing packages, build, run every test
+#   make web / test-browser              the web viewer / its Chromium test
 #   make bench-quality / bench-speed     print the benchmark figures
 #   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
 #
@@ -49,7 +50,7 @@ BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
 .PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-load clean tests-build \
-        install uninstall test-scale
+        install uninstall test-scale web test-browser
 .DEFAULT_GOAL := all
 
 all: $(PROGRAMS)
@@ -89,7 +90,7 @@ tests-build: $(PROGRAMS) $(UNIT_BIN) $(INTEG_BIN)
 
 # ---- running --------------------------------------------------------------
 
-run: deps
+run: deps web
 	@$(MAKE) --no-print-directory all
 	@scripts/run.sh $(BUILD)
 
@@ -155,6 +156,21 @@ uninstall:
 # `make test` (the script is not executable, so tests/run.sh passes it by).
 test-scale: all
 	@sh tests/integration/scale.sh $(BUILD)
+
+# The web viewer: three.js (pinned in clients/web/package-lock.json) copied
+# into clients/web/vendor/, which pointsegd serves at /.  test-browser runs
+# it in headless Chromium (tests/browser/; installs chromium when root).
+WEB_THREE := clients/web/node_modules/three
+web:
+	@scripts/web-deps.sh
+	@npm ci --prefix clients/web --no-audit --no-fund --loglevel=error
+	@mkdir -p clients/web/vendor
+	@cp $(WEB_THREE)/build/three.module.js $(WEB_THREE)/build/three.core.js \
+	    $(WEB_THREE)/examples/jsm/controls/OrbitControls.js clients/web/vendor/
+
+test-browser: deps web
+	@$(MAKE) --no-print-directory $(BUILD)/pointsegd
+	@tests/browser/run.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD)

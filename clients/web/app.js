@@ -40,6 +40,7 @@ function showError(err) {
   detail.textContent = err.title ? err.detail || '' : err.message;
   box.append(title, detail);
   box.hidden = false;
+  box.scrollIntoView({ block: 'nearest' });
   setState('error');
 }
 

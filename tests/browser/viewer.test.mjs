@@ -183,6 +183,14 @@ async function mainFlow(context, base) {
     const [json] = await Promise.all([page.waitForEvent('download'), page.click('#dl-json')]);
     assert(JSON.parse(readFileSync(await json.path(), 'utf8')).n_segments === doc.n_segments, 'bad JSON');
   });
+  await check('synthetic-hand', async () => {
+    await page.click('button[data-shape=hand]');
+    await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+    const rows = await page.$$eval('#legend tbody tr', (r) => r.length);
+    const name = await page.textContent('#input-name');
+    assert(name.startsWith('hand.ply') && rows >= 6, `${name}: ${rows} segments, want the palm and 5 fingers`);
+    await shot(page, 'hand');
+  });
   await check('server-error', async () => {
     await page.click('#params-box summary');
     await page.fill('#param-k', '1000');
