@@ -1,8 +1,11 @@
 /*
  * result.c: builds the public ps_result.  Final segments are the groups the
- * refinement left (hierarchy leaves and what merged into them), numbered by
- * decreasing size in input points, ties by their lowest input point, so the
- * labels do not depend on the order the phases visited anything.
+ * refinement left (hierarchy leaves and what merged into them, with the
+ * points the boundary cut moved), numbered by decreasing size in input
+ * points, ties by their lowest input point, so the labels do not depend on
+ * the order the phases visited anything.  A supernode's segment is its
+ * sink's; sizes, feature sizes and supernode lists are counted from the
+ * points' groups.
  */
 #include "result.h"
 
@@ -21,9 +24,9 @@ static int by_size_then_first(const void *a, const void *b) {
     return (x->first_point > y->first_point) - (x->first_point < y->first_point);
 }
 
-/* segment_of_leaf #n_tree: final label of each leaf's group (-1 inner). */
-static int number_segments(const ps_result_parts *pp, const int *leaf_of_supernode,
-                           int *segment_of_leaf) {
+/* segment_of_group #n_tree: final label of each group id (-1 when no point
+ * is in it). */
+static int number_segments(const ps_result_parts *pp, int *segment_of_group) {
     int n_tree = pp->n_tree;
     group_order *order = calloc((size_t)n_tree, sizeof *order);
     int *slot = malloc((size_t)n_tree * sizeof *slot);
@@ -37,8 +40,7 @@ static int number_segments(const ps_result_parts *pp, const int *leaf_of_superno
         order[t] = (group_order){.group = t, .size = 0, .first_point = SIZE_MAX};
     }
     for (size_t i = 0; i < pp->n_input; i++) {
-        int leaf = leaf_of_supernode[pp->supernode_of[pp->unique_of[i]]];
-        group_order *g = &order[pp->group_of_leaf[leaf]];
+        group_order *g = &order[pp->group_of_point[pp->unique_of[i]]];
         if (g->size++ == 0) g->first_point = i;
     }
     qsort(order, (size_t)n_tree, sizeof *order, by_size_then_first);
@@ -47,42 +49,40 @@ static int number_segments(const ps_result_parts *pp, const int *leaf_of_superno
         slot[order[n_segments].group] = n_segments;
         n_segments++;
     }
-    for (int t = 0; t < n_tree; t++)
-        segment_of_leaf[t] = pp->group_of_leaf[t] >= 0 ? slot[pp->group_of_leaf[t]] : -1;
+    memcpy(segment_of_group, slot, (size_t)n_tree * sizeof *slot);
     free(order);
     free(slot);
     return n_segments;
 }
 
-static void fill_points(const ps_result_parts *pp, const int *leaf_of_supernode,
-                        const int *segment_of_leaf, ps_result *r) {
+static void fill_points(const ps_result_parts *pp, const int *segment_of_group, ps_result *r) {
     for (size_t i = 0; i < pp->n_input; i++) {
         size_t u = pp->unique_of[i];
         int s = pp->supernode_of[u];
         r->point_supernode[i] = s;
         r->centrality[i] = pp->f[u];
-        r->labels[i] = segment_of_leaf[leaf_of_supernode[s]];
+        r->labels[i] = segment_of_group[pp->group_of_point[u]];
         ps_segment_info *seg = &r->segments[r->labels[i]];
         seg->size++;
         r->supernodes[s].size++;
     }
 }
 
-static void fill_supernodes(const ps_result_parts *pp, const int *leaf_of_supernode,
-                            const int *segment_of_leaf, ps_result *r) {
+static void fill_supernodes(const ps_result_parts *pp, const int *segment_of_group,
+                            ps_result *r) {
     for (int s = 0; s < pp->n_supernodes; s++) {
         uint32_t sink = pp->sinks[s];
         ps_supernode *sn = &r->supernodes[s];
         sn->sink = pp->first_of[sink];
         sn->centrality = pp->f[sink];
         sn->is_minimum = pp->is_minimum[s];
-        sn->segment = segment_of_leaf[leaf_of_supernode[s]];
+        sn->segment = segment_of_group[pp->group_of_point[sink]];
         r->segments[sn->segment].n_supernodes++;
     }
 }
 
 /* Feature sizes over the distinct points, supernode lists, tree leaf ids. */
-static int fill_segments(const ps_result_parts *pp, const int *segment_of_leaf, ps_result *r) {
+static int fill_segments(const ps_result_parts *pp, const int *segment_of_group, ps_result *r) {
     int n = r->n_segments;
     double *lo = malloc((size_t)n * sizeof *lo), *hi = malloc((size_t)n * sizeof *hi);
     int ok = lo && hi;
@@ -99,27 +99,17 @@ static int fill_segments(const ps_result_parts *pp, const int *segment_of_leaf, 
         seg->supernodes[seg->n_supernodes++] = s;
     }
     for (size_t u = 0; ok && u < pp->n_unique; u++) {
-        int g = r->supernodes[pp->supernode_of[u]].segment;
+        int g = segment_of_group[pp->group_of_point[u]];
         if (pp->f[u] < lo[g]) lo[g] = pp->f[u];
         if (pp->f[u] > hi[g]) hi[g] = pp->f[u];
     }
     for (int t = 0; ok && t < pp->n_tree; t++)
-        if (pp->group_of_leaf[t] == t) r->segments[segment_of_leaf[t]].tree_node = t;
+        if (pp->group_of_leaf[t] == t && segment_of_group[t] >= 0)
+            r->segments[segment_of_group[t]].tree_node = t;
     for (int g = 0; ok && g < n; g++) r->segments[g].feature_size = hi[g] - lo[g];
     free(lo);
     free(hi);
     return ok ? 0 : -1;
-}
-
-static int *leaves_of_supernodes(const ps_result_parts *pp) {
-    int *leaf = malloc((size_t)(pp->n_supernodes ? pp->n_supernodes : 1) * sizeof *leaf);
-    if (!leaf) return NULL;
-    for (int t = 0; t < pp->n_tree; t++) {
-        const ps_tree_node *node = &pp->tree[t];
-        if (node->children[0] >= 0) continue;
-        for (int j = 0; j < node->n_supernodes; j++) leaf[node->supernodes[j]] = t;
-    }
-    return leaf;
 }
 
 static int allocate(ps_result *r, const ps_result_parts *pp, int n_segments) {
@@ -139,11 +129,9 @@ static int allocate(ps_result *r, const ps_result_parts *pp, int n_segments) {
 ps_status ps_result_build(const ps_result_parts *pp, const ps_params *params,
                           ps_result **out, ps_error *err) {
     ps_result *r = calloc(1, sizeof *r);
-    int *leaf_of_supernode = leaves_of_supernodes(pp);
-    int *segment_of_leaf = malloc((size_t)pp->n_tree * sizeof *segment_of_leaf);
+    int *segment_of_group = malloc((size_t)pp->n_tree * sizeof *segment_of_group);
     int n_segments = -1;
-    if (r && leaf_of_supernode && segment_of_leaf)
-        n_segments = number_segments(pp, leaf_of_supernode, segment_of_leaf);
+    if (r && segment_of_group) n_segments = number_segments(pp, segment_of_group);
     int ok = n_segments > 0 && allocate(r, pp, n_segments) == 0;
     if (ok) {
         r->n_points = pp->n_input;
@@ -152,14 +140,13 @@ ps_status ps_result_build(const ps_result_parts *pp, const ps_params *params,
         r->n_supernodes = pp->n_supernodes;
         r->n_segments = n_segments;
         r->params = *params;
-        fill_supernodes(pp, leaf_of_supernode, segment_of_leaf, r);
-        fill_points(pp, leaf_of_supernode, segment_of_leaf, r);
-        ok = fill_segments(pp, segment_of_leaf, r) == 0;
+        fill_supernodes(pp, segment_of_group, r);
+        fill_points(pp, segment_of_group, r);
+        ok = fill_segments(pp, segment_of_group, r) == 0;
         memcpy(r->merges, pp->merges, (size_t)pp->n_merges * sizeof *r->merges);
         r->n_merges = pp->n_merges;
     }
-    free(leaf_of_supernode);
-    free(segment_of_leaf);
+    free(segment_of_group);
     if (!ok) {
         ps_result_free(r);
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (result)");

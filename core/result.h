@@ -1,6 +1,8 @@
 /*
  * result.h: assembling the public ps_result from what the phases produced
- * for the distinct points, mapped back onto every input point.
+ * for the distinct points, mapped back onto every input point.  Labels come
+ * from each point's group (the boundary cut may move points between
+ * segments); a supernode belongs to the segment holding its sink.
  */
 #ifndef PS_RESULT_H
 #define PS_RESULT_H
@@ -22,6 +24,8 @@ typedef struct ps_result_parts {
     ps_tree_node *tree;          /* #n_tree, ownership moves into the result */
     int n_tree;
     const int *group_of_leaf;    /* #n_tree (refine.h) */
+    const int *group_of_point;   /* #U final group (a surviving leaf id) of each point;
+                                    a supernode's points all share its sink's group */
     const ps_merge *merges;      /* #n_merges, copied */
     int n_merges;
 } ps_result_parts;

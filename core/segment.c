@@ -3,11 +3,13 @@
  *
  * Validates the input, removes duplicate points, then runs features (kNN
  * graph, centrality, flow to sinks), hierarchy (normalized cuts over the
- * supernodes) and refinement (small features merge), timing each phase,
+ * supernodes) and refinement (small features merge; with method auto in
+ * 3-D, boundaries then move onto concave creases, boundary_cut.h), timing each phase,
  * reporting progress and honouring the cancel flag between steps.  The
  * result is assembled by result.c; duplicates get their representative's
  * answers.
  */
+#include "boundary_cut.h"
 #include "centrality.h"
 #include "crease.h"
 #include "dedup.h"
@@ -38,11 +40,13 @@ typedef struct pipeline {
     ps_graph graph;
     int *component;        /* #U */
     int n_components;
+    double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;
     int n_tree;
     int *group_of_leaf;    /* #n_tree */
+    int *group_of_point;   /* #U final group (surviving leaf id) of each point */
     ps_merge *merges;
     int n_merges;
     ps_timings timings;
@@ -101,24 +105,22 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
-/* Normals (given, or PCA) of the distinct points, then the crease metric. */
+/* Normals (given, or PCA) of the distinct points, kept for the boundary
+ * cut, then the crease metric. */
 static ps_status crease_metric(pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
-    double *normals = malloc(u * 3 * sizeof *normals), *given = NULL;
-    if (!normals) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
+    double *given = NULL;
+    pl->normals = malloc(u * 3 * sizeof *pl->normals);
+    if (!pl->normals) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
     if (pl->in->normals) {
         given = malloc(u * 3 * sizeof *given);
-        if (!given) {
-            free(normals);
-            return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
-        }
+        if (!given) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
         for (size_t i = 0; i < u; i++)
             memcpy(given + 3 * i, pl->in->normals + 3 * pl->dedup.first[i], 3 * sizeof *given);
     }
     ps_status st = ps_normals_build(&pl->graph, pl->points, given, pl->component,
-                                    pl->n_components, normals, err);
-    if (st == PS_OK) ps_crease_weights(&pl->graph, pl->points, normals);
-    free(normals);
+                                    pl->n_components, pl->normals, err);
+    if (st == PS_OK) ps_crease_weights(&pl->graph, pl->points, pl->normals);
     free(given);
     return st;
 }
@@ -172,12 +174,48 @@ static ps_status phase_hierarchy(pipeline *pl, ps_error *err) {
                              &pl->tree, &pl->n_tree, err);
 }
 
+/* group_of_point from the refined groups of the hierarchy leaves. */
+static ps_status point_groups(pipeline *pl, ps_error *err) {
+    size_t u = pl->dedup.n_unique;
+    int *group_of_supernode = malloc((size_t)(pl->sn.m ? pl->sn.m : 1) * sizeof(int));
+    pl->group_of_point = malloc(u * sizeof *pl->group_of_point);
+    if (!group_of_supernode || !pl->group_of_point) {
+        free(group_of_supernode);
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
+    }
+    for (int t = 0; t < pl->n_tree; t++) {
+        const ps_tree_node *node = &pl->tree[t];
+        if (node->children[0] >= 0) continue;
+        for (int j = 0; j < node->n_supernodes; j++)
+            group_of_supernode[node->supernodes[j]] = pl->group_of_leaf[t];
+    }
+    for (size_t i = 0; i < u; i++)
+        pl->group_of_point[i] = group_of_supernode[pl->sn.supernode_of[i]];
+    free(group_of_supernode);
+    return PS_OK;
+}
+
+static ps_status boundary_cut(pipeline *pl, ps_error *err) {
+    ps_boundary_cut_input bc = {
+        .graph = &pl->graph,
+        .points = pl->points,
+        .normals = pl->normals,
+        .n_groups = pl->n_tree,
+        .n_supernodes = pl->sn.m,
+        .sinks = pl->sn.sinks,
+    };
+    return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
+}
+
 static ps_status phase_refine(pipeline *pl, ps_error *err) {
     pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
     if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
-    return ps_refine(&pl->graph, pl->f, pl->sn.supernode_of, pl->sn.is_minimum, pl->component, pl->tree, pl->n_tree,
-                     pl->params.feature_threshold, pl->group_of_leaf, &pl->merges,
-                     &pl->n_merges, err);
+    ps_status st = ps_refine(&pl->graph, pl->f, pl->sn.supernode_of, pl->sn.is_minimum,
+                             pl->component, pl->tree, pl->n_tree, pl->params.feature_threshold,
+                             pl->group_of_leaf, &pl->merges, &pl->n_merges, err);
+    if (st == PS_OK) st = point_groups(pl, err);
+    if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
+    return st;
 }
 
 typedef ps_status (*phase_fn)(pipeline *pl, ps_error *err);
@@ -203,10 +241,12 @@ static void pipeline_free(pipeline *pl) {
     ps_dedup_free(&pl->dedup);
     ps_graph_free(&pl->graph);
     free(pl->component);
+    free(pl->normals);
     free(pl->f);
     ps_supernodes_free(&pl->sn);
     ps_tree_free(pl->tree, pl->n_tree);
     free(pl->group_of_leaf);
+    free(pl->group_of_point);
     free(pl->merges);
 }
 
@@ -226,6 +266,7 @@ static ps_result_parts parts_of(const pipeline *pl) {
         .tree = pl->tree,
         .n_tree = pl->n_tree,
         .group_of_leaf = pl->group_of_leaf,
+        .group_of_point = pl->group_of_point,
         .merges = pl->merges,
         .n_merges = pl->n_merges,
     };
