@@ -139,7 +139,7 @@ function dataLines(text) {
 
 function parseOff(text) {
   const lines = dataLines(text);
-  const first = lines[0].replace(/^[A-Z]*OFF/, '').trim();
+  const first = lines[0].replace(/^[STCN4n]*OFF/, '').trim();
   const counts = (first.length ? first : lines[1]).split(/\s+/).map(Number);
   let at = first.length ? 1 : 2;
   const [nv, nf] = counts;
@@ -207,7 +207,8 @@ export function parsePointFile(bytes) {
   const start = new TextDecoder('latin1').decode(bytes.subarray(0, 64)).trimStart();
   if (start.startsWith('ply')) return parsePly(bytes);
   const text = new TextDecoder().decode(bytes);
-  if (/^[A-Z]*OFF\b/.test(start)) return parseOff(text);
+  const firstData = text.slice(0, 4096).split(/\r?\n/).map((l) => l.replace(/#.*/, '').trim()).find((l) => l);
+  if (firstData && /^[STCN4n]*OFF$/.test(firstData.split(/\s+/)[0])) return parseOff(text);
   if (start.startsWith('{')) return parseJson(text);
   if (/^\s*v\s/m.test(text.slice(0, 65536))) return parseObj(text);
   return parseXyz(text);

@@ -13,6 +13,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { parsePointFile } from '../../clients/web/formats.js';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const BUILD = resolve(ROOT, process.argv[2] || 'build');
@@ -106,6 +107,46 @@ async function uploadAndWait(page) {
   await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
   const error = await page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
   assert(!error, `the page shows an error: ${error}`);
+}
+
+// A big-endian binary PLY: a uchar property before x, a quad face.
+function bigEndianPly() {
+  const header = 'ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty uchar flag\n' +
+    'property double x\nproperty double y\nproperty double z\n' +
+    'element face 1\nproperty list uchar int vertex_indices\nend_header\n';
+  const body = Buffer.alloc(4 * 25 + 1 + 16);
+  [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]].forEach((p, i) => {
+    body.writeUInt8(7, 25 * i);
+    p.forEach((v, c) => body.writeDoubleBE(v + 0.5, 25 * i + 1 + 8 * c));
+  });
+  body.writeUInt8(4, 100);
+  [0, 1, 2, 3].forEach((v, k) => body.writeInt32BE(v, 101 + 4 * k));
+  return Buffer.concat([Buffer.from(header), body]);
+}
+
+// Each format the page reads: [name, bytes, points, triangles, first point].
+const FORMAT_CASES = [
+  ['ply-ascii', 'ply\nformat ascii 1.0\ncomment c\nelement vertex 3\nproperty float nx\nproperty float z\n' +
+    'property float y\nproperty float x\nelement face 1\nproperty list uchar int vertex_indices\n' +
+    'element edge 1\nproperty int a\nproperty int b\nend_header\n9 3 2 1\n9 0 0 4\n9 0 5 0\n3 0 1 2\n0 1\n', 3, 1, [1, 2, 3]],
+  ['ply-binary-be', bigEndianPly(), 4, 2, [0.5, 0.5, 0.5]],
+  ['off', '# a comment\nOFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0 # corner\n0 1 0\n4 0 1 2 3\n', 4, 2, [0, 0, 0]],
+  ['obj', 'o thing\nv 1 2 3\nv 4 5 6\nvt 0 0\nv 7 8 9\nv 1 1 1\nf 1/1 2/1 3/1\nf -1 -2 -3\n', 4, 2, [1, 2, 3]],
+  ['csv', 'x,y,z,nx,ny,nz\n1,2,3,0,0,1\n4;5;6;1;0;0\n', 2, 0, [1, 2, 3]],
+  ['xy', '1 2\n3 4\n5 6\n', 3, 0, [1, 2, 0]],
+  ['json-nested', '{"points": [[1, 2, 3], [4, 5, 6]], "params": {"k": 1}}', 2, 0, [1, 2, 3]],
+  ['json-flat', '{"dimension": 4, "points": [1, 2, 3, 9, 4, 5, 6, 9]}', 2, 0, [1, 2, 3]],
+];
+
+async function pageParsers() {
+  for (const [name, data, points, triangles, first] of FORMAT_CASES) {
+    await check(`parse-${name}`, () => {
+      const p = parsePointFile(new Uint8Array(Buffer.from(data)));
+      const tris = p.faces ? p.faces.length / 3 : 0;
+      assert(p.count === points && tris === triangles, `${p.count} points, ${tris} triangles`);
+      assert(first.every((v, c) => p.positions[c] === v), `first point ${Array.from(p.positions.slice(0, 3))}`);
+    });
+  }
 }
 
 async function mainFlow(context, base) {
@@ -288,6 +329,7 @@ async function millionPoints(context, base) {
 
 async function main() {
   mkdirSync(ARTIFACTS, { recursive: true });
+  await pageParsers();
   const { proc, base } = await startDaemon();
   const profile = mkdtempSync(join(tmpdir(), 'pointseg-chromium-'));
   const context = await chromium.launchPersistentContext(profile, {
