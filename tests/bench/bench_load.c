@@ -16,7 +16,7 @@
  *
  * --synthetic uses the synthetic shapes even when the PSB files are there.
  * Exit status 0 when every request succeeded, 1 otherwise, 2 on a bad
- * option.  See tests/bench/README.md and docs/benchmarks-load.md.
+ * option.  See docs/benchmarks-load.md.
  */
 #include <cJSON.h>
 #include <curl/curl.h>

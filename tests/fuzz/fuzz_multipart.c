@@ -12,6 +12,7 @@
  * 415 for a file part in no known format, 422); anything else (no answer, 500, a malformed answer) traps.
  */
 #include <arpa/inet.h>
+#include <errno.h>
 #include <netinet/in.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -73,6 +74,7 @@ static int send_all(int fd, const void *data, size_t len) {
     const char *p = data;
     while (len) {
         ssize_t n = send(fd, p, len, MSG_NOSIGNAL);
+        if (n < 0 && errno == EINTR) continue; /* libFuzzer's SIGALRM timer */
         if (n <= 0) return -1;
         p += n;
         len -= (size_t)n;
@@ -97,6 +99,7 @@ static int read_status(int fd) {
     size_t len = 0;
     while (len < ANSWER_CAP) {
         ssize_t n = recv(fd, buf + len, ANSWER_CAP - len, 0);
+        if (n < 0 && errno == EINTR) continue;
         if (n <= 0) break;
         len += (size_t)n;
         buf[len] = 0;
