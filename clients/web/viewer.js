@@ -6,12 +6,17 @@
 import * as THREE from 'three';
 import { OrbitControls } from './vendor/OrbitControls.js';
 
-// A round sprite: white disc, with a dark rim when `rim`.
+// A round sprite: white disc, with a dark rim when `rim`, on black (used as
+// an alpha map for plain points, so their edges keep the point's colour).
 function discTexture(rim) {
   const size = 64;
   const canvas = document.createElement('canvas');
   canvas.width = canvas.height = size;
   const g = canvas.getContext('2d');
+  if (!rim) {
+    g.fillStyle = '#000000';
+    g.fillRect(0, 0, size, size);
+  }
   g.beginPath();
   g.arc(size / 2, size / 2, size / 2 - 2, 0, 2 * Math.PI);
   g.fillStyle = '#ffffff';
@@ -42,7 +47,7 @@ export class Viewer {
     this.camera.add(light);
     this.controls = this.makeControls();
     this.pointMaterial = new THREE.PointsMaterial({
-      vertexColors: true, map: discTexture(false), alphaTest: 0.5, sizeAttenuation: true,
+      vertexColors: true, alphaMap: discTexture(false), alphaTest: 0.5, sizeAttenuation: true,
     });
     this.sinkMaterial = new THREE.PointsMaterial({
       vertexColors: true, map: discTexture(true), alphaTest: 0.5, sizeAttenuation: false,
