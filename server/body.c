@@ -39,6 +39,7 @@ static int grow(ps_body *b, size_t need) {
 }
 
 static int append_data(ps_body *b, const char *src, size_t n, ps_api_error *err) {
+    if (n == 0) return 0; /* an empty part: b->data may still be NULL */
     if (n > b->max_body - b->len)
         return ps_api_fail(err, 413, "request body larger than the limit of %zu bytes", b->max_body);
     if (grow(b, b->len + n)) return ps_api_fail(err, 500, "out of memory reading the body");

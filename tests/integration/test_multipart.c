@@ -3,7 +3,8 @@
  * multipart fuzz target (tests/fuzz/fuzz_multipart.c) looks at: a complete
  * body is segmented, a body cut before its closing boundary is a 400 (even
  * when the cut falls between two lines of the file part, which would
- * otherwise decode to fewer points), a body without a `file` part is a 400.
+ * otherwise decode to fewer points), a body without a `file` part or with
+ * an empty one is a 400.
  * Starts BUILD/pointsegd (beside BUILD/itests/) on a free port.
  */
 #include "pointseg_client.h"
@@ -140,6 +141,15 @@ static void test_form_without_file_is_400(void) {
     ps_client_response_free(&r);
 }
 
+static void test_empty_file_part_is_400(void) {
+    static const char form[] = "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"\r\n\r\n"
+                               "\r\n--" BOUNDARY "--\r\n";
+    ps_client_response r;
+    REQUIRE(need_daemon() == 0);
+    CHECK(request(form, sizeof form - 1, &r) == 400 && problem_says(&r, "empty"));
+    ps_client_response_free(&r);
+}
+
 static void test_zz_stop_daemon(void) {
     int status = -1;
     REQUIRE(daemon_pid > 0);
@@ -151,7 +161,8 @@ static void test_zz_stop_daemon(void) {
 int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_complete_form_is_segmented), TEST(test_form_cut_before_closing_boundary_is_400),
-        TEST(test_form_without_file_is_400), TEST(test_zz_stop_daemon)};
+        TEST(test_form_without_file_is_400), TEST(test_empty_file_part_is_400),
+        TEST(test_zz_stop_daemon)};
     if (ps_client_global_init()) return 1;
     int rc = ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
     if (daemon_pid > 0) kill(daemon_pid, SIGKILL);
