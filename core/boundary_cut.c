@@ -69,12 +69,14 @@ static void edge_capacities(cut_context *cx) {
             sum_len += distance3(x + 3 * p, x + 3 * q);
             sum_ang += ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
         }
-    double L = sum_len / (double)edges, A0 = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
+    double L = sum_len / (double)edges;
+    double A0 = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             double ang = ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
-            cx->capacity[e] = distance3(x + 3 * p, x + 3 * q) / L * (A0 > 0 ? exp(-ang / A0) : 1);
+            double crease = A0 > 0 ? exp(-ang / A0) : 1;
+            cx->capacity[e] = distance3(x + 3 * p, x + 3 * q) / L * crease;
         }
 }
 
@@ -211,7 +213,8 @@ static void keep_largest_piece(cut_context *cx, size_t m, int x, int y) {
         n_components++;
     }
     for (size_t v = 0; v < m; v++)
-        if (cx->component[v] >= 0 && cx->component[v] != best && !cx->anchored[cx->component[v]])
+        if (cx->component[v] >= 0 && cx->component[v] != best &&
+            !cx->anchored[cx->component[v]])
             cx->group[cx->members[v]] = y;
 }
 

@@ -4,10 +4,10 @@
  * Validates the input, removes duplicate points, then runs features (kNN
  * graph, centrality, flow to sinks), hierarchy (normalized cuts over the
  * supernodes) and refinement (small features merge; with method auto in
- * 3-D, boundaries then move onto concave creases, boundary_cut.h), timing each phase,
- * reporting progress and honouring the cancel flag between steps.  The
- * result is assembled by result.c; duplicates get their representative's
- * answers.
+ * 3-D, boundaries then move onto concave creases, boundary_cut.h), timing
+ * each phase, reporting progress and honouring the cancel flag between
+ * steps.  The result is assembled by result.c; duplicates get their
+ * representative's answers.
  */
 #include "boundary_cut.h"
 #include "centrality.h"
