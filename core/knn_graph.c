@@ -78,8 +78,9 @@ typedef struct query_job {
     atomic_int failed;
 } query_job;
 
-/* Row p's candidates by (exact distance, index), self left out. */
-static void keep_nearest(const query_job *j, size_t p, const int *found) {
+/* Row p's candidates by (exact distance, index), self left out; 0, or -1
+ * when FLANN returned fewer than k usable neighbours. */
+static int keep_nearest(const query_job *j, size_t p, const int *found) {
     candidate c[64 + EXTRA + 1];
     const double *x = j->points + p * (size_t)j->dim;
     int m = 0;
@@ -90,8 +91,10 @@ static void keep_nearest(const query_job *j, size_t p, const int *found) {
         c[m].dist = point_distance(x, j->points + (size_t)q * (size_t)j->dim, j->dim);
         m++;
     }
+    if (m < j->k) return -1;
     sort_candidates(c, m);
     for (int t = 0; t < j->k; t++) j->knn[p * (size_t)j->k + (size_t)t] = c[t].index;
+    return 0;
 }
 
 static void query_blocks(void *ctx, size_t begin, size_t end, int worker) {
@@ -111,7 +114,10 @@ static void query_blocks(void *ctx, size_t begin, size_t end, int worker) {
             return;
         }
         for (size_t r = 0; r < rows; r++)
-            keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m);
+            if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m) != 0) {
+                atomic_store(&j->failed, 1);
+                return;
+            }
     }
 }
 

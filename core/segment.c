@@ -77,10 +77,15 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
     if (in->n > UINT32_MAX - 1)
         return ps_fail(err, PS_ERR_INVALID, "too many points (%zu)", in->n);
     size_t count = in->n * (size_t)in->dim;
-    for (size_t i = 0; i < count; i++)
+    for (size_t i = 0; i < count; i++) {
         if (!isfinite(in->points[i]))
             return ps_fail(err, PS_ERR_INVALID, "point %zu has a non-finite coordinate",
                            i / (size_t)in->dim);
+        if (fabs(in->points[i]) > PS_MAX_COORDINATE)
+            return ps_fail(err, PS_ERR_INVALID,
+                           "point %zu has a coordinate beyond +-%g (squared distances "
+                           "would overflow)", i / (size_t)in->dim, PS_MAX_COORDINATE);
+    }
     return ps_params_check(p, err);
 }
 

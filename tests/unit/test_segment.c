@@ -315,6 +315,8 @@ static void test_bad_input(void) {
     expect_invalid(pts, 20, 3, "NaN");
     pts[17] = INFINITY;
     expect_invalid(pts, 20, 3, "Inf");
+    pts[17] = 1.5e297; /* finite, but its square is not */
+    expect_invalid(pts, 20, 3, "huge coordinate");
 }
 
 static int progress_calls, last_phase;
