@@ -33,6 +33,7 @@ typedef struct cut_context {
     uint32_t *local_of;      /* #P local index in the current pair, or NOT_LOCAL */
     uint32_t *members;       /* #P points of the current pair, increasing */
     int *old_group;          /* #P groups of the members before the cut */
+    double mean_edge;        /* mean Euclidean kNN edge length */
     ps_graph sub;            /* the pair's subgraph, Euclidean weights */
     double *sub_capacity;    /* #E */
     uint32_t *sources;       /* #P boundary points, local */
@@ -70,6 +71,7 @@ static void edge_capacities(cut_context *cx) {
             sum_ang += ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
         }
     double L = sum_len / (double)edges;
+    cx->mean_edge = L;
     double A0 = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
@@ -117,7 +119,8 @@ static size_t build_subgraph(cut_context *cx, size_t m) {
     return n_sources;
 }
 
-/* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent. */
+/* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
+ * most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths. */
 static double band_width(const cut_context *cx, size_t m, int a) {
     double extent_a = 0, extent_b = 0;
     for (size_t v = 0; v < m; v++) {
@@ -126,7 +129,8 @@ static double band_width(const cut_context *cx, size_t m, int a) {
         if (cx->old_group[v] == a) extent_a = fmax(extent_a, d);
         else extent_b = fmax(extent_b, d);
     }
-    return PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b);
+    return fmin(PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b),
+                PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
 }
 
 /* Band points in local order; ties to the terminals; returns the count. */

@@ -11,7 +11,8 @@
  *   - band: the points within geodesic (Euclidean edge length) distance
  *     w of the shared boundary, w = PS_BOUNDARY_CUT_BAND x the smaller of
  *     the two segments' extents (each segment's largest distance from the
- *     boundary), so the band scales with the part and never swallows it;
+ *     boundary), so the band scales with the part and never swallows it,
+ *     and at most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths;
  *   - network: band points; A's points outside the band are tied to the
  *     source, B's to the sink, and every supernode's sink point to its own
  *     side (sinks never move, so no segment loses all its supernodes);
@@ -41,6 +42,10 @@
  * capacities with the distance from the old boundary did not help. */
 #define PS_BOUNDARY_CUT_BAND 0.3
 #define PS_BOUNDARY_CUT_ANGLE 0.5
+/* The band is also at most this many mean edge lengths wide, so the cost
+ * grows with the boundary's length, not the parts' area, on dense scans
+ * (1M points: 36 s without the cap). */
+#define PS_BOUNDARY_CUT_MAX_EDGES 20
 
 typedef struct ps_boundary_cut_input {
     const ps_graph *graph;   /* kNN graph on #P points (its weights are not used) */
