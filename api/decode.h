@@ -47,6 +47,12 @@ int ps_decode_text(const char *bytes, size_t len, ps_format fmt,
 int ps_decode_json(const char *bytes, size_t len, const ps_decode_limits *lim,
                    ps_pointset *out, ps_api_error *err);
 
+/* A labels file: whitespace-separated decimal ints (one per line), as
+ * `pointseg segment --output labels` writes and the benchmark's .seg files
+ * are.  values malloc'ed #count.  Errors name the line (400). */
+int ps_decode_labels(const char *bytes, size_t len, int **values, size_t *count,
+                     ps_api_error *err);
+
 /* Reads a whole file ("-" = stdin) into a malloc'ed buffer. */
 int ps_read_file(const char *path, char **bytes, size_t *len, ps_api_error *err);
 

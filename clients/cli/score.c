@@ -33,39 +33,6 @@ static const char score_usage[] =
     "Exit status: 0 ok, 1 out of memory, 2 bad usage, unreadable input or a\n"
     "count that does not match the mesh.\n";
 
-/* Parses whitespace-separated decimal ints from a buffer; 0 or -1 with a
- * message naming the file and line. */
-static int parse_int_list(const char *p, const char *end, const char *name,
-                          int **values, size_t *count) {
-    size_t n = 0, room = 1024, line = 1;
-    int *v = malloc(room * sizeof *v);
-    while (v) {
-        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n'))
-            line += *p++ == '\n';
-        if (p == end) { *values = v; *count = n; return 0; }
-        int negative = *p == '-';
-        if (*p == '-' || *p == '+') p++;
-        long long x = 0;
-        const char *digits = p;
-        while (p < end && *p >= '0' && *p <= '9' && x <= 0x7fffffff) x = 10 * x + (*p++ - '0');
-        if (p == digits || x > 0x7fffffff || (p < end && !strchr(" \t\r\n", *p))) {
-            fprintf(stderr, "pointseg score: %s:%zu: expected an integer\n", name, line);
-            free(v);
-            return -1;
-        }
-        if (n == room) {
-            int *grown = realloc(v, 2 * room * sizeof *v);
-            if (!grown) break;
-            v = grown;
-            room *= 2;
-        }
-        v[n++] = (int)(negative ? -x : x);
-    }
-    free(v);
-    fprintf(stderr, "pointseg score: %s: out of memory\n", name);
-    return -1;
-}
-
 /* Reads a file of integers that must hold exactly `expected` of them
  * (`what` names them in the message); 0, or 2 with a message. */
 static int read_counted_ints(const char *path, size_t expected, const char *what,
@@ -77,9 +44,12 @@ static int read_counted_ints(const char *path, size_t expected, const char *what
         fprintf(stderr, "pointseg score: %s\n", err.message);
         return 2;
     }
-    int rc = parse_int_list(bytes, bytes + len, path, values, &count);
+    int rc = ps_decode_labels(bytes, len, values, &count, &err);
     free(bytes);
-    if (rc != 0) return 2;
+    if (rc != 0) {
+        fprintf(stderr, "pointseg score: %s: %s\n", path, err.message);
+        return err.http_status == 500 ? 1 : 2;
+    }
     if (count != expected) {
         fprintf(stderr, "pointseg score: %s has %zu labels but the mesh has %zu %s\n",
                 path, count, expected, what);

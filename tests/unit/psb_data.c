@@ -99,38 +99,6 @@ int ps_psb_load_mesh(const char *dir, int id, ps_pointset *mesh) {
     return 0;
 }
 
-/* Parses whitespace-separated decimal ints from [p, end); 0 or -1 with msg. */
-static int parse_ints(const char *p, const char *end, int **values, size_t *count,
-                      const char *name, char *msg, size_t cap) {
-    size_t n = 0, room = 1024, line = 1;
-    int *v = malloc(room * sizeof *v);
-    while (v) {
-        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n'))
-            line += *p++ == '\n';
-        if (p == end) { *values = v; *count = n; return 0; }
-        int negative = *p == '-';
-        p += negative || *p == '+';
-        long long x = 0;
-        const char *digits = p;
-        while (p < end && *p >= '0' && *p <= '9' && x <= 0x7fffffff) x = 10 * x + (*p++ - '0');
-        if (p == digits || x > 0x7fffffff || (p < end && !strchr(" \t\r\n", *p))) {
-            snprintf(msg, cap, "%s:%zu: expected an integer", name, line);
-            free(v);
-            return -1;
-        }
-        if (n == room) {
-            int *grown = realloc(v, 2 * room * sizeof *v);
-            if (!grown) break;
-            v = grown;
-            room *= 2;
-        }
-        v[n++] = (int)(negative ? -x : x);
-    }
-    free(v);
-    snprintf(msg, cap, "%s: out of memory", name);
-    return -1;
-}
-
 int ps_read_int_file(const char *path, int **values, size_t *count, char *msg,
                      size_t cap) {
     char *bytes = NULL;
@@ -140,7 +108,8 @@ int ps_read_int_file(const char *path, int **values, size_t *count, char *msg,
         snprintf(msg, cap, "%s", err.message);
         return -1;
     }
-    int rc = parse_ints(bytes, bytes + len, values, count, path, msg, cap);
+    int rc = ps_decode_labels(bytes, len, values, count, &err);
+    if (rc != 0) snprintf(msg, cap, "%s: %s", path, err.message);
     free(bytes);
     return rc;
 }
