@@ -4,25 +4,11 @@
 #include <string.h>
 
 #include "decode.h"
+#include "decode_check.h"
 #include "testlib.h"
 
-static int decodes(const char *text, ps_pointset *ps) {
-    ps_api_error err = {0, ""};
-    int rc = ps_decode(text, strlen(text), NULL, ps, &err);
-    if (rc) fprintf(stderr, "  unexpected error %d: %s\n", err.http_status, err.message);
-    return rc == 0;
-}
-
 static int fails(const char *text, const ps_decode_limits *lim, int status, const char *needle) {
-    ps_pointset ps;
-    ps_api_error err = {0, ""};
-    int rc = ps_decode_json(text, strlen(text), lim, &ps, &err);
-    int ok = rc == -1 && err.http_status == status && strstr(err.message, needle) &&
-             !ps.points && !ps.params;
-    if (!ok) fprintf(stderr, "  got %d %d \"%s\", wanted %d \"%s\"\n", rc, err.http_status,
-                     err.message, status, needle);
-    if (rc == 0) ps_pointset_free(&ps);
-    return ok;
+    return ps_check_decode_fails(ps_decode_json, text, strlen(text), lim, status, needle);
 }
 
 static const char *param(const ps_pointset *ps, const char *name) {
@@ -33,31 +19,31 @@ static const char *param(const ps_pointset *ps, const char *name) {
 
 static void test_nested_points_and_normals(void) {
     ps_pointset ps;
-    REQUIRE(decodes(" {\"points\": [[0, 1, 2], [3, 4, 5.5]],\n"
+    REQUIRE(ps_check_decodes(" {\"points\": [[0, 1, 2], [3, 4, 5.5]],\n"
                     "  \"normals\": [[0, 0, 1], [1, 0, 0]]}", &ps));
     CHECK(ps.n == 2 && ps.dim == 3 && ps.points[5] == 5.5 && ps.points[1] == 1);
     CHECK(ps.normals && ps.normals[2] == 1 && ps.normals[3] == 1);
     CHECK(ps.n_params == 0 && !ps.faces);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("{\"points\": [[0, 1], [2, 3], [4, 5]], \"dimension\": 2}", &ps));
+    REQUIRE(ps_check_decodes("{\"points\": [[0, 1], [2, 3], [4, 5]], \"dimension\": 2}", &ps));
     CHECK(ps.n == 3 && ps.dim == 2 && ps.points[5] == 5);
     ps_pointset_free(&ps);
 }
 
 static void test_flat_points(void) {
     ps_pointset ps;
-    REQUIRE(decodes("{\"dimension\": 3, \"points\": [0, 1, 2, 3, 4, 5],"
+    REQUIRE(ps_check_decodes("{\"dimension\": 3, \"points\": [0, 1, 2, 3, 4, 5],"
                     " \"normals\": [0, 0, 1, 0, 1, 0]}", &ps));
     CHECK(ps.n == 2 && ps.dim == 3 && ps.points[3] == 3 && ps.normals && ps.normals[4] == 1);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("{\"points\": [1, 2, 3, 4], \"dimension\": 4}", &ps));
+    REQUIRE(ps_check_decodes("{\"points\": [1, 2, 3, 4], \"dimension\": 4}", &ps));
     CHECK(ps.n == 1 && ps.dim == 4);
     ps_pointset_free(&ps);
 }
 
 static void test_params(void) {
     ps_pointset ps;
-    REQUIRE(decodes("{\"points\": [[0, 0], [1, 1]], \"params\": {\"k\": 7, \"ncut_threshold\":"
+    REQUIRE(ps_check_decodes("{\"points\": [[0, 0], [1, 1]], \"params\": {\"k\": 7, \"ncut_threshold\":"
                     " 0.1, \"x\": 0.25, \"big\": 1e300, \"centrality\": \"approx\", \"use_f2\":"
                     " true, \"use_minima\": false, \"include\": [\"centrality\", \"point_"
                     "supernode\"], \"none\": []}}", &ps));

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "decode.h"
+#include "decode_check.h"
 #include "testlib.h"
 
 typedef struct bytes_out {
@@ -49,15 +50,7 @@ static void put_value(bytes_out *b, const char *type, double v, int big) {
 
 static int decode_fails(const char *bytes, size_t len, const ps_decode_limits *lim, int status,
                         const char *needle) {
-    ps_pointset ps;
-    ps_api_error err = {0, ""};
-    int rc = ps_decode_ply(bytes, len, lim, &ps, &err);
-    int ok = rc == -1 && err.http_status == status && strstr(err.message, needle) &&
-             ps.points == NULL && ps.n == 0;
-    if (!ok) fprintf(stderr, "  got %d %d \"%s\", wanted %d \"%s\"\n", rc, err.http_status,
-                     err.message, status, needle);
-    if (rc == 0) ps_pointset_free(&ps);
-    return ok;
+    return ps_check_decode_fails(ps_decode_ply, bytes, len, lim, status, needle);
 }
 
 static int text_fails(const char *text, int status, const char *needle) {

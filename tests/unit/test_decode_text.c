@@ -6,24 +6,11 @@
 #include <unistd.h>
 
 #include "decode.h"
+#include "decode_check.h"
 #include "testlib.h"
 
-static int decodes(const char *text, ps_pointset *ps) {
-    ps_api_error err = {0, ""};
-    int rc = ps_decode(text, strlen(text), NULL, ps, &err);
-    if (rc) fprintf(stderr, "  unexpected error %d: %s\n", err.http_status, err.message);
-    return rc == 0;
-}
-
 static int fails(const char *text, const ps_decode_limits *lim, int status, const char *needle) {
-    ps_pointset ps;
-    ps_api_error err = {0, ""};
-    int rc = ps_decode(text, strlen(text), lim, &ps, &err);
-    int ok = rc == -1 && err.http_status == status && strstr(err.message, needle) && !ps.points;
-    if (!ok) fprintf(stderr, "  got %d %d \"%s\", wanted %d \"%s\"\n", rc, err.http_status,
-                     err.message, status, needle);
-    if (rc == 0) ps_pointset_free(&ps);
-    return ok;
+    return ps_check_decode_fails(ps_decode, text, strlen(text), lim, status, needle);
 }
 
 static void test_detect(void) {
@@ -49,17 +36,17 @@ static void test_detect(void) {
 
 static void test_off(void) {
     ps_pointset ps;
-    REQUIRE(decodes("OFF\n# a square and a triangle\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+    REQUIRE(ps_check_decodes("OFF\n# a square and a triangle\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
                     "2 2 2.5\n4 0 1 2 3\n3 1 4 2 255 0 0\n", &ps));
     CHECK(ps.n == 5 && ps.dim == 3 && ps.n_faces == 3 && !ps.normals);
     static const uint32_t want[] = {0, 1, 2, 0, 2, 3, 1, 4, 2};
     CHECK(ps.faces && !memcmp(ps.faces, want, sizeof want));
     CHECK_NEAR(ps.points[14], 2.5, 0);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("NOFF 2 0 0\n0 0 0 0 0 1\n1 0 0 0 1 0\n", &ps));
+    REQUIRE(ps_check_decodes("NOFF 2 0 0\n0 0 0 0 0 1\n1 0 0 0 1 0\n", &ps));
     CHECK(ps.n == 2 && ps.normals && ps.normals[2] == 1 && ps.normals[4] == 1 && !ps.faces);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("COFF\r\n1 0 0\r\n4 5 6 255 0 0 255\r\n", &ps));
+    REQUIRE(ps_check_decodes("COFF\r\n1 0 0\r\n4 5 6 255 0 0 255\r\n", &ps));
     CHECK(ps.n == 1 && ps.points[2] == 6 && !ps.normals);
     ps_pointset_free(&ps);
 }
@@ -85,7 +72,7 @@ static void test_off_errors(void) {
 
 static void test_obj(void) {
     ps_pointset ps;
-    REQUIRE(decodes("# cube corner\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0\n"
+    REQUIRE(ps_check_decodes("# cube corner\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0\n"
                     "vt 0 0\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nv 0 1 0\ns off\nf 1 2 3\n"
                     "f 1/1 3/1 4/1\nf -4/1/1 -3//1 -2/2/2 -1//3\nusemtl red\n", &ps));
     CHECK(ps.n == 4 && ps.dim == 3 && ps.n_faces == 4 && !ps.normals);
@@ -93,7 +80,7 @@ static void test_obj(void) {
     CHECK(ps.faces && !memcmp(ps.faces, want, sizeof want));
     CHECK(ps.points[4] == 0 && ps.points[6] == 1 && ps.points[7] == 1);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("v 0 0 0\nvn 1 0 0\nv 1 2 3\nvn 0 1 0\n", &ps));
+    REQUIRE(ps_check_decodes("v 0 0 0\nvn 1 0 0\nv 1 2 3\nvn 0 1 0\n", &ps));
     CHECK(ps.n == 2 && ps.normals && ps.normals[0] == 1 && ps.normals[4] == 1 && !ps.faces);
     ps_pointset_free(&ps);
 }
@@ -111,16 +98,16 @@ static void test_obj_errors(void) {
 
 static void test_xyz(void) {
     ps_pointset ps;
-    REQUIRE(decodes("# scan\n1 2 3\n4\t5  6\r\n\n7 8 9 # last\n", &ps));
+    REQUIRE(ps_check_decodes("# scan\n1 2 3\n4\t5  6\r\n\n7 8 9 # last\n", &ps));
     CHECK(ps.n == 3 && ps.dim == 3 && !ps.normals && ps.points[8] == 9 && ps.points[4] == 5);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("x,y,z,nx,ny,nz\n1,2,3,0,0,1\n4, 5, 6, 1 ,0,0\n", &ps));
+    REQUIRE(ps_check_decodes("x,y,z,nx,ny,nz\n1,2,3,0,0,1\n4, 5, 6, 1 ,0,0\n", &ps));
     CHECK(ps.n == 2 && ps.dim == 3 && ps.normals && ps.points[3] == 4 && ps.normals[3] == 1);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("1;2\n3;4\n-5e-1;6\n", &ps));
+    REQUIRE(ps_check_decodes("1;2\n3;4\n-5e-1;6\n", &ps));
     CHECK(ps.n == 3 && ps.dim == 2 && ps.points[4] == -0.5);
     ps_pointset_free(&ps);
-    REQUIRE(decodes("1 2 3 4\n5 6 7 8\n", &ps));
+    REQUIRE(ps_check_decodes("1 2 3 4\n5 6 7 8\n", &ps));
     CHECK(ps.n == 2 && ps.dim == 4 && ps.points[7] == 8);
     ps_pointset_free(&ps);
 }

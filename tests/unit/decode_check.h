@@ -1,0 +1,22 @@
+/*
+ * decode_check.h: the checks the decoder tests share: a text decodes, or a
+ * decoder fails with the expected status and message and leaves nothing
+ * allocated.  Both print what they got on stderr when it is not expected.
+ */
+#ifndef PS_DECODE_CHECK_H
+#define PS_DECODE_CHECK_H
+
+#include "decode.h"
+
+typedef int (*ps_decode_fn)(const char *bytes, size_t len, const ps_decode_limits *lim,
+                            ps_pointset *out, ps_api_error *err);
+
+/* ps_decode of a NUL-terminated text succeeds (ps filled; free it). */
+int ps_check_decodes(const char *text, ps_pointset *ps);
+
+/* decode(bytes) fails with http status `status`, a message containing
+ * `needle`, and an empty point set. */
+int ps_check_decode_fails(ps_decode_fn decode, const char *bytes, size_t len,
+                          const ps_decode_limits *lim, int status, const char *needle);
+
+#endif
