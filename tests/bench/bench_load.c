@@ -35,6 +35,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "daemon_proc.h"
 #include "decode.h"
 #include "encode.h"
 #include "params_table.h"
@@ -96,11 +97,6 @@ static double now_s(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static void sleep_ms(long ms) {
-    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
-    nanosleep(&ts, NULL);
 }
 
 static int parse_options(int argc, char **argv, options *o) {
@@ -216,25 +212,6 @@ static void free_bodies(body_set *set) {
 
 /* ---- the daemon ---------------------------------------------------------- */
 
-static int free_port(void) {
-    struct sockaddr_in a = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
-    socklen_t len = sizeof a;
-    int fd = socket(AF_INET, SOCK_STREAM, 0), port = -1;
-    if (fd < 0) return -1;
-    if (!bind(fd, (struct sockaddr *)&a, sizeof a) && !getsockname(fd, (struct sockaddr *)&a, &len))
-        port = ntohs(a.sin_port);
-    close(fd);
-    return port;
-}
-
-static int daemon_path(const char *argv0, char *out, size_t cap) {
-    char self[4096];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n > 0) self[n] = 0;
-    else snprintf(self, sizeof self, "%s", argv0);
-    return snprintf(out, cap, "%s/../pointsegd", dirname(self)) < (int)cap ? 0 : -1;
-}
-
 static int get_ok(const char *url) {
     CURL *c = curl_easy_init();
     long status = 0;
@@ -259,28 +236,13 @@ static void exec_daemon(const char *path, int port) {
     _exit(127);
 }
 
-static int daemon_stop(daemon_proc *d) {
-    int status = 0;
-    if (d->pid <= 0) return -1;
-    kill(d->pid, SIGTERM);
-    for (int i = 0; i < 500; i++) {
-        if (waitpid(d->pid, &status, WNOHANG) == d->pid) {
-            d->pid = 0;
-            return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        }
-        sleep_ms(20);
-    }
-    kill(d->pid, SIGKILL);
-    waitpid(d->pid, &status, 0);
-    d->pid = 0;
-    return -1;
-}
+static int daemon_stop(daemon_proc *d) { return ps_test_daemon_stop(&d->pid, 10.0); }
 
-static int daemon_start(const char *argv0, daemon_proc *d) {
+static int daemon_start(daemon_proc *d) {
     char path[4200], health[96];
-    int port = free_port();
+    int port = ps_test_free_port();
     d->pid = 0;
-    if (daemon_path(argv0, path, sizeof path) || access(path, X_OK) || port <= 0) {
+    if (ps_test_daemon_path(path, sizeof path) || access(path, X_OK) || port <= 0) {
         fprintf(stderr, "bench_load: cannot run %s\n", path);
         return -1;
     }
@@ -292,7 +254,7 @@ static int daemon_start(const char *argv0, daemon_proc *d) {
     for (int i = 0; i < 400; i++) {
         if (get_ok(health)) return 0;
         if (waitpid(d->pid, NULL, WNOHANG) == d->pid) break;
-        sleep_ms(25);
+        ps_test_sleep_ms(25);
     }
     fprintf(stderr, "bench_load: %s did not become healthy\n", path);
     daemon_stop(d);
@@ -590,7 +552,7 @@ int main(int argc, char **argv) {
     print_machine(&o);
     if (!o.synthetic) load_psb_bodies(&bodies);
     if (!bodies.n) make_synthetic_bodies(&bodies);
-    if (!bodies.n || daemon_start(argv[0], &d)) return free_bodies(&bodies), 1;
+    if (!bodies.n || daemon_start(&d)) return free_bodies(&bodies), 1;
     printf("daemon: %s (default settings)\n\n", d.url);
     print_bodies(&bodies);
     int failed = run_load(&d, &bodies, &o, &st) != 0;

@@ -10,6 +10,7 @@
 #include "pointseg.h"
 #include "pointseg_client.h"
 #include "shapes.h"
+#include "daemon_proc.h"
 #include "testlib.h"
 
 #include <arpa/inet.h>
@@ -44,30 +45,6 @@ typedef struct ps_daemon {
 static int ps_daemon_stop(ps_daemon *d, double timeout_s);
 
 
-static void sleep_ms(long ms) {
-    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
-    nanosleep(&ts, NULL);
-}
-
-static int free_port(void) {
-    struct sockaddr_in a = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
-    socklen_t len = sizeof a;
-    int fd = socket(AF_INET, SOCK_STREAM, 0), port = -1;
-    if (fd < 0) return -1;
-    if (!bind(fd, (struct sockaddr *)&a, sizeof a) && !getsockname(fd, (struct sockaddr *)&a, &len))
-        port = ntohs(a.sin_port);
-    close(fd);
-    return port;
-}
-
-static int daemon_path(char *out, size_t cap) {
-    char self[4096];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n <= 0) return -1;
-    self[n] = 0;
-    return snprintf(out, cap, "%s/../pointsegd", dirname(self)) < (int)cap ? 0 : -1;
-}
-
 static int ps_daemon_healthy(const ps_daemon *d) {
     ps_client_response r;
     int ok = ps_client_request(&d->client, "GET", "/healthz", NULL, NULL, &r) == 0 && r.status == 200;
@@ -92,8 +69,8 @@ static void exec_daemon(const char *path, int port, const char *const *args) {
 static int ps_daemon_start(ps_daemon *d, const char *const *args) {
     char path[4200];
     memset(d, 0, sizeof *d);
-    if (daemon_path(path, sizeof path) || access(path, X_OK)) return -1;
-    d->port = free_port();
+    if (ps_test_daemon_path(path, sizeof path) || access(path, X_OK)) return -1;
+    d->port = ps_test_free_port();
     if (d->port <= 0) return -1;
     snprintf(d->base_url, sizeof d->base_url, "http://127.0.0.1:%d", d->port);
     d->client = (ps_client){d->base_url, NULL, 60000};
@@ -103,27 +80,14 @@ static int ps_daemon_start(ps_daemon *d, const char *const *args) {
     for (int i = 0; i < 200; i++) {
         if (ps_daemon_healthy(d)) return 0;
         if (waitpid(d->pid, NULL, WNOHANG) == d->pid) return d->pid = 0, -1;
-        sleep_ms(25);
+        ps_test_sleep_ms(25);
     }
     ps_daemon_stop(d, 1);
     return -1;
 }
 
 static int ps_daemon_stop(ps_daemon *d, double timeout_s) {
-    int status;
-    if (d->pid <= 0) return -1;
-    kill(d->pid, SIGTERM);
-    for (double waited = 0; waited < timeout_s; waited += 0.02) {
-        if (waitpid(d->pid, &status, WNOHANG) == d->pid) {
-            d->pid = 0;
-            return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        }
-        sleep_ms(20);
-    }
-    kill(d->pid, SIGKILL);
-    waitpid(d->pid, &status, 0);
-    d->pid = 0;
-    return -1;
+    return ps_test_daemon_stop(&d->pid, timeout_s);
 }
 
 static char *ps_points_xyz(const double *pts, size_t n, size_t *len) {
@@ -538,7 +502,7 @@ static double seconds_now(void) {
 static int wait_state(const ps_daemon *d, const char *id, const char *state, double timeout_s) {
     char needle[64];
     snprintf(needle, sizeof needle, "\"status\":\"%s\"", state);
-    for (double t0 = seconds_now(); seconds_now() - t0 < timeout_s; sleep_ms(20)) {
+    for (double t0 = seconds_now(); seconds_now() - t0 < timeout_s; ps_test_sleep_ms(20)) {
         ps_client_response r;
         int hit = ps_client_poll(&d->client, id, &r) == 0 && r.body && strstr(r.body, needle);
         ps_client_response_free(&r);
@@ -598,7 +562,7 @@ static void test_client_going_away_cancels(void) {
     CHECK(ps_client_segment(&impatient, &body, "centrality=exact", &r) != 0);
     ps_client_response_free(&r);
     int cancelled = 0;
-    for (double t0 = seconds_now(); !cancelled && seconds_now() - t0 < 5; sleep_ms(50)) {
+    for (double t0 = seconds_now(); !cancelled && seconds_now() - t0 < 5; ps_test_sleep_ms(50)) {
         cancelled = get_status(&d, "/metrics", &r) == 200 &&
                     strstr(r.body, "pointseg_jobs_finished_total{outcome=\"cancelled\"} 1");
         ps_client_response_free(&r);
@@ -620,7 +584,7 @@ static void test_sigterm_drains(void) {
     REQUIRE(ps_daemon_start(&d, (const char *const[]){"--threads", "1", NULL}) == 0);
     client_run run = {&d, 0};
     pthread_create(&t, NULL, drained_client, &run);
-    sleep_ms(60); /* the request is in: its job is queued or running */
+    ps_test_sleep_ms(60); /* the request is in: its job is queued or running */
     int status = ps_daemon_stop(&d, 20);
     pthread_join(t, NULL);
     CHECK_MSG(status == 0, "pointsegd exited with %d", status);
@@ -650,7 +614,7 @@ static void test_port_in_use_refused(void) {
     ps_daemon d;
     char path[4200], cmd[4400];
     REQUIRE(ps_daemon_start(&d, NULL) == 0);
-    REQUIRE(daemon_path(path, sizeof path) == 0);
+    REQUIRE(ps_test_daemon_path(path, sizeof path) == 0);
     snprintf(cmd, sizeof cmd, "timeout 10 %s --port %d --bind 127.0.0.1 --quiet 2>/dev/null",
              path, d.port);
     int status = system(cmd);

@@ -8,6 +8,7 @@
  * Starts BUILD/pointsegd (beside BUILD/itests/) on a free port.
  */
 #include "pointseg_client.h"
+#include "daemon_proc.h"
 #include "testlib.h"
 
 #include <arpa/inet.h>
@@ -30,22 +31,6 @@
 static pid_t daemon_pid;
 static char base_url[64];
 
-static void sleep_ms(long ms) {
-    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
-    nanosleep(&ts, NULL);
-}
-
-static int free_port(void) {
-    struct sockaddr_in a = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
-    socklen_t len = sizeof a;
-    int fd = socket(AF_INET, SOCK_STREAM, 0), port = -1;
-    if (fd < 0) return -1;
-    if (!bind(fd, (struct sockaddr *)&a, sizeof a) && !getsockname(fd, (struct sockaddr *)&a, &len))
-        port = ntohs(a.sin_port);
-    close(fd);
-    return port;
-}
-
 static long request(const char *body, size_t len, ps_client_response *r) {
     ps_client c = {base_url, NULL, 30000};
     ps_client_body b = {body, len, "multipart/form-data; boundary=" BOUNDARY, NULL};
@@ -54,13 +39,10 @@ static long request(const char *body, size_t len, ps_client_response *r) {
 
 /* Starts pointsegd once for every test; 0 or -1. */
 static int need_daemon(void) {
-    char self[4096], path[4200], port_text[16];
+    char path[4200], port_text[16];
     if (daemon_pid > 0) return 0;
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    int port = free_port();
-    if (n <= 0 || port <= 0) return -1;
-    self[n] = 0;
-    snprintf(path, sizeof path, "%s/../pointsegd", dirname(self));
+    int port = ps_test_free_port();
+    if (port <= 0 || ps_test_daemon_path(path, sizeof path) != 0) return -1;
     snprintf(port_text, sizeof port_text, "%d", port);
     snprintf(base_url, sizeof base_url, "http://127.0.0.1:%d", port);
     daemon_pid = fork();
@@ -76,7 +58,7 @@ static int need_daemon(void) {
         int up = ps_client_request(&c, "GET", "/healthz", NULL, NULL, &r) == 0 && r.status == 200;
         ps_client_response_free(&r);
         if (up) return 0;
-        sleep_ms(25);
+        ps_test_sleep_ms(25);
     }
     return -1;
 }
