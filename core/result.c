@@ -29,14 +29,9 @@ static int by_size_then_first(const void *a, const void *b) {
 static int number_segments(const ps_result_parts *pp, int *segment_of_group) {
     int n_tree = pp->n_tree;
     group_order *order = calloc((size_t)n_tree, sizeof *order);
-    int *slot = malloc((size_t)n_tree * sizeof *slot);
-    if (!order || !slot) {
-        free(order);
-        free(slot);
-        return -1;
-    }
+    if (!order) return -1;
     for (int t = 0; t < n_tree; t++) {
-        slot[t] = -1;
+        segment_of_group[t] = -1;
         order[t] = (group_order){.group = t, .size = 0, .first_point = SIZE_MAX};
     }
     for (size_t i = 0; i < pp->n_input; i++) {
@@ -46,12 +41,10 @@ static int number_segments(const ps_result_parts *pp, int *segment_of_group) {
     qsort(order, (size_t)n_tree, sizeof *order, by_size_then_first);
     int n_segments = 0;
     while (n_segments < n_tree && order[n_segments].size > 0) {
-        slot[order[n_segments].group] = n_segments;
+        segment_of_group[order[n_segments].group] = n_segments;
         n_segments++;
     }
-    memcpy(segment_of_group, slot, (size_t)n_tree * sizeof *slot);
     free(order);
-    free(slot);
     return n_segments;
 }
 
