@@ -4,7 +4,8 @@
  * Validates the input, removes duplicate points, then runs features (kNN
  * graph, centrality, flow to sinks), hierarchy (normalized cuts over the
  * supernodes) and refinement (small features merge; with method auto in
- * 3-D, boundaries then move onto concave creases, boundary_cut.h), timing
+ * 3-D, boundaries then move onto concave creases, boundary_cut.h, and
+ * segments whose boundary is no crease merge, crease_merge.h), timing
  * each phase, reporting progress and honouring the cancel flag between
  * steps.  The result is assembled by result.c; duplicates get their
  * representative's answers.
@@ -12,6 +13,7 @@
 #include "boundary_cut.h"
 #include "centrality.h"
 #include "crease.h"
+#include "crease_merge.h"
 #include "dedup.h"
 #include "f2_split.h"
 #include "knn_graph.h"
@@ -212,6 +214,19 @@ static ps_status boundary_cut(pipeline *pl, ps_error *err) {
     return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
 }
 
+static ps_status crease_merge(pipeline *pl, ps_error *err) {
+    ps_crease_merge_input cm = {
+        .graph = &pl->graph,
+        .points = pl->points,
+        .normals = pl->normals,
+        .f = pl->f,
+        .n_groups = pl->n_tree,
+        .threshold = PS_CREASE_MERGE_THRESHOLD,
+    };
+    return ps_crease_merge(&cm, pl->group_of_point, pl->group_of_leaf, &pl->merges,
+                           &pl->n_merges, err);
+}
+
 static ps_status phase_refine(pipeline *pl, ps_error *err) {
     pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
     if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
@@ -220,6 +235,7 @@ static ps_status phase_refine(pipeline *pl, ps_error *err) {
                              pl->group_of_leaf, &pl->merges, &pl->n_merges, err);
     if (st == PS_OK) st = point_groups(pl, err);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
+    if (st == PS_OK && pl->normals) st = crease_merge(pl, err);
     return st;
 }
 

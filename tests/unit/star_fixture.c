@@ -1,0 +1,37 @@
+/*
+ * star_fixture.c: the star test fixture of star_fixture.h.
+ */
+#include "star_fixture.h"
+
+#include "normals.h"
+#include "shapes.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+double ps_star_along_arm(const double *x, int k) {
+    int axis = (k - 1) / 2;
+    return (k - 1) % 2 ? -x[axis] : x[axis];
+}
+
+int ps_star_build(ps_star *s) {
+    memset(s, 0, sizeof *s);
+    s->points = ps_shape_star(0, &s->n, &s->part);
+    s->normals = s->points ? malloc(s->n * 3 * sizeof *s->normals) : NULL;
+    int *component = s->normals ? malloc(s->n * sizeof *component) : NULL;
+    ps_error err = {0};
+    int ok = component && ps_knn_graph_build(s->points, s->n, 3, 7, 1, &s->graph, &err) == PS_OK;
+    int nc = ok ? ps_graph_components(&s->graph, component) : 0;
+    ok = ok && ps_normals_build(&s->graph, s->points, NULL, component, nc, s->normals, &err) ==
+                   PS_OK;
+    free(component);
+    return ok;
+}
+
+void ps_star_free(ps_star *s) {
+    free(s->points);
+    free(s->normals);
+    free(s->part);
+    ps_graph_free(&s->graph);
+    memset(s, 0, sizeof *s);
+}

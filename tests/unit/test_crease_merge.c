@@ -1,0 +1,127 @@
+/*
+ * test_crease_merge.c: the crease merge (crease_merge.h) on the star of
+ * star_fixture.h.  Its true parts meet along concave creases and stay
+ * apart; the same parts cut once more across smooth surface (every arm
+ * halfway along, the sphere through its equator) merge back into exactly
+ * the true parts, with one merge per extra piece recorded (smaller piece
+ * into larger, feature size from f), leaves renamed to their survivor, and
+ * the same answer on every run.
+ */
+#include "crease_merge.h"
+#include "star_fixture.h"
+#include "testlib.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define N_PIECES (2 * PS_STAR_PARTS) /* piece k + PS_STAR_PARTS: far half of part k */
+
+/* Each true part, its far half (arm beyond 2.3, sphere below z = 0) apart. */
+static void split_parts(const ps_star *s, int *group) {
+    for (size_t p = 0; p < s->n; p++) {
+        const double *x = s->points + 3 * p;
+        int part = s->part[p];
+        int far = part == 0 ? x[2] < 0 : ps_star_along_arm(x, part) > 2.3;
+        group[p] = part + (far ? PS_STAR_PARTS : 0);
+    }
+}
+
+static ps_status run_merge(const ps_star *s, const double *f, int *group, int *leaf,
+                           ps_merge **merges, int *n_merges) {
+    ps_crease_merge_input in = {.graph = &s->graph, .points = s->points,
+                                .normals = s->normals, .f = f, .n_groups = N_PIECES,
+                                .threshold = PS_CREASE_MERGE_THRESHOLD};
+    for (int t = 0; t < N_PIECES; t++) leaf[t] = t;
+    *merges = NULL, *n_merges = 0;
+    ps_error err = {0};
+    return ps_crease_merge(&in, group, leaf, merges, n_merges, &err);
+}
+
+/* f = distance from the origin: feature sizes are easy to predict. */
+static double *radius(const ps_star *s) {
+    double *f = malloc(s->n * sizeof *f);
+    for (size_t p = 0; f && p < s->n; p++) {
+        const double *x = s->points + 3 * p;
+        f[p] = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    }
+    return f;
+}
+
+static void test_true_parts_stay_apart(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    double *f = radius(&s);
+    int *group = malloc(s.n * sizeof *group), leaf[N_PIECES];
+    REQUIRE(f && group);
+    memcpy(group, s.part, s.n * sizeof *group);
+    ps_merge *merges;
+    int n_merges;
+    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
+    CHECK_MSG(n_merges == 0, "%d merges", n_merges);
+    CHECK(memcmp(group, s.part, s.n * sizeof *group) == 0);
+    free(merges);
+    free(group);
+    free(f);
+    ps_star_free(&s);
+}
+
+static void test_smooth_cuts_merge_back(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    double *f = radius(&s);
+    int *group = malloc(s.n * sizeof *group), leaf[N_PIECES];
+    REQUIRE(f && group);
+    split_parts(&s, group);
+    ps_merge *merges;
+    int n_merges;
+    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
+    CHECK_MSG(n_merges == PS_STAR_PARTS, "%d merges", n_merges);
+    /* every part is one group again, and no two parts share one */
+    int group_of_part[PS_STAR_PARTS];
+    for (int k = 0; k < PS_STAR_PARTS; k++) group_of_part[k] = -1;
+    size_t wrong = 0;
+    for (size_t p = 0; p < s.n; p++) {
+        int k = s.part[p];
+        if (group_of_part[k] < 0) group_of_part[k] = group[p];
+        wrong += group[p] != group_of_part[k];
+    }
+    CHECK_MSG(wrong == 0, "%zu points off their part's group", wrong);
+    for (int a = 0; a < PS_STAR_PARTS; a++)
+        for (int b = a + 1; b < PS_STAR_PARTS; b++) CHECK(group_of_part[a] != group_of_part[b]);
+    for (int i = 0; i < n_merges; i++) {
+        CHECK(merges[i].segment != merges[i].into);
+        CHECK(merges[i].feature_size > 0);
+        CHECK(leaf[merges[i].segment] == leaf[merges[i].into]);
+    }
+    free(merges);
+    free(group);
+    free(f);
+    ps_star_free(&s);
+}
+
+static void test_deterministic(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    double *f = radius(&s);
+    int *first = malloc(s.n * sizeof *first), *again = malloc(s.n * sizeof *again);
+    int leaf[N_PIECES], leaf_again[N_PIECES];
+    REQUIRE(f && first && again);
+    split_parts(&s, first);
+    split_parts(&s, again);
+    ps_merge *m1, *m2;
+    int n1, n2;
+    CHECK(run_merge(&s, f, first, leaf, &m1, &n1) == PS_OK);
+    CHECK(run_merge(&s, f, again, leaf_again, &m2, &n2) == PS_OK);
+    CHECK(memcmp(first, again, s.n * sizeof *first) == 0);
+    CHECK(memcmp(leaf, leaf_again, sizeof leaf) == 0);
+    CHECK(n1 == n2 && memcmp(m1, m2, (size_t)n1 * sizeof *m1) == 0);
+    free(m1);
+    free(m2);
+    free(first);
+    free(again);
+    free(f);
+    ps_star_free(&s);
+}
+
+PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_smooth_cuts_merge_back),
+             TEST(test_deterministic))
