@@ -1,31 +1,53 @@
 /* main.c: pointsegd start-up: configuration, the job backend, the HTTP
  * server; then waits for SIGTERM or SIGINT and drains: stop accepting, let
- * jobs finish (bounded by --drain-seconds), answer, exit 0. */
+ * jobs finish (bounded by --drain-seconds), answer, exit 0.
+ *
+ * The stop signals get a handler that posts a semaphore main waits on,
+ * rather than being blocked for sigwait: libraries start threads before
+ * main runs (OpenBLAS does, in its constructor), and a blocked-everywhere
+ * scheme cannot reach those; a signal landing there would kill the
+ * process.  With a handler, whichever thread takes it, main wakes. */
 #include "config.h"
 #include "http.h"
 #include "jobs.h"
 
+#include <errno.h>
+#include <semaphore.h>
 #include <signal.h>
 #include <stdio.h>
 
 #define ANSWER_SECONDS 5.0
 
-static void block_stop_signals(sigset_t *set) {
-    sigemptyset(set);
-    sigaddset(set, SIGTERM);
-    sigaddset(set, SIGINT);
-    pthread_sigmask(SIG_BLOCK, set, NULL);
+static sem_t stop_posted;
+static volatile sig_atomic_t stop_signal;
+
+static void on_stop_signal(int sig) {
+    stop_signal = sig;
+    sem_post(&stop_posted); /* async-signal-safe */
+}
+
+static int catch_stop_signals(void) {
+    struct sigaction sa = {.sa_handler = on_stop_signal, .sa_flags = SA_RESTART};
+    sigemptyset(&sa.sa_mask);
     signal(SIGPIPE, SIG_IGN);
+    return sem_init(&stop_posted, 0, 0) == 0 && sigaction(SIGTERM, &sa, NULL) == 0 &&
+           sigaction(SIGINT, &sa, NULL) == 0;
+}
+
+static int wait_for_stop_signal(void) {
+    while (sem_wait(&stop_posted) != 0 && errno == EINTR) continue;
+    return stop_signal;
 }
 
 int main(int argc, char **argv) {
     ps_config cfg;
-    sigset_t stop;
-    int sig = 0;
     char why[256];
     int rc = ps_config_load(&cfg, argc, argv, stdout, stderr);
     if (rc) return rc > 0 ? 0 : 2;
-    block_stop_signals(&stop); /* before any thread starts: all inherit the mask */
+    if (!catch_stop_signals()) {
+        fprintf(stderr, "pointsegd: cannot install the SIGTERM handler\n");
+        return 1;
+    }
     ps_jobs_config jc = {cfg.threads, cfg.queue_size, cfg.job_ttl, cfg.max_jobs_kept, cfg.replica_name};
     ps_jobs *jobs = ps_jobs_start(&jc);
     if (!jobs) {
@@ -41,7 +63,7 @@ int main(int argc, char **argv) {
     }
     fprintf(stderr, "pointsegd: listening on http://%s:%d (%d workers, queue %d)\n", cfg.bind,
             ps_http_port(http), cfg.threads, cfg.queue_size);
-    sigwait(&stop, &sig);
+    int sig = wait_for_stop_signal();
     fprintf(stderr, "pointsegd: signal %d, draining\n", sig);
     ps_http_quiesce(http);
     ps_jobs_drain(jobs, cfg.drain_seconds);

@@ -42,10 +42,14 @@ int ps_test_daemon_stop(pid_t *pid, double timeout_s) {
     for (double waited = 0; waited < timeout_s; waited += 0.02) {
         if (waitpid(*pid, &status, WNOHANG) == *pid) {
             *pid = 0;
-            return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            if (WIFEXITED(status)) return WEXITSTATUS(status);
+            fprintf(stderr, "pointsegd was killed by signal %d after SIGTERM\n",
+                    WIFSIGNALED(status) ? WTERMSIG(status) : -1);
+            return -1;
         }
         ps_test_sleep_ms(20);
     }
+    fprintf(stderr, "pointsegd still running %.0f s after SIGTERM; SIGKILL\n", timeout_s);
     kill(*pid, SIGKILL);
     waitpid(*pid, &status, 0);
     *pid = 0;

@@ -19,7 +19,7 @@ int ps_test_free_port(void);
 int ps_test_daemon_path(char *out, size_t cap);
 
 /* SIGTERM, then wait up to timeout_s (SIGKILL after that); *pid becomes 0.
- * Returns the exit status, or -1 (killed, or no process). */
+ * Returns the exit status, or -1 (killed, or no process; stderr says which). */
 int ps_test_daemon_stop(pid_t *pid, double timeout_s);
 
 #endif
