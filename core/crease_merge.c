@@ -2,8 +2,9 @@
  * crease_merge.c: segments joined by a boundary that is not a concave
  * crease merge (crease_merge.h).
  *
- * The boundaries are gathered once, in O(E): one record per kNN edge
- * joining two segments, sorted and summed into one record per pair.  A
+ * The boundaries are gathered once, in O(E): each point's crease strength
+ * (its most concave incident edge), then one record per kNN edge joining
+ * two segments, sorted and summed into one record per pair.  A
  * merge renames the loser in every record and sums the records again; there
  * are only as many records as adjacent pairs, so the steps are cheap.
  */
@@ -15,7 +16,7 @@
 
 typedef struct boundary {
     int a, b;      /* segment ids, a < b */
-    double ang;    /* sum of the concave angular term over its edges */
+    long creased;  /* edges with an end on a crease */
     long edges;    /* kNN edges joining a and b */
 } boundary;
 
@@ -27,7 +28,6 @@ typedef struct merge_state {
     int *alias;       /* #n_groups the segment it merged into, or itself */
     boundary *list;   /* #count */
     size_t count;
-    double mean_ang;  /* mean angular term over every edge */
 } merge_state;
 
 static int compare_boundary(const void *x, const void *y) {
@@ -44,7 +44,7 @@ static void coalesce(merge_state *s) {
     for (size_t i = 0; i < s->count; i++) {
         if (s->list[i].a == s->list[i].b) continue;
         if (out > 0 && compare_boundary(&s->list[out - 1], &s->list[i]) == 0) {
-            s->list[out - 1].ang += s->list[i].ang;
+            s->list[out - 1].creased += s->list[i].creased;
             s->list[out - 1].edges += s->list[i].edges;
         } else {
             s->list[out++] = s->list[i];
@@ -58,28 +58,46 @@ static double edge_angular(const ps_crease_merge_input *in, size_t p, size_t q) 
                              in->normals + 3 * q, 0.0);
 }
 
-/* One record per edge p < q joining two segments; the mean angular term. */
+/* strength #P: each point's largest incident angular term; returns the
+ * mean angular term over all edges. */
+static double crease_strengths(const ps_crease_merge_input *in, double *strength) {
+    const ps_graph *g = in->graph;
+    double sum = 0;
+    for (size_t p = 0; p < g->n; p++) {
+        strength[p] = 0;
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            double ang = edge_angular(in, p, g->neighbors[e]);
+            sum += ang;
+            if (ang > strength[p]) strength[p] = ang;
+        }
+    }
+    return g->offsets[g->n] ? sum / (double)g->offsets[g->n] : 0;
+}
+
+/* One record per edge p < q joining two segments. */
 static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *group,
                                    merge_state *s, ps_error *err) {
     const ps_graph *g = in->graph;
-    size_t crossing = 0, edges = 0;
-    double sum_ang = 0;
+    size_t crossing = 0;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
             if (g->neighbors[e] > p && group[g->neighbors[e]] != group[p]) crossing++;
+    double *strength = malloc((g->n ? g->n : 1) * sizeof *strength);
     s->list = malloc((crossing ? crossing : 1) * sizeof *s->list);
-    if (!s->list) return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");
+    if (!strength || !s->list) {
+        free(strength);
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");
+    }
+    double crease = PS_CREASE_MERGE_STRENGTH * crease_strengths(in, strength);
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
-            if (q <= p) continue;
-            double ang = edge_angular(in, p, q);
-            sum_ang += ang, edges++;
             int a = group[p], b = group[q];
-            if (a == b) continue;
-            s->list[s->count++] = (boundary){a < b ? a : b, a < b ? b : a, ang, 1};
+            if (q <= p || a == b) continue;
+            long creased = crease > 0 && (strength[p] >= crease || strength[q] >= crease);
+            s->list[s->count++] = (boundary){a < b ? a : b, a < b ? b : a, creased, 1};
         }
-    s->mean_ang = edges ? sum_ang / (double)edges : 0;
+    free(strength);
     coalesce(s);
     return PS_OK;
 }
@@ -113,14 +131,14 @@ static void state_free(merge_state *s) {
     free(s->list);
 }
 
-/* The record with the least concave boundary, or -1 when none is below
+/* The record with the smallest creased fraction, or -1 when none is below
  * the threshold. */
 static long weakest_boundary(const merge_state *s, double threshold) {
     long best = -1;
-    double best_concavity = threshold * s->mean_ang;
+    double best_fraction = threshold;
     for (size_t i = 0; i < s->count; i++) {
-        double concavity = s->list[i].ang / (double)s->list[i].edges;
-        if (concavity < best_concavity) best = (long)i, best_concavity = concavity;
+        double fraction = (double)s->list[i].creased / (double)s->list[i].edges;
+        if (fraction < best_fraction) best = (long)i, best_fraction = fraction;
     }
     return best;
 }

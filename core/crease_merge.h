@@ -5,27 +5,31 @@
  * People cut a shape where it bends inwards (the minima rule of Hoffman and
  * Richards): a boundary across a smooth or convex stretch of surface, such
  * as the inside of a cup split from its wall, or a limb split halfway, is
- * not a part boundary.  The boundary between segments A and B is the set of
- * kNN edges joining them; its concavity is the mean concave angular term
- * ang(p,q) of crease.h (0 on convex edges) over those edges, divided by the
- * mean of ang over all edges of the graph (scale free, and relative to how
- * bumpy the whole surface is).  While some pair's concavity is below
- * threshold, the pair with the lowest (ties: lowest ids) merges: the
- * segment with fewer points goes into the other (ties: the higher id into
- * the lower), its boundaries adding up with the survivor's.
- * Deterministic; no threads.
+ * not a part boundary.  A point lies on a crease when its most concave
+ * incident edge has an angular term ang(p,q) (crease.h; 0 on convex edges)
+ * of at least PS_CREASE_MERGE_STRENGTH times the mean of ang over all edges
+ * (scale free, and relative to how bumpy the whole surface is).  The
+ * boundary between segments A and B is the set of kNN edges joining them;
+ * an edge is creased when one of its ends lies on a crease.  While some
+ * pair's creased fraction is below threshold, the pair with the lowest
+ * (ties: lowest ids) merges: the segment with fewer points goes into the
+ * other (ties: the higher id into the lower), its boundaries adding up with
+ * the survivor's.  Deterministic; no threads.
  */
 #ifndef PS_CREASE_MERGE_H
 #define PS_CREASE_MERGE_H
 
 #include "knn_graph.h"
 
-/* PSB dev set, mean 1 - RI (without the merge 0.1721): threshold 0.5
- * 0.1650, 1 0.1579, 1.5 0.1586, 2 0.1613, 3 0.1693.  1 reads plainly: a
- * boundary less concave than the average edge is no crease.  Measuring
- * concavity against the two segments' own edges instead of the whole
- * graph's was no better (0.1610 at 1 and 2). */
-#define PS_CREASE_MERGE_THRESHOLD 1.0
+/* PSB dev set, mean 1 - RI (without the merge 0.1721), over STRENGTH x
+ * FRACTION: 1.5 x 0.5 0.1471, 1 x 0.5 0.1527, 2 x 0.5 0.1490, 1.5 x 0.4
+ * 0.1498, 1.5 x 0.6 0.1494.  Merging on the mean angular term of the
+ * boundary edges instead (below the mean over all edges) gave 0.1579: a
+ * boundary that follows a crease for part of its length and then crosses
+ * smooth surface (the inside of a cup) averages out as concave; measured
+ * against the two segments' own edges it was no better (0.1610). */
+#define PS_CREASE_MERGE_STRENGTH 1.5
+#define PS_CREASE_MERGE_FRACTION 0.5
 
 typedef struct ps_crease_merge_input {
     const ps_graph *graph;   /* kNN graph on #P points (weights not used) */
@@ -33,7 +37,7 @@ typedef struct ps_crease_merge_input {
     const double *normals;   /* #P by 3, outward unit normals (normals.h) */
     const double *f;         /* #P centrality, for the merges' feature sizes */
     int n_groups;            /* segment ids are in [0, n_groups) */
-    double threshold;        /* merge while a boundary's concavity is below this */
+    double threshold;        /* merge while a boundary's creased fraction is below this */
 } ps_crease_merge_input;
 
 /* group_of_point #P in/out: each point's segment id.  group_of_leaf

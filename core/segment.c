@@ -221,7 +221,7 @@ static ps_status crease_merge(pipeline *pl, ps_error *err) {
         .normals = pl->normals,
         .f = pl->f,
         .n_groups = pl->n_tree,
-        .threshold = PS_CREASE_MERGE_THRESHOLD,
+        .threshold = PS_CREASE_MERGE_FRACTION,
     };
     return ps_crease_merge(&cm, pl->group_of_point, pl->group_of_leaf, &pl->merges,
                            &pl->n_merges, err);

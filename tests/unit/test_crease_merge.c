@@ -30,7 +30,7 @@ static ps_status run_merge(const ps_star *s, const double *f, int *group, int *l
                            ps_merge **merges, int *n_merges) {
     ps_crease_merge_input in = {.graph = &s->graph, .points = s->points,
                                 .normals = s->normals, .f = f, .n_groups = N_PIECES,
-                                .threshold = PS_CREASE_MERGE_THRESHOLD};
+                                .threshold = PS_CREASE_MERGE_FRACTION};
     for (int t = 0; t < N_PIECES; t++) leaf[t] = t;
     *merges = NULL, *n_merges = 0;
     ps_error err = {0};
