@@ -53,27 +53,6 @@ static void coalesce(merge_state *s) {
     s->count = out;
 }
 
-static double edge_angular(const ps_crease_merge_input *in, size_t p, size_t q) {
-    return ps_crease_angular(in->points + 3 * p, in->normals + 3 * p, in->points + 3 * q,
-                             in->normals + 3 * q, 0.0);
-}
-
-/* strength #P: each point's largest incident angular term; returns the
- * mean angular term over all edges. */
-static double crease_strengths(const ps_crease_merge_input *in, double *strength) {
-    const ps_graph *g = in->graph;
-    double sum = 0;
-    for (size_t p = 0; p < g->n; p++) {
-        strength[p] = 0;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            double ang = edge_angular(in, p, g->neighbors[e]);
-            sum += ang;
-            if (ang > strength[p]) strength[p] = ang;
-        }
-    }
-    return g->offsets[g->n] ? sum / (double)g->offsets[g->n] : 0;
-}
-
 /* One record per edge p < q joining two segments. */
 static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *group,
                                    merge_state *s, ps_error *err) {
@@ -88,7 +67,8 @@ static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *g
         free(strength);
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");
     }
-    double crease = PS_CREASE_MERGE_STRENGTH * crease_strengths(in, strength);
+    double crease = PS_CREASE_MERGE_STRENGTH *
+                    ps_crease_strengths(g, in->points, in->normals, strength);
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
