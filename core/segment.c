@@ -14,6 +14,7 @@
 #include "centrality.h"
 #include "crease.h"
 #include "crease_merge.h"
+#include "crease_split.h"
 #include "dedup.h"
 #include "f2_split.h"
 #include "knn_graph.h"
@@ -166,6 +167,9 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
                                        &p->persistence, p->use_minima, &pl->sn, err);
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
+    if (st == PS_OK && pl->normals)
+        st = ps_supernodes_split_creases(&pl->graph, pl->points, pl->normals, pl->f, &pl->sn,
+                                         err);
     return st;
 }
 

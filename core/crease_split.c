@@ -1,0 +1,176 @@
+/*
+ * crease_split.c: supernodes cut along closed concave creases
+ * (crease_split.h).  Three breadth-first passes over the kNN graph: the
+ * pieces off creases, then the points left over joining the nearest kept
+ * piece; then the supernodes are rebuilt.  O(E), deterministic.
+ */
+#include "crease_split.h"
+
+#include "crease.h"
+#include "persistence.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct split_work {
+    const ps_graph *g;
+    const ps_supernodes *sn;
+    unsigned char *on_crease; /* #P */
+    int *piece;               /* #P piece of each point off creases, else -1 */
+    size_t *piece_size;       /* #P (at most one piece per point) */
+    int *label;               /* #P new supernode, -1 while unknown */
+    int *new_of_piece;        /* #P new supernode of a kept piece, else -1 */
+    int *whole;               /* #S new supernode of an unsplit supernode, else -1 */
+    uint32_t *queue;          /* #P */
+    int n_new;
+} split_work;
+
+static int same_supernode(const split_work *w, size_t p, size_t q) {
+    return w->sn->supernode_of[p] == w->sn->supernode_of[q];
+}
+
+/* Flood fill of one piece from seed over non-crease points; its size. */
+static size_t fill_piece(split_work *w, uint32_t seed, int id) {
+    const ps_graph *g = w->g;
+    size_t head = 0, tail = 0;
+    w->piece[seed] = id;
+    w->queue[tail++] = seed;
+    while (head < tail) {
+        uint32_t p = w->queue[head++];
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            uint32_t q = g->neighbors[e];
+            if (w->piece[q] >= 0 || w->on_crease[q] || !same_supernode(w, p, q)) continue;
+            w->piece[q] = id;
+            w->queue[tail++] = q;
+        }
+    }
+    return tail;
+}
+
+/* Pieces, and the new supernode of each point of a kept piece (numbered
+ * in order of their lowest point). */
+static void label_pieces(split_work *w) {
+    size_t n = w->g->n;
+    int n_pieces = 0;
+    for (size_t p = 0; p < n; p++) w->piece[p] = -1, w->label[p] = -1;
+    for (size_t p = 0; p < n; p++)
+        if (!w->on_crease[p] && w->piece[p] < 0) {
+            w->piece_size[n_pieces] = fill_piece(w, (uint32_t)p, n_pieces);
+            w->new_of_piece[n_pieces++] = -1;
+        }
+    size_t need = (size_t)(PS_CREASE_SPLIT_MIN_FRACTION * (double)n);
+    if (need < PS_PERSISTENCE_MIN_BASIN) need = PS_PERSISTENCE_MIN_BASIN;
+    for (size_t p = 0; p < n; p++) {
+        int c = w->piece[p];
+        if (c < 0) continue;
+        if (w->piece_size[c] < need) continue;
+        if (w->new_of_piece[c] < 0) w->new_of_piece[c] = w->n_new++;
+        w->label[p] = w->new_of_piece[c];
+    }
+}
+
+/* A supernode without a kept piece stays whole; then every unlabelled
+ * point takes the label of a labelled neighbour in its supernode, breadth
+ * first from all labelled points in point order. */
+static void spread_labels(split_work *w) {
+    const ps_graph *g = w->g;
+    size_t n = g->n, head = 0, tail = 0;
+    for (int s = 0; s < w->sn->m; s++) w->whole[s] = 0;
+    for (size_t p = 0; p < n; p++)
+        if (w->label[p] >= 0) w->whole[w->sn->supernode_of[p]] = 1;
+    for (int s = 0; s < w->sn->m; s++) w->whole[s] = w->whole[s] ? -1 : w->n_new++;
+    for (size_t p = 0; p < n; p++) {
+        int s = w->sn->supernode_of[p];
+        if (w->whole[s] >= 0) w->label[p] = w->whole[s];
+        else if (w->label[p] >= 0) w->queue[tail++] = (uint32_t)p;
+    }
+    while (head < tail) {
+        uint32_t p = w->queue[head++];
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            uint32_t q = g->neighbors[e];
+            if (w->label[q] >= 0 || !same_supernode(w, p, q)) continue;
+            w->label[q] = w->label[p];
+            w->queue[tail++] = q;
+        }
+    }
+}
+
+/* New supernodes from the labels; representatives from f as before.  A
+ * point the spread could not reach (its supernode is not connected) takes
+ * the label of the supernode's lowest labelled point. */
+static ps_status rebuild(split_work *w, const double *f, ps_supernodes *sn, ps_error *err) {
+    int m = w->n_new;
+    uint32_t *sinks = malloc((size_t)m * sizeof *sinks);
+    int *is_min = malloc((size_t)m * sizeof *is_min);
+    size_t *sizes = calloc((size_t)m, sizeof *sizes);
+    if (!sinks || !is_min || !sizes) {
+        free(sinks), free(is_min), free(sizes);
+        return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
+    }
+    for (int s = 0; s < m; s++) sinks[s] = UINT32_MAX;
+    for (size_t p = w->g->n; p-- > 0;)
+        if (w->label[p] >= 0) w->whole[sn->supernode_of[p]] = w->label[p];
+    for (size_t p = 0; p < w->g->n; p++) {
+        int old = sn->supernode_of[p];
+        if (w->label[p] < 0) w->label[p] = w->whole[old];
+        int s = w->label[p];
+        is_min[s] = sn->is_minimum[old];
+        sizes[s]++;
+        uint32_t r = sinks[s];
+        if (r == UINT32_MAX || (is_min[s] ? f[p] < f[r] : f[p] > f[r])) sinks[s] = (uint32_t)p;
+    }
+    memcpy(sn->supernode_of, w->label, w->g->n * sizeof *w->label);
+    free(sn->sinks), free(sn->is_minimum), free(sn->sizes);
+    sn->m = m, sn->sinks = sinks, sn->is_minimum = is_min, sn->sizes = sizes;
+    return PS_OK;
+}
+
+static void work_free(split_work *w) {
+    free(w->on_crease);
+    free(w->piece);
+    free(w->piece_size);
+    free(w->label);
+    free(w->new_of_piece);
+    free(w->whole);
+    free(w->queue);
+}
+
+static int work_alloc(split_work *w, size_t n, int m) {
+    w->on_crease = malloc(n);
+    w->piece = malloc(n * sizeof *w->piece);
+    w->piece_size = malloc(n * sizeof *w->piece_size);
+    w->label = malloc(n * sizeof *w->label);
+    w->new_of_piece = malloc(n * sizeof *w->new_of_piece);
+    w->whole = malloc((size_t)(m > 0 ? m : 1) * sizeof *w->whole);
+    w->queue = malloc(n * sizeof *w->queue);
+    return w->on_crease && w->piece && w->piece_size && w->label && w->new_of_piece &&
+           w->whole && w->queue;
+}
+
+/* on_crease from the crease strengths; 0 when out of memory. */
+static int mark_creases(split_work *w, const double *points, const double *normals) {
+    double *strength = malloc(w->g->n * sizeof *strength);
+    if (!strength) return 0;
+    double crease = PS_CREASE_SPLIT_STRENGTH *
+                    ps_crease_strengths(w->g, points, normals, strength);
+    for (size_t p = 0; p < w->g->n; p++) w->on_crease[p] = crease > 0 && strength[p] >= crease;
+    free(strength);
+    return 1;
+}
+
+ps_status ps_supernodes_split_creases(const ps_graph *g, const double *points,
+                                      const double *normals, const double *f,
+                                      ps_supernodes *sn, ps_error *err) {
+    if (g->n == 0) return PS_OK;
+    split_work w = {.g = g, .sn = sn};
+    ps_status st = PS_OK;
+    if (!work_alloc(&w, g->n, sn->m) || !mark_creases(&w, points, normals)) {
+        work_free(&w);
+        return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
+    }
+    label_pieces(&w);
+    spread_labels(&w);
+    if (w.n_new > sn->m && w.n_new <= PS_MAX_SUPERNODES) st = rebuild(&w, f, sn, err);
+    work_free(&w);
+    return st;
+}

@@ -1,0 +1,38 @@
+/*
+ * crease_split.h: supernodes cut along closed concave creases (method
+ * auto, 3-D), so that a part with no maximum of its own (a head below its
+ * ears, a neck, a vase's foot) gets a supernode of its own.
+ *
+ * A point is on a crease when its crease strength (crease.h) is at least
+ * PS_CREASE_SPLIT_STRENGTH times the mean angular term.  Inside each
+ * supernode, the points off creases fall into connected pieces (kNN edges
+ * inside the supernode between two such points); a crease that closes
+ * around the surface separates two pieces.  A piece of at least
+ * PS_CREASE_SPLIT_MIN_FRACTION of all the points (and of
+ * PS_PERSISTENCE_MIN_BASIN points) is kept; every other point
+ * of the supernode joins the nearest kept piece (breadth first inside the
+ * supernode, ties to the piece reached first in point order).  A supernode
+ * with no kept piece stays whole, and so do all when the split would give
+ * more than PS_MAX_SUPERNODES.  Splits that a boundary does not justify are
+ * undone later by the crease merge (crease_merge.h).
+ */
+#ifndef PS_CREASE_SPLIT_H
+#define PS_CREASE_SPLIT_H
+
+#include "supernodes.h"
+
+/* PSB dev set, mean 1 - RI (without the split 0.1471), over STRENGTH x
+ * MIN_FRACTION: 1 x 0.005 0.1204, 1 x 0.001 0.1208, 1 x 0.0075 0.1213,
+ * 1 x 0.01 0.1246, 0.75 x 0.005 0.1193, 1.5 x 0.005 0.1268.  A minimum
+ * relative to each supernode instead (10% of it) gave 0.1370. */
+#define PS_CREASE_SPLIT_STRENGTH 1.0
+#define PS_CREASE_SPLIT_MIN_FRACTION 0.005
+
+/* points #P by 3, normals #P by 3 (outward, unit), f #P the centrality
+ * (picks the representatives).  sn is replaced by its refinement: every new
+ * supernode lies inside one old one and keeps its is_minimum. */
+ps_status ps_supernodes_split_creases(const ps_graph *g, const double *points,
+                                      const double *normals, const double *f,
+                                      ps_supernodes *sn, ps_error *err);
+
+#endif
