@@ -38,6 +38,7 @@ typedef struct speed_case {
     const ps_pointset *points; /* used when path is NULL */
     ps_centrality_mode mode;
     int runs;
+    ps_method method;          /* PS_METHOD_AUTO unless a case says paper */
 } speed_case;
 
 static double now_ms(void) {
@@ -88,10 +89,11 @@ static int load_file(const char *path, ps_pointset *ps) {
 }
 
 /* Segments and encodes ps, filling the segment, phase and encode columns. */
-static int segment_and_encode(const ps_pointset *ps, ps_centrality_mode mode, run_times *t) {
+static int segment_and_encode(const ps_pointset *ps, const speed_case *c, run_times *t) {
     ps_params params;
     ps_params_default(&params);
-    params.centrality = mode;
+    params.centrality = c->mode;
+    params.method = c->method;
     params.threads = 0;
     ps_input in = {ps->points, ps->n, ps->dim, ps->normals};
     ps_result *r = NULL;
@@ -125,7 +127,7 @@ static int run_once(const speed_case *c, run_times *t) {
         ps = &decoded;
     }
     t->v[COL_DECODE] = now_ms() - start;
-    int rc = segment_and_encode(ps, c->mode, t);
+    int rc = segment_and_encode(ps, c, t);
     t->v[COL_TOTAL] = now_ms() - start;
     if (c->path) ps_pointset_free(&decoded);
     return rc;
@@ -228,18 +230,21 @@ static int sample_surface(const ps_pointset *mesh, size_t n, ps_pointset *out) {
 
 static int file_exists(const char *path) { return access(path, R_OK) == 0; }
 
-/* The scan model cases (horse, bunny: approx centrality). */
+/* The scan model cases (horse, bunny: approx centrality; the horse also
+ * with method paper, the reference for auto's cost). */
 static void run_scan_models(const char *shared) {
-    static const char *const names[] = {"horse", "bunny"};
-    for (int i = 0; i < 2; i++) {
+    static const char *const names[] = {"horse", "bunny", "horse"};
+    static const ps_method methods[] = {PS_METHOD_AUTO, PS_METHOD_AUTO, PS_METHOD_PAPER};
+    for (int i = 0; i < 3; i++) {
         char path[4096], label[64];
         snprintf(path, sizeof path, "%s/models/%s.ply", shared ? shared : ".", names[i]);
-        snprintf(label, sizeof label, "%s.ply approx", names[i]);
+        snprintf(label, sizeof label, "%s.ply approx%s", names[i],
+                 methods[i] == PS_METHOD_PAPER ? " paper" : "");
         if (!shared || !file_exists(path)) {
             printf("%-24s SKIP: %s not found\n", label, path);
             continue;
         }
-        speed_case c = {label, path, NULL, PS_CENTRALITY_APPROX, SMALL_RUNS};
+        speed_case c = {label, path, NULL, PS_CENTRALITY_APPROX, SMALL_RUNS, methods[i]};
         run_case(&c);
     }
 }
@@ -249,7 +254,7 @@ static void run_exact(const char *shared) {
     char path[4096];
     snprintf(path, sizeof path, "%s/psb-dev/off/1.off", shared ? shared : ".");
     if (shared && file_exists(path)) {
-        speed_case c = {"PSB 1.off exact", path, NULL, PS_CENTRALITY_EXACT, SMALL_RUNS};
+        speed_case c = {"PSB 1.off exact", path, NULL, PS_CENTRALITY_EXACT, SMALL_RUNS, PS_METHOD_AUTO};
         run_case(&c);
         return;
     }
@@ -258,7 +263,7 @@ static void run_exact(const char *shared) {
     hand.dim = 3;
     hand.points = ps_shape_hand(0, &hand.n, NULL);
     if (!hand.points) { printf("%-24s FAILED: out of memory\n", "synthetic hand exact"); return; }
-    speed_case c = {"synthetic hand exact", NULL, &hand, PS_CENTRALITY_EXACT, SMALL_RUNS};
+    speed_case c = {"synthetic hand exact", NULL, &hand, PS_CENTRALITY_EXACT, SMALL_RUNS, PS_METHOD_AUTO};
     run_case(&c);
     ps_pointset_free(&hand);
 }
@@ -276,7 +281,7 @@ static void run_large(const char *shared) {
     int rc = horse.n_faces ? sample_surface(&horse, LARGE_POINTS, &sampled) : -1;
     ps_pointset_free(&horse);
     if (rc != 0) { printf("%-24s FAILED: no faces or out of memory\n", "horse 1M sampled"); return; }
-    speed_case c = {"horse 1M sampled auto", NULL, &sampled, PS_CENTRALITY_AUTO, 1};
+    speed_case c = {"horse 1M sampled auto", NULL, &sampled, PS_CENTRALITY_AUTO, 1, PS_METHOD_AUTO};
     run_case(&c);
     ps_pointset_free(&sampled);
 }
