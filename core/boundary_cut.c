@@ -119,6 +119,15 @@ static size_t build_subgraph(cut_context *cx, size_t m) {
     return n_sources;
 }
 
+/* dist of the members: their distance from the boundary, explored only up
+ * to the extent from which the band's width is capped (beyond it dist
+ * stays at that reach), so the cost follows the band, not the segments. */
+static void boundary_distances(cut_context *cx, size_t m, size_t n_sources) {
+    double reach = PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge / PS_BOUNDARY_CUT_BAND;
+    for (size_t v = 0; v < m; v++) cx->dist[v] = reach;
+    ps_dijkstra_lower_many(cx->dijkstra, &cx->sub, cx->sources, n_sources, cx->dist);
+}
+
 /* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
  * most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths. */
 static double band_width(const cut_context *cx, size_t m, int a) {
@@ -243,7 +252,7 @@ static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     size_t n_sources = build_subgraph(cx, m);
     ps_status st = PS_OK;
     if (n_sources > 0) {
-        ps_dijkstra_run(cx->dijkstra, &cx->sub, cx->sources, n_sources, cx->dist, NULL);
+        boundary_distances(cx, m, n_sources);
         size_t nb = mark_band(cx, m, band_width(cx, m, a), a);
         ps_flow_graph net;
         double flow;

@@ -123,10 +123,13 @@ void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
     }
 }
 
-void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, double *dist) {
-    if (!(dist[source] > 0.0)) return;
-    dist[source] = 0.0;
-    heap_set(w, source, 0.0);
+void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
+                            size_t n_sources, double *dist) {
+    for (size_t i = 0; i < n_sources; i++)
+        if (dist[sources[i]] > 0.0) {
+            dist[sources[i]] = 0.0;
+            heap_set(w, sources[i], 0.0);
+        }
     while (w->size > 0) {
         uint32_t u = heap_pop(w);
         double du = dist[u];
@@ -139,4 +142,8 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, doubl
             }
         }
     }
+}
+
+void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, double *dist) {
+    ps_dijkstra_lower_many(w, g, &source, 1, dist);
 }

@@ -1,6 +1,7 @@
 /* test_dijkstra.c: distances and owners equal Bellman-Ford on random graphs
  * (integer weights make ties exact), unreachable vertices get INFINITY, and
- * ps_dijkstra_lower equals the minimum of full runs. */
+ * ps_dijkstra_lower equals the minimum of full runs; ps_dijkstra_lower_many
+ * from a cap equals a multi-source run clipped at the cap. */
 #include "dijkstra.h"
 #include "knn_graph.h"
 #include "testlib.h"
@@ -132,5 +133,28 @@ static void test_lower_is_min_of_runs(void) {
     ps_graph_free(&g);
 }
 
+static void test_lower_many_is_capped_run(void) {
+    size_t n = 300;
+    ps_graph g;
+    random_graph(n, 4, 11, &g);
+    ps_dijkstra *w = ps_dijkstra_new(n);
+    double *capped = malloc(n * sizeof *capped), *full = malloc(n * sizeof *full);
+    REQUIRE(w && capped && full);
+    const uint32_t src[] = {3, 120, 77};
+    const double cap = 6;
+    for (size_t v = 0; v < n; v++) capped[v] = cap;
+    ps_dijkstra_lower_many(w, &g, src, 3, capped);
+    ps_dijkstra_run(w, &g, src, 3, full, NULL);
+    size_t below = 0;
+    for (size_t v = 0; v < n; v++) {
+        CHECK(capped[v] == fmin(full[v], cap));
+        below += full[v] < cap;
+    }
+    CHECK(below > 10 && below < n - 10); /* the cap really cuts the search */
+    free(capped), free(full);
+    ps_dijkstra_free(w);
+    ps_graph_free(&g);
+}
+
 PS_TEST_MAIN(TEST(test_single_source), TEST(test_multi_source_owner),
-             TEST(test_lower_is_min_of_runs))
+             TEST(test_lower_is_min_of_runs), TEST(test_lower_many_is_capped_run))
