@@ -63,7 +63,7 @@ typedef enum ps_centrality_mode {
 
 typedef enum ps_method {
     PS_METHOD_AUTO = 0, /* the default: crease-aware metric (3-D), persistence,
-                           minima (README, "How it works") */
+                           minima, crease split and merge (docs/method.md) */
     PS_METHOD_PAPER     /* the published pipeline: Euclidean geodesics, every
                            sink a supernode, no minima, no f2 */
 } ps_method;
