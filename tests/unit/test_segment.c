@@ -129,6 +129,27 @@ static void test_star_six_arms(void) {
     free(part);
 }
 
+/* A scan is never clean: the star with every coordinate jittered by up to
+ * 10% of an arm's radius (a deterministic pseudo-random sequence) still
+ * comes out as its six arms, with no normals given. */
+static void test_star_with_noise(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_star(0, &n, &part);
+    unsigned long long state = 88172645463325252ULL;
+    for (size_t i = 0; i < 3 * n; i++) {
+        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+        pts[i] += 0.035 * (2.0 * (double)(state >> 11) / 9007199254740992.0 - 1.0);
+    }
+    ps_result *r = segment_default(pts, n);
+    REQUIRE(r);
+    check_consistent(r);
+    check_parts_separate(r, part, 1, 6, 0.8);
+    ps_result_free(r);
+    free(pts);
+    free(part);
+}
+
 /* Fraction of points whose label differs from b's after mapping each label
  * of a to the label of b most of its points carry. */
 static double disagreement(const ps_result *a, const int *labels_b, size_t n) {
@@ -348,7 +369,8 @@ static void test_progress_and_cancel(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_star_six_arms), TEST(test_rotation_translation), TEST(test_scale_small),
+             TEST(test_star_six_arms), TEST(test_star_with_noise),
+             TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
              TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
