@@ -39,14 +39,15 @@ double ps_crease_strengths(const ps_graph *g, const double *points, const double
                            double *strength) {
     double sum = 0;
     for (size_t p = 0; p < g->n; p++) {
-        strength[p] = 0;
+        double most = 0;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             double ang = ps_crease_angular(points + 3 * p, normals + 3 * p, points + 3 * q,
                                            normals + 3 * q, 0.0);
             sum += ang;
-            if (ang > strength[p]) strength[p] = ang;
+            if (ang > most) most = ang;
         }
+        if (strength) strength[p] = most;
     }
     return g->offsets[g->n] ? sum / (double)g->offsets[g->n] : 0;
 }

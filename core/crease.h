@@ -35,9 +35,9 @@ void ps_crease_weights(ps_graph *g, const double *points, const double *normals)
 double ps_crease_angular(const double *p, const double *np, const double *q,
                          const double *nq, double eta_convex);
 
-/* strength #P out: each point's largest angular term (eta_convex 0) over
- * its incident edges, so a point on a concave crease is strong.  Returns
- * the mean angular term over all edges (0 for none). */
+/* strength #P out (or NULL): each point's largest angular term
+ * (eta_convex 0) over its incident edges, so a point on a concave crease is
+ * strong.  Returns the mean angular term over all edges (0 for none). */
 double ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
                            double *strength);
 

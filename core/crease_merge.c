@@ -2,9 +2,9 @@
  * crease_merge.c: segments joined by a boundary that is not a concave
  * crease merge (crease_merge.h).
  *
- * The boundaries are gathered once, in O(E): each point's crease strength
- * (its most concave incident edge), then one record per kNN edge joining
- * two segments, sorted and summed into one record per pair.  A
+ * The boundaries are gathered once, in O(E): the mean angular term, then
+ * one record per kNN edge joining two segments (whether it is creased),
+ * sorted and summed into one record per pair.  A
  * merge renames the loser in every record and sums the records again; there
  * are only as many records as adjacent pairs, so the steps are cheap.
  */
@@ -53,6 +53,23 @@ static void coalesce(merge_state *s) {
     s->count = out;
 }
 
+/* p's largest angular term over its edges into segments a and b: only
+ * those can make a crease of the boundary between a and b (a wing root
+ * next to the boundary between nose and fuselage does not). */
+static double strength_within(const ps_crease_merge_input *in, const int *group, size_t p,
+                              int a, int b) {
+    const ps_graph *g = in->graph;
+    double best = 0;
+    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+        size_t r = g->neighbors[e];
+        if (group[r] != a && group[r] != b) continue;
+        double ang = ps_crease_angular(in->points + 3 * p, in->normals + 3 * p,
+                                       in->points + 3 * r, in->normals + 3 * r, 0.0);
+        if (ang > best) best = ang;
+    }
+    return best;
+}
+
 /* One record per edge p < q joining two segments. */
 static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *group,
                                    merge_state *s, ps_error *err) {
@@ -61,23 +78,19 @@ static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *g
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
             if (g->neighbors[e] > p && group[g->neighbors[e]] != group[p]) crossing++;
-    double *strength = malloc((g->n ? g->n : 1) * sizeof *strength);
     s->list = malloc((crossing ? crossing : 1) * sizeof *s->list);
-    if (!strength || !s->list) {
-        free(strength);
-        return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");
-    }
-    double crease = PS_CREASE_MERGE_STRENGTH *
-                    ps_crease_strengths(g, in->points, in->normals, strength);
+    if (!s->list) return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");
+    double crease = PS_CREASE_MERGE_STRENGTH * ps_crease_strengths(g, in->points, in->normals,
+                                                                   NULL);
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             int a = group[p], b = group[q];
             if (q <= p || a == b) continue;
-            long creased = crease > 0 && (strength[p] >= crease || strength[q] >= crease);
+            long creased = crease > 0 && (strength_within(in, group, p, a, b) >= crease ||
+                                          strength_within(in, group, q, a, b) >= crease);
             s->list[s->count++] = (boundary){a < b ? a : b, a < b ? b : a, creased, 1};
         }
-    free(strength);
     coalesce(s);
     return PS_OK;
 }
