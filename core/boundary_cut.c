@@ -58,7 +58,8 @@ static double distance3(const double *p, const double *q) {
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-/* capacity[e] = |p-q| / L * exp(-ang / A0) (boundary_cut.h). */
+/* capacity[e] = |p-q| / L * exp(-ang / A0) (boundary_cut.h); the first
+ * pass keeps ang in capacity[e] for the second. */
 static void edge_capacities(cut_context *cx) {
     const ps_graph *g = cx->in->graph;
     const double *x = cx->in->points, *nx = cx->in->normals;
@@ -68,7 +69,8 @@ static void edge_capacities(cut_context *cx) {
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             sum_len += distance3(x + 3 * p, x + 3 * q);
-            sum_ang += ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
+            cx->capacity[e] = ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
+            sum_ang += cx->capacity[e];
         }
     double L = sum_len / (double)edges;
     cx->mean_edge = L;
@@ -76,8 +78,7 @@ static void edge_capacities(cut_context *cx) {
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
-            double ang = ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
-            double crease = A0 > 0 ? exp(-ang / A0) : 1;
+            double crease = A0 > 0 ? exp(-cx->capacity[e] / A0) : 1;
             cx->capacity[e] = distance3(x + 3 * p, x + 3 * q) / L * crease;
         }
 }
