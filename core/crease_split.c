@@ -95,34 +95,14 @@ static void spread_labels(split_work *w) {
     }
 }
 
-/* New supernodes from the labels; representatives from f as before.  A
- * point the spread could not reach (its supernode is not connected) takes
- * the label of the supernode's lowest labelled point. */
-static ps_status rebuild(split_work *w, const double *f, ps_supernodes *sn, ps_error *err) {
-    int m = w->n_new;
-    uint32_t *sinks = malloc((size_t)m * sizeof *sinks);
-    int *is_min = malloc((size_t)m * sizeof *is_min);
-    size_t *sizes = calloc((size_t)m, sizeof *sizes);
-    if (!sinks || !is_min || !sizes) {
-        free(sinks), free(is_min), free(sizes);
-        return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
-    }
-    for (int s = 0; s < m; s++) sinks[s] = UINT32_MAX;
+/* A point the spread could not reach (its supernode is not connected)
+ * takes the label of the supernode's lowest labelled point. */
+static void label_the_rest(split_work *w) {
+    const int *supernode_of = w->sn->supernode_of;
     for (size_t p = w->g->n; p-- > 0;)
-        if (w->label[p] >= 0) w->whole[sn->supernode_of[p]] = w->label[p];
-    for (size_t p = 0; p < w->g->n; p++) {
-        int old = sn->supernode_of[p];
-        if (w->label[p] < 0) w->label[p] = w->whole[old];
-        int s = w->label[p];
-        is_min[s] = sn->is_minimum[old];
-        sizes[s]++;
-        uint32_t r = sinks[s];
-        if (r == UINT32_MAX || (is_min[s] ? f[p] < f[r] : f[p] > f[r])) sinks[s] = (uint32_t)p;
-    }
-    memcpy(sn->supernode_of, w->label, w->g->n * sizeof *w->label);
-    free(sn->sinks), free(sn->is_minimum), free(sn->sizes);
-    sn->m = m, sn->sinks = sinks, sn->is_minimum = is_min, sn->sizes = sizes;
-    return PS_OK;
+        if (w->label[p] >= 0) w->whole[supernode_of[p]] = w->label[p];
+    for (size_t p = 0; p < w->g->n; p++)
+        if (w->label[p] < 0) w->label[p] = w->whole[supernode_of[p]];
 }
 
 static void work_free(split_work *w) {
@@ -170,7 +150,10 @@ ps_status ps_supernodes_split_creases(const ps_graph *g, const double *points,
     }
     label_pieces(&w);
     spread_labels(&w);
-    if (w.n_new > sn->m && w.n_new <= PS_MAX_SUPERNODES) st = rebuild(&w, f, sn, err);
+    if (w.n_new > sn->m && w.n_new <= PS_MAX_SUPERNODES) {
+        label_the_rest(&w);
+        st = ps_supernodes_relabel(sn, w.label, w.n_new, f, g->n, err);
+    }
     work_free(&w);
     return st;
 }

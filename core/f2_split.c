@@ -51,31 +51,6 @@ static uint32_t *f2_sources(const ps_supernodes *sn, const int *piece, int n_pie
     return src;
 }
 
-/* New supernodes = the f2 basins; representatives from f, as before. */
-static ps_status rebuild(const ps_flow *basins, const double *f, ps_supernodes *sn,
-                         size_t n, ps_error *err) {
-    int m = basins->n_sinks;
-    uint32_t *sinks = malloc((size_t)m * sizeof *sinks);
-    int *is_min = malloc((size_t)m * sizeof *is_min);
-    size_t *sizes = calloc((size_t)m, sizeof *sizes);
-    if (!sinks || !is_min || !sizes) {
-        free(sinks), free(is_min), free(sizes);
-        return ps_fail(err, PS_ERR_NOMEM, "f2: out of memory");
-    }
-    for (int s = 0; s < m; s++) sinks[s] = UINT32_MAX;
-    for (size_t p = 0; p < n; p++) {
-        int s = basins->sink_of[p];
-        is_min[s] = sn->is_minimum[sn->supernode_of[p]];
-        sizes[s]++;
-        uint32_t r = sinks[s];
-        if (r == UINT32_MAX || (is_min[s] ? f[p] < f[r] : f[p] > f[r])) sinks[s] = (uint32_t)p;
-        sn->supernode_of[p] = s;
-    }
-    free(sn->sinks), free(sn->is_minimum), free(sn->sizes);
-    sn->m = m, sn->sinks = sinks, sn->is_minimum = is_min, sn->sizes = sizes;
-    return PS_OK;
-}
-
 ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double persistence,
                                  ps_supernodes *sn, ps_error *err) {
     ps_graph h = {0};
@@ -97,7 +72,8 @@ ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double pers
     if (st == PS_OK)
         st = ps_flow_simplify(&h, f2, piece, n_pieces, persistence, PS_PERSISTENCE_MIN_BASIN,
                               &basins, err);
-    if (st == PS_OK) st = rebuild(&basins, f, sn, g->n, err);
+    if (st == PS_OK)
+        st = ps_supernodes_relabel(sn, basins.sink_of, basins.n_sinks, f, g->n, err);
     ps_flow_free(&basins);
     ps_graph_free(&h);
     ps_dijkstra_free(w);

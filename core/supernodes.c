@@ -211,3 +211,26 @@ void ps_supernodes_free(ps_supernodes *s) {
     free(s->supernode_of);
     memset(s, 0, sizeof *s);
 }
+
+ps_status ps_supernodes_relabel(ps_supernodes *sn, const int *label, int m, const double *f,
+                                size_t n, ps_error *err) {
+    uint32_t *sinks = malloc((size_t)(m > 0 ? m : 1) * sizeof *sinks);
+    int *is_min = malloc((size_t)(m > 0 ? m : 1) * sizeof *is_min);
+    size_t *sizes = calloc((size_t)(m > 0 ? m : 1), sizeof *sizes);
+    if (!sinks || !is_min || !sizes) {
+        free(sinks), free(is_min), free(sizes);
+        return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    }
+    for (int s = 0; s < m; s++) sinks[s] = UINT32_MAX;
+    for (size_t p = 0; p < n; p++) {
+        int s = label[p];
+        is_min[s] = sn->is_minimum[sn->supernode_of[p]];
+        sizes[s]++;
+        uint32_t r = sinks[s];
+        if (r == UINT32_MAX || (is_min[s] ? f[p] < f[r] : f[p] > f[r])) sinks[s] = (uint32_t)p;
+        sn->supernode_of[p] = s;
+    }
+    free(sn->sinks), free(sn->is_minimum), free(sn->sizes);
+    sn->m = m, sn->sinks = sinks, sn->is_minimum = is_min, sn->sizes = sizes;
+    return PS_OK;
+}

@@ -36,4 +36,11 @@ ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *com
                               ps_supernodes *out, ps_error *err);
 void ps_supernodes_free(ps_supernodes *s);
 
+/* Replaces sn by a refinement of it: label #P gives each point its new
+ * supernode in [0, m); a new supernode lies inside one old one and keeps
+ * its is_minimum; its representative is its highest point (lowest for a
+ * minimum).  Used by the splits (f2_split.h, crease_split.h). */
+ps_status ps_supernodes_relabel(ps_supernodes *sn, const int *label, int m, const double *f,
+                                size_t n, ps_error *err);
+
 #endif
