@@ -78,7 +78,8 @@ static void edge_capacities(cut_context *cx) {
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
-            double crease = A0 > 0 ? exp(-cx->capacity[e] / A0) : 1;
+            double crease = sum_ang / (double)edges >= PS_CREASE_FLAT
+                                ? exp(-cx->capacity[e] / A0) : 1;
             cx->capacity[e] = distance3(x + 3 * p, x + 3 * q) / L * crease;
         }
 }

@@ -24,7 +24,7 @@ void ps_crease_weights(ps_graph *g, const double *points, const double *normals)
                                          normals + 3 * q, eta);
         }
     double L = sum_len / (double)edges, A = sum_ang / (double)edges;
-    if (A <= 0) return;
+    if (A < PS_CREASE_FLAT) return;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];

@@ -20,6 +20,11 @@
  * edges weighing nothing (ETA_CONVEX 0) beats 0.05 and 0.3 slightly.
  */
 #define PS_CREASE_DELTA 0.7
+/* A surface whose mean angular term is below this is flat (a plane, or
+ * 2-D points given with z = 0): it has no creases, and the crease steps
+ * (metric, split, merge, the cut's preference) leave it alone.  1 - cos of
+ * 0.08 degrees. */
+#define PS_CREASE_FLAT 1e-6
 #define PS_CREASE_ETA_CONVEX 0.0
 #ifndef PS_CREASE_H
 #define PS_CREASE_H

@@ -72,7 +72,7 @@ static double strength_within(const ps_crease_merge_input *in, const int *group,
 
 /* One record per edge p < q joining two segments. */
 static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *group,
-                                   merge_state *s, ps_error *err) {
+                                   double crease, merge_state *s, ps_error *err) {
     const ps_graph *g = in->graph;
     size_t crossing = 0;
     for (size_t p = 0; p < g->n; p++)
@@ -80,23 +80,21 @@ static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *g
             if (g->neighbors[e] > p && group[g->neighbors[e]] != group[p]) crossing++;
     s->list = malloc((crossing ? crossing : 1) * sizeof *s->list);
     if (!s->list) return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");
-    double crease = PS_CREASE_MERGE_STRENGTH * ps_crease_strengths(g, in->points, in->normals,
-                                                                   NULL);
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             int a = group[p], b = group[q];
             if (q <= p || a == b) continue;
-            long creased = crease > 0 && (strength_within(in, group, p, a, b) >= crease ||
-                                          strength_within(in, group, q, a, b) >= crease);
+            long creased = strength_within(in, group, p, a, b) >= crease ||
+                           strength_within(in, group, q, a, b) >= crease;
             s->list[s->count++] = (boundary){a < b ? a : b, a < b ? b : a, creased, 1};
         }
     coalesce(s);
     return PS_OK;
 }
 
-static ps_status state_init(const ps_crease_merge_input *in, const int *group, merge_state *s,
-                            ps_error *err) {
+static ps_status state_init(const ps_crease_merge_input *in, const int *group, double crease,
+                            merge_state *s, ps_error *err) {
     size_t m = (size_t)(in->n_groups > 0 ? in->n_groups : 1);
     s->n_groups = in->n_groups;
     s->size = calloc(m, sizeof *s->size);
@@ -113,7 +111,7 @@ static ps_status state_init(const ps_crease_merge_input *in, const int *group, m
         if (s->size[a] == 0 || v > s->f_max[a]) s->f_max[a] = v;
         s->size[a]++;
     }
-    return gather_boundaries(in, group, s, err);
+    return gather_boundaries(in, group, crease, s, err);
 }
 
 static void state_free(merge_state *s) {
@@ -175,8 +173,10 @@ static int survivor(const merge_state *s, int id) {
 ps_status ps_crease_merge(const ps_crease_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
+    double mean = ps_crease_strengths(in->graph, in->points, in->normals, NULL);
+    if (mean < PS_CREASE_FLAT) return PS_OK; /* no creases: no evidence either way */
     merge_state s = {0};
-    ps_status st = state_init(in, group_of_point, &s, err);
+    ps_status st = state_init(in, group_of_point, PS_CREASE_MERGE_STRENGTH * mean, &s, err);
     for (long i; st == PS_OK && (i = weakest_boundary(&s, in->threshold)) >= 0;)
         if (!merge_pair(&s, (size_t)i, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");

@@ -15,7 +15,9 @@
  * theirs.  While some pair's creased fraction is below threshold, the
  * pair with the lowest (ties: lowest ids) merges: the segment with fewer
  * points goes into the other (ties: the higher id into the lower), its
- * boundaries adding up with the survivor's.  Deterministic; no threads.
+ * boundaries adding up with the survivor's.  A flat surface (crease.h,
+ * PS_CREASE_FLAT) has no creases to judge by and is left alone.
+ * Deterministic; no threads.
  */
 #ifndef PS_CREASE_MERGE_H
 #define PS_CREASE_MERGE_H

@@ -131,9 +131,10 @@ static int work_alloc(split_work *w, size_t n, int m) {
 static int mark_creases(split_work *w, const double *points, const double *normals) {
     double *strength = malloc(w->g->n * sizeof *strength);
     if (!strength) return 0;
-    double crease = PS_CREASE_SPLIT_STRENGTH *
-                    ps_crease_strengths(w->g, points, normals, strength);
-    for (size_t p = 0; p < w->g->n; p++) w->on_crease[p] = crease > 0 && strength[p] >= crease;
+    double mean = ps_crease_strengths(w->g, points, normals, strength);
+    double crease = PS_CREASE_SPLIT_STRENGTH * mean;
+    for (size_t p = 0; p < w->g->n; p++)
+        w->on_crease[p] = mean >= PS_CREASE_FLAT && strength[p] >= crease;
     free(strength);
     return 1;
 }

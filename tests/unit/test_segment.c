@@ -82,17 +82,25 @@ static void check_consistent(const ps_result *r) {
     }
 }
 
+/* Segments a synthetic shape with the defaults and checks that its parts
+ * first..last come out apart; frees pts and part. */
+static void check_shape_parts(double *pts, size_t n, int *part, int first, int last,
+                              double min_purity) {
+    REQUIRE(pts && part);
+    ps_result *r = segment_default(pts, n);
+    REQUIRE(r);
+    check_consistent(r);
+    check_parts_separate(r, part, first, last, min_purity);
+    ps_result_free(r);
+    free(pts);
+    free(part);
+}
+
 static void test_dumbbell_two_spheres(void) {
     size_t n;
     int *part;
     double *pts = ps_shape_dumbbell(0, &n, &part);
-    ps_result *r = segment_default(pts, n);
-    REQUIRE(r);
-    check_consistent(r);
-    check_parts_separate(r, part, 1, 2, 0.9);
-    ps_result_free(r);
-    free(pts);
-    free(part);
+    check_shape_parts(pts, n, part, 1, 2, 0.9);
 }
 
 /* The fingers come out whole and apart; the palm's far end is a maximum of
@@ -123,17 +131,11 @@ static void check_star_arms(double jitter) {
     int *part;
     double *pts = ps_shape_star(0, &n, &part);
     unsigned long long state = 88172645463325252ULL;
-    for (size_t i = 0; jitter > 0 && i < 3 * n; i++) {
+    for (size_t i = 0; pts && jitter > 0 && i < 3 * n; i++) {
         state ^= state << 13, state ^= state >> 7, state ^= state << 17;
         pts[i] += jitter * (2.0 * (double)(state >> 11) / 9007199254740992.0 - 1.0);
     }
-    ps_result *r = segment_default(pts, n);
-    REQUIRE(r);
-    check_consistent(r);
-    check_parts_separate(r, part, 1, 6, 0.8);
-    ps_result_free(r);
-    free(pts);
-    free(part);
+    check_shape_parts(pts, n, part, 1, 6, 0.8);
 }
 
 static void test_star_six_arms(void) { check_star_arms(0); }
@@ -141,6 +143,44 @@ static void test_star_six_arms(void) { check_star_arms(0); }
 /* A scan is never clean: jitter of 10% of an arm's radius (0.35), no
  * normals given. */
 static void test_star_with_noise(void) { check_star_arms(0.035); }
+
+/* A flat hand in the plane z = 0: a unit disc (part 0) and five strips
+ * (parts 1..5) fanning out from it, sampled uniformly. */
+static double *flat_hand(size_t *n, int **part) {
+    const size_t palm = 3000, finger = 500, total = palm + 5 * finger;
+    double *pts = malloc(total * 3 * sizeof *pts);
+    *part = malloc(total * sizeof **part);
+    unsigned long long state = 2463534242ULL;
+    size_t k = 0;
+    while (pts && *part && k < total) {
+        double u[2];
+        for (int j = 0; j < 2; j++) {
+            state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+            u[j] = (double)(state >> 11) / 9007199254740992.0;
+        }
+        int which = k < palm ? 0 : 1 + (int)((k - palm) / finger);
+        double x = 2 * u[0] - 1, y = 2 * u[1] - 1;
+        if (which == 0 && x * x + y * y > 1) continue;
+        if (which > 0) {
+            double a = 3.14159265358979 * (0.15 + 0.175 * (which - 1));
+            double t = 0.9 + 1.7 * u[0], w = 0.24 * u[1] - 0.12;
+            x = t * cos(a) - w * sin(a), y = t * sin(a) + w * cos(a);
+        }
+        pts[3 * k] = x, pts[3 * k + 1] = y, pts[3 * k + 2] = 0;
+        (*part)[k++] = which;
+    }
+    *n = total;
+    return pts;
+}
+
+/* A flat surface has no creases: the crease steps leave it alone and the
+ * fingers still come out apart (they used to merge into one segment). */
+static void test_flat_hand_in_3d(void) {
+    size_t n;
+    int *part;
+    double *pts = flat_hand(&n, &part);
+    check_shape_parts(pts, n, part, 1, 5, 0.7);
+}
 
 /* Fraction of points whose label differs from b's after mapping each label
  * of a to the label of b most of its points carry. */
@@ -361,7 +401,7 @@ static void test_progress_and_cancel(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_star_six_arms), TEST(test_star_with_noise),
+             TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_flat_hand_in_3d),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
              TEST(test_threads_exact),
