@@ -3,13 +3,10 @@
  * flat one does not; on the star the edges where the arms meet the centre
  * (a known concave crease) come out much longer than the rest. */
 #include "crease.h"
-#include "knn_graph.h"
-#include "normals.h"
-#include "shapes.h"
+#include "star_fixture.h"
 #include "testlib.h"
 
 #include <math.h>
-#include <stdlib.h>
 
 /* Three separate unit edges: 0-1 across a valley, 2-3 across a ridge, 4-5
  * flat. */
@@ -32,33 +29,26 @@ static void test_valley_ridge_flat(void) {
 /* Mean length of edges crossing the arm/centre boundary over the mean of
  * the others, with the crease metric divided by the same ratio without. */
 static void test_star_crease_edges_grow(void) {
-    size_t n;
-    int *part;
-    double *pts = ps_shape_star(0, &n, &part);
-    ps_graph g;
-    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
-    int *comp = malloc(n * sizeof *comp);
-    int nc = ps_graph_components(&g, comp);
-    double *nrm = malloc(n * 3 * sizeof *nrm);
-    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, nrm, NULL) == PS_OK);
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    ps_graph *g = &s.graph;
     double ratio[2];
     for (int pass = 0; pass < 2; pass++) {
-        if (pass == 1) ps_crease_weights(&g, pts, nrm);
+        if (pass == 1) ps_crease_weights(g, s.points, s.normals);
         double cross = 0, rest = 0;
         size_t n_cross = 0, n_rest = 0;
-        for (size_t p = 0; p < n; p++)
-            for (size_t e = g.offsets[p]; e < g.offsets[p + 1]; e++) {
-                int at_crease = part[p] != part[g.neighbors[e]];
-                if (at_crease) cross += g.weights[e], n_cross++;
-                else rest += g.weights[e], n_rest++;
+        for (size_t p = 0; p < s.n; p++)
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+                int at_crease = s.part[p] != s.part[g->neighbors[e]];
+                if (at_crease) cross += g->weights[e], n_cross++;
+                else rest += g->weights[e], n_rest++;
             }
         REQUIRE(n_cross > 0 && n_rest > 0);
         ratio[pass] = (cross / (double)n_cross) / (rest / (double)n_rest);
     }
     CHECK_MSG(ratio[1] > 2 * ratio[0], "crease edges %.2fx the rest with the metric, %.2fx without",
               ratio[1], ratio[0]);
-    ps_graph_free(&g);
-    free(pts), free(part), free(comp), free(nrm);
+    ps_star_free(&s);
 }
 
 PS_TEST_MAIN(TEST(test_valley_ridge_flat), TEST(test_star_crease_edges_grow))
