@@ -114,22 +114,24 @@ static void test_form_cut_before_closing_boundary_is_400(void) {
     free(form);
 }
 
+/* Posting the #len bytes of form gets a 400 whose problem says `words`. */
+static void check_form_is_400(const char *form, size_t len, const char *words) {
+    ps_client_response r;
+    REQUIRE(need_daemon() == 0);
+    CHECK(request(form, len, &r) == 400 && problem_says(&r, words));
+    ps_client_response_free(&r);
+}
+
 static void test_form_without_file_is_400(void) {
     static const char form[] = "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"k\"\r\n\r\n6\r\n"
                                "--" BOUNDARY "--\r\n";
-    ps_client_response r;
-    REQUIRE(need_daemon() == 0);
-    CHECK(request(form, sizeof form - 1, &r) == 400 && problem_says(&r, "no 'file' part"));
-    ps_client_response_free(&r);
+    check_form_is_400(form, sizeof form - 1, "no 'file' part");
 }
 
 static void test_empty_file_part_is_400(void) {
     static const char form[] = "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"\r\n\r\n"
                                "\r\n--" BOUNDARY "--\r\n";
-    ps_client_response r;
-    REQUIRE(need_daemon() == 0);
-    CHECK(request(form, sizeof form - 1, &r) == 400 && problem_says(&r, "empty"));
-    ps_client_response_free(&r);
+    check_form_is_400(form, sizeof form - 1, "empty");
 }
 
 static void test_zz_stop_daemon(void) {
