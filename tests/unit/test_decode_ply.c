@@ -4,9 +4,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "decode.h"
 #include "decode_check.h"
@@ -288,27 +286,14 @@ static void test_limits_and_garbage(void) {
                      "unknown keyword \"whatever?\""));
 }
 
-static double seconds_now(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 static void check_model(const char *name, size_t n, size_t n_faces, int normals) {
-    const char *shared = ps_test_shared_dir();
-    char path[1024];
-    char *bytes;
-    size_t len;
-    ps_api_error err;
+    char rel[256];
     ps_pointset ps;
-    if (!shared) SKIP("no shared data directory");
-    snprintf(path, sizeof path, "%s/models/%s", shared, name);
-    if (ps_read_file(path, &bytes, &len, &err)) SKIP("%s", err.message);
-    double t0 = seconds_now();
-    int rc = ps_decode(bytes, len, NULL, &ps, &err);
-    double ms = 1e3 * (seconds_now() - t0);
-    free(bytes);
-    REQUIRE(rc == 0);
+    double ms;
+    snprintf(rel, sizeof rel, "models/%s", name);
+    int decoded = ps_decode_shared_file(rel, &ps, &ms);
+    if (decoded == 0) return; /* skipped */
+    REQUIRE(decoded == 1);
     printf("  %s: %zu vertices, %zu faces in %.2f ms\n", name, ps.n, ps.n_faces, ms);
     CHECK(ps.n == n && ps.dim == 3 && ps.n_faces == n_faces && (ps.normals != NULL) == normals);
     for (size_t i = 0; i < 3 * ps.n_faces; i++) CHECK(ps.faces[i] < ps.n);

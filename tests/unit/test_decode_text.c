@@ -167,18 +167,10 @@ static void test_read_file(void) {
 }
 
 static void test_psb_off(void) {
-    const char *shared = ps_test_shared_dir();
-    char path[1024];
-    char *bytes;
-    size_t len;
-    ps_api_error err;
     ps_pointset ps;
-    if (!shared) SKIP("no shared data directory");
-    snprintf(path, sizeof path, "%s/psb-dev/off/1.off", shared);
-    if (ps_read_file(path, &bytes, &len, &err)) SKIP("%s", err.message);
-    int rc = ps_decode(bytes, len, NULL, &ps, &err);
-    free(bytes);
-    REQUIRE(rc == 0);
+    int decoded = ps_decode_shared_file("psb-dev/off/1.off", &ps, NULL);
+    if (decoded == 0) return; /* skipped */
+    REQUIRE(decoded == 1);
     CHECK(ps.n == 4706 && ps.n_faces == 9408 && ps.dim == 3);
     ps_pointset_free(&ps);
 }
