@@ -5,18 +5,10 @@
 # body, segments them in every output format, and checks help, version,
 # usage errors and bad input.  Prints "PASS cli:NAME" / "FAIL cli:NAME: why"
 # / "SKIP cli:NAME: why" like tests/unit/testlib.h; exits 1 on any failure.
-set -u
-BUILD=${1:-build}
-PS=$BUILD/pointseg
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
+SUITE=cli
+. "$(dirname "$0")/lib.sh"
 N_PER_SPHERE=200
 N=$((2 * N_PER_SPHERE))
-
-pass() { echo "PASS cli:$1"; }
-fail() { echo "FAIL cli:$1: $2"; failures=$((failures + 1)); }
-skip() { echo "SKIP cli:$1: $2"; }
 
 if [ ! -x "$PS" ]; then
     fail setup "$PS is not built"

@@ -5,15 +5,8 @@
 # ascii PLY files, decodes the PNGs with Python's zlib and checks size,
 # colours, shading and background; then usage errors.  Prints
 # "PASS render:NAME" / "FAIL render:NAME: why"; exits 1 on any failure.
-set -u
-BUILD=${1:-build}
-PS=$BUILD/pointseg
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-
-pass() { echo "PASS render:$1"; }
-fail() { echo "FAIL render:$1: $2"; failures=$((failures + 1)); }
+SUITE=render
+. "$(dirname "$0")/lib.sh"
 
 # pixel PNG X Y: prints "r g b" of pixel (X, Y) (Y down), or an error line.
 pixel() {
