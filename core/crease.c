@@ -35,8 +35,8 @@ void ps_crease_weights(ps_graph *g, const double *points, const double *normals)
         }
 }
 
-double ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
-                           double *strength) {
+void ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
+                         ps_crease_points *cp) {
     double sum = 0;
     for (size_t p = 0; p < g->n; p++) {
         double most = 0;
@@ -47,7 +47,7 @@ double ps_crease_strengths(const ps_graph *g, const double *points, const double
             sum += ang;
             if (ang > most) most = ang;
         }
-        if (strength) strength[p] = most;
+        cp->strength[p] = most;
     }
-    return g->offsets[g->n] ? sum / (double)g->offsets[g->n] : 0;
+    cp->mean = g->offsets[g->n] ? sum / (double)g->offsets[g->n] : 0;
 }

@@ -40,10 +40,17 @@ void ps_crease_weights(ps_graph *g, const double *points, const double *normals)
 double ps_crease_angular(const double *p, const double *np, const double *q,
                          const double *nq, double eta_convex);
 
-/* strength #P out (or NULL): each point's largest angular term
- * (eta_convex 0) over its incident edges, so a point on a concave crease is
- * strong.  Returns the mean angular term over all edges (0 for none). */
-double ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
-                           double *strength);
+/* How strongly each point lies on a concave crease: strength[p] is p's
+ * largest angular term (eta_convex 0) over its incident edges; mean is the
+ * mean angular term over all edges (0 for none), the scale the crease
+ * steps measure strengths against. */
+typedef struct ps_crease_points {
+    double *strength;  /* #P */
+    double mean;
+} ps_crease_points;
+
+/* cp->strength: #P, allocated by the caller; both fields are written. */
+void ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
+                         ps_crease_points *cp);
 
 #endif

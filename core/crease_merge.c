@@ -2,11 +2,11 @@
  * crease_merge.c: segments joined by a boundary that is not a concave
  * crease merge (crease_merge.h).
  *
- * The boundaries are gathered once, in O(E): the mean angular term, then
- * one record per kNN edge joining two segments (whether it is creased),
- * sorted and summed into one record per pair.  A
- * merge renames the loser in every record and sums the records again; there
- * are only as many records as adjacent pairs, so the steps are cheap.
+ * The boundaries are gathered once, in O(E): one record per kNN edge
+ * joining two segments (whether it is creased),
+ * sorted and summed into one record per pair.  A merge renames the loser in
+ * every record and sums the records again; there are only as many records
+ * as adjacent pairs, so the steps are cheap.
  */
 #include "crease_merge.h"
 
@@ -21,7 +21,6 @@ typedef struct boundary {
 } boundary;
 
 typedef struct merge_state {
-    int n_groups;
     size_t *size;     /* #n_groups points */
     double *f_min;    /* #n_groups */
     double *f_max;    /* #n_groups */
@@ -96,7 +95,6 @@ static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *g
 static ps_status state_init(const ps_crease_merge_input *in, const int *group, double crease,
                             merge_state *s, ps_error *err) {
     size_t m = (size_t)(in->n_groups > 0 ? in->n_groups : 1);
-    s->n_groups = in->n_groups;
     s->size = calloc(m, sizeof *s->size);
     s->f_min = malloc(m * sizeof *s->f_min);
     s->f_max = malloc(m * sizeof *s->f_max);
@@ -173,10 +171,10 @@ static int survivor(const merge_state *s, int id) {
 ps_status ps_crease_merge(const ps_crease_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
-    double mean = ps_crease_strengths(in->graph, in->points, in->normals, NULL);
-    if (mean < PS_CREASE_FLAT) return PS_OK; /* no creases: no evidence either way */
+    if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* no creases: no evidence */
     merge_state s = {0};
-    ps_status st = state_init(in, group_of_point, PS_CREASE_MERGE_STRENGTH * mean, &s, err);
+    ps_status st =
+        state_init(in, group_of_point, PS_CREASE_MERGE_STRENGTH * in->mean_angular, &s, err);
     for (long i; st == PS_OK && (i = weakest_boundary(&s, in->threshold)) >= 0;)
         if (!merge_pair(&s, (size_t)i, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");

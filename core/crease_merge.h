@@ -42,6 +42,7 @@ typedef struct ps_crease_merge_input {
     const double *points;    /* #P by 3 */
     const double *normals;   /* #P by 3, outward unit normals (normals.h) */
     const double *f;         /* #P centrality, for the merges' feature sizes */
+    double mean_angular;     /* mean angular term over all edges (ps_crease_points.mean) */
     int n_groups;            /* segment ids are in [0, n_groups) */
     double threshold;        /* merge while a boundary's creased fraction is below this */
 } ps_crease_merge_input;

@@ -127,28 +127,18 @@ static int work_alloc(split_work *w, size_t n, int m) {
            w->whole && w->queue;
 }
 
-/* on_crease from the crease strengths; 0 when out of memory. */
-static int mark_creases(split_work *w, const double *points, const double *normals) {
-    double *strength = malloc(w->g->n * sizeof *strength);
-    if (!strength) return 0;
-    double mean = ps_crease_strengths(w->g, points, normals, strength);
-    double crease = PS_CREASE_SPLIT_STRENGTH * mean;
-    for (size_t p = 0; p < w->g->n; p++)
-        w->on_crease[p] = mean >= PS_CREASE_FLAT && strength[p] >= crease;
-    free(strength);
-    return 1;
-}
-
-ps_status ps_supernodes_split_creases(const ps_graph *g, const double *points,
-                                      const double *normals, const double *f,
-                                      ps_supernodes *sn, ps_error *err) {
+ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points *creases,
+                                      const double *f, ps_supernodes *sn, ps_error *err) {
     if (g->n == 0) return PS_OK;
     split_work w = {.g = g, .sn = sn};
     ps_status st = PS_OK;
-    if (!work_alloc(&w, g->n, sn->m) || !mark_creases(&w, points, normals)) {
+    if (!work_alloc(&w, g->n, sn->m)) {
         work_free(&w);
         return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
     }
+    double crease = PS_CREASE_SPLIT_STRENGTH * creases->mean;
+    for (size_t p = 0; p < g->n; p++)
+        w.on_crease[p] = creases->mean >= PS_CREASE_FLAT && creases->strength[p] >= crease;
     label_pieces(&w);
     spread_labels(&w);
     if (w.n_new > sn->m && w.n_new <= PS_MAX_SUPERNODES) {

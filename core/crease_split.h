@@ -19,6 +19,7 @@
 #ifndef PS_CREASE_SPLIT_H
 #define PS_CREASE_SPLIT_H
 
+#include "crease.h"
 #include "supernodes.h"
 
 /* PSB dev set, mean 1 - RI (without the split 0.1471), over STRENGTH x
@@ -28,11 +29,11 @@
 #define PS_CREASE_SPLIT_STRENGTH 1.0
 #define PS_CREASE_SPLIT_MIN_FRACTION 0.005
 
-/* points #P by 3, normals #P by 3 (outward, unit), f #P the centrality
- * (picks the representatives).  sn is replaced by its refinement: every new
- * supernode lies inside one old one and keeps its is_minimum. */
-ps_status ps_supernodes_split_creases(const ps_graph *g, const double *points,
-                                      const double *normals, const double *f,
-                                      ps_supernodes *sn, ps_error *err);
+/* creases: the crease strengths of the #P points (crease.h); f #P the
+ * centrality (picks the representatives).  sn is replaced by its
+ * refinement: every new supernode lies inside one old one and keeps its
+ * is_minimum. */
+ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points *creases,
+                                      const double *f, ps_supernodes *sn, ps_error *err);
 
 #endif

@@ -44,6 +44,7 @@ typedef struct pipeline {
     int *component;        /* #U */
     int n_components;
     double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
+    ps_crease_points creases; /* with normals: crease strengths of the #U points */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;
@@ -114,12 +115,15 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
 }
 
 /* Normals (given, or PCA) of the distinct points, kept for the boundary
- * cut, then the crease metric. */
+ * cut; the crease strengths, kept for the crease split and merge; then the
+ * crease metric. */
 static ps_status crease_metric(pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     double *given = NULL;
     pl->normals = malloc(u * 3 * sizeof *pl->normals);
-    if (!pl->normals) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
+    pl->creases.strength = malloc(u * sizeof *pl->creases.strength);
+    if (!pl->normals || !pl->creases.strength)
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
     if (pl->in->normals) {
         given = malloc(u * 3 * sizeof *given);
         if (!given) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
@@ -128,7 +132,10 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
     }
     ps_status st = ps_normals_build(&pl->graph, pl->points, given, pl->component,
                                     pl->n_components, pl->normals, err);
-    if (st == PS_OK) ps_crease_weights(&pl->graph, pl->points, pl->normals);
+    if (st == PS_OK) {
+        ps_crease_strengths(&pl->graph, pl->points, pl->normals, &pl->creases);
+        ps_crease_weights(&pl->graph, pl->points, pl->normals);
+    }
     free(given);
     return st;
 }
@@ -168,8 +175,7 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     if (st == PS_OK && pl->normals)
-        st = ps_supernodes_split_creases(&pl->graph, pl->points, pl->normals, pl->f, &pl->sn,
-                                         err);
+        st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     return st;
 }
 
@@ -224,6 +230,7 @@ static ps_status crease_merge(pipeline *pl, ps_error *err) {
         .points = pl->points,
         .normals = pl->normals,
         .f = pl->f,
+        .mean_angular = pl->creases.mean,
         .n_groups = pl->n_tree,
         .threshold = PS_CREASE_MERGE_FRACTION,
     };
@@ -267,6 +274,7 @@ static void pipeline_free(pipeline *pl) {
     ps_graph_free(&pl->graph);
     free(pl->component);
     free(pl->normals);
+    free(pl->creases.strength);
     free(pl->f);
     ps_supernodes_free(&pl->sn);
     ps_tree_free(pl->tree, pl->n_tree);

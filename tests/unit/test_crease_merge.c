@@ -7,6 +7,7 @@
  * into larger, feature size from f), leaves renamed to their survivor, and
  * the same answer on every run.
  */
+#include "crease.h"
 #include "crease_merge.h"
 #include "star_fixture.h"
 #include "testlib.h"
@@ -28,9 +29,13 @@ static void split_parts(const ps_star *s, int *group) {
 
 static ps_status run_merge(const ps_star *s, const double *f, int *group, int *leaf,
                            ps_merge **merges, int *n_merges) {
+    ps_crease_points creases = {malloc(s->n * sizeof(double)), 0};
+    if (!creases.strength) return PS_ERR_NOMEM;
+    ps_crease_strengths(&s->graph, s->points, s->normals, &creases);
     ps_crease_merge_input in = {.graph = &s->graph, .points = s->points,
-                                .normals = s->normals, .f = f, .n_groups = N_PIECES,
-                                .threshold = PS_CREASE_MERGE_FRACTION};
+                                .normals = s->normals, .f = f, .mean_angular = creases.mean,
+                                .n_groups = N_PIECES, .threshold = PS_CREASE_MERGE_FRACTION};
+    free(creases.strength);
     for (int t = 0; t < N_PIECES; t++) leaf[t] = t;
     *merges = NULL, *n_merges = 0;
     ps_error err = {0};

@@ -31,10 +31,21 @@ static int whole_supernode(size_t n, const double *points, ps_supernodes *sn, do
     return 1;
 }
 
-static ps_status split_star(const ps_star *s, ps_supernodes *sn, double **f) {
+/* The crease strengths of points, then the split of sn. */
+static ps_status split(const ps_graph *g, const double *points, const double *normals,
+                       const double *f, ps_supernodes *sn) {
     ps_error err = {0};
+    ps_crease_points creases = {malloc(g->n * sizeof(double)), 0};
+    if (!creases.strength) return PS_ERR_NOMEM;
+    ps_crease_strengths(g, points, normals, &creases);
+    ps_status st = ps_supernodes_split_creases(g, &creases, f, sn, &err);
+    free(creases.strength);
+    return st;
+}
+
+static ps_status split_star(const ps_star *s, ps_supernodes *sn, double **f) {
     if (!whole_supernode(s->n, s->points, sn, f)) return PS_ERR_NOMEM;
-    return ps_supernodes_split_creases(&s->graph, s->points, s->normals, *f, sn, &err);
+    return split(&s->graph, s->points, s->normals, *f, sn);
 }
 
 /* Fraction of points whose supernode's majority part is their own part. */
@@ -90,7 +101,7 @@ static void test_sphere_stays_whole(void) {
     ps_supernodes sn = {0};
     double *f = NULL;
     REQUIRE(whole_supernode(n, points, &sn, &f));
-    CHECK(ps_supernodes_split_creases(&g, points, normals, f, &sn, &err) == PS_OK);
+    CHECK(split(&g, points, normals, f, &sn) == PS_OK);
     CHECK_MSG(sn.m == 1, "%d supernodes", sn.m);
     ps_supernodes_free(&sn);
     ps_graph_free(&g);
