@@ -97,18 +97,8 @@ static int improves(const ps_dijkstra *w, double nd, double old, const int *owne
     return owner && nd == old && w->pos[v] != NOT_IN_HEAP && owner[u] < owner[v];
 }
 
-void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
-                     size_t n_sources, double *dist, int *owner) {
-    for (size_t v = 0; v < g->n; v++) dist[v] = INFINITY;
-    if (owner)
-        for (size_t v = 0; v < g->n; v++) owner[v] = -1;
-    for (size_t s = 0; s < n_sources; s++) {
-        uint32_t v = sources[s];
-        if (dist[v] == 0.0) continue; /* a repeated source keeps its first index */
-        dist[v] = 0.0;
-        if (owner) owner[v] = (int)s;
-        heap_set(w, v, 0.0);
-    }
+/* Pops the heap until it is empty, relaxing each popped vertex's edges. */
+static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner) {
     while (w->size > 0) {
         uint32_t u = heap_pop(w);
         double du = dist[u];
@@ -123,6 +113,21 @@ void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
     }
 }
 
+void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
+                     size_t n_sources, double *dist, int *owner) {
+    for (size_t v = 0; v < g->n; v++) dist[v] = INFINITY;
+    if (owner)
+        for (size_t v = 0; v < g->n; v++) owner[v] = -1;
+    for (size_t s = 0; s < n_sources; s++) {
+        uint32_t v = sources[s];
+        if (dist[v] == 0.0) continue; /* a repeated source keeps its first index */
+        dist[v] = 0.0;
+        if (owner) owner[v] = (int)s;
+        heap_set(w, v, 0.0);
+    }
+    settle(w, g, dist, owner);
+}
+
 void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
                             size_t n_sources, double *dist) {
     for (size_t i = 0; i < n_sources; i++)
@@ -130,18 +135,7 @@ void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *s
             dist[sources[i]] = 0.0;
             heap_set(w, sources[i], 0.0);
         }
-    while (w->size > 0) {
-        uint32_t u = heap_pop(w);
-        double du = dist[u];
-        for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
-            uint32_t v = g->neighbors[e];
-            double nd = du + g->weights[e];
-            if (nd < dist[v]) {
-                dist[v] = nd;
-                heap_set(w, v, nd);
-            }
-        }
-    }
+    settle(w, g, dist, NULL);
 }
 
 void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, double *dist) {
