@@ -86,6 +86,14 @@ static ps_job *unref_locked(ps_job *job) {
     return --job->refs == 0 ? job : NULL;
 }
 
+/* Drops one reference; the caller holds the lock.  When it was the last,
+ * pushes the job onto *dead (chained by next) for free_chain outside it. */
+static void release_locked(ps_job *job, ps_job **dead) {
+    if (!unref_locked(job)) return;
+    job->next = *dead;
+    *dead = job;
+}
+
 void ps_job_release(ps_job *job) {
     if (!job) return;
     ps_jobs *q = job->owner;
@@ -118,10 +126,7 @@ static void purge_locked(ps_jobs *q, ps_job **dead) {
         if (j->finished > limit && finished <= (size_t)q->cfg.max_finished) continue;
         finished--;
         unlink_locked(q, j);
-        if (unref_locked(j)) {
-            j->next = *dead;
-            *dead = j;
-        }
+        release_locked(j, dead);
     }
 }
 
@@ -241,10 +246,7 @@ static void *worker_main(void *arg) {
             done = finish_locked(q, job, final, &user);
         }
         purge_locked(q, &dead);
-        if (unref_locked(job)) {
-            job->next = dead;
-            dead = job;
-        }
+        release_locked(job, &dead);
         pthread_mutex_unlock(&q->lock);
         if (done) done(user);
         free_chain(dead);
@@ -431,10 +433,7 @@ void ps_jobs_free(ps_jobs *q) {
     while (q->first) {
         ps_job *j = q->first;
         unlink_locked(q, j);
-        if (unref_locked(j)) {
-            j->next = dead;
-            dead = j;
-        }
+        release_locked(j, &dead);
     }
     free_chain(dead);
     pthread_mutex_destroy(&q->lock);
