@@ -96,12 +96,18 @@ void ps_preview(const char *s, size_t n, char *out, size_t out_size) {
     out[k] = 0;
 }
 
-int ps_field_number(const char *s, const char *t, size_t line, double *v, ps_api_error *err) {
+/* The failure of ps_field_number: the message quotes a preview of [s, t). */
+static int field_number_fail(const char *s, const char *t, size_t line, int non_finite,
+                             ps_api_error *err) {
     char shown[41];
     ps_preview(s, (size_t)(t - s), shown, sizeof shown);
-    if (ps_parse_double(s, (size_t)(t - s), v))
-        return ps_api_fail(err, 400, "line %zu: \"%s\" is not a number", line, shown);
-    if (!isfinite(*v))
+    if (non_finite)
         return ps_api_fail(err, 422, "line %zu: non-finite number \"%s\"", line, shown);
+    return ps_api_fail(err, 400, "line %zu: \"%s\" is not a number", line, shown);
+}
+
+int ps_field_number(const char *s, const char *t, size_t line, double *v, ps_api_error *err) {
+    if (ps_parse_double(s, (size_t)(t - s), v)) return field_number_fail(s, t, line, 0, err);
+    if (!isfinite(*v)) return field_number_fail(s, t, line, 1, err);
     return 0;
 }
