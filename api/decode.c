@@ -32,29 +32,26 @@ static int first_token_is_off(const char *bytes, size_t len) {
     return is_off_token(s, ps_token_end(s, e, NULL));
 }
 
-/* 1 when [s, e) is numbers separated by blanks, ',' or ';'; sets *columns. */
-static int is_number_line(const char *s, const char *e, int *columns) {
-    int n = 0;
+/* 1 when [s, e) is one or more numbers separated by blanks, ',' or ';'. */
+static int is_number_line(const char *s, const char *e) {
+    if (s >= e) return 0;
     while (s < e) {
         const char *t = ps_token_end(s, e, ",;");
         double v;
         if (ps_parse_double(s, (size_t)(t - s), &v)) return 0;
-        n++;
         s = ps_skip_blanks(t, e);
         if (s < e && (*s == ',' || *s == ';')) s = ps_skip_blanks(s + 1, e);
     }
-    *columns = n;
-    return n > 0;
+    return 1;
 }
 
 static int looks_like_obj(const char *bytes, size_t len) {
     ps_lines lines;
     const char *s, *e;
-    int columns;
     ps_lines_init(&lines, bytes, len);
     while (ps_lines_next_data(&lines, &s, &e)) {
         if (starts_with(s, e, "v ") || starts_with(s, e, "v\t")) return 1;
-        if (is_number_line(s, e, &columns)) return 0;
+        if (is_number_line(s, e)) return 0;
     }
     return 0;
 }
@@ -63,11 +60,10 @@ static int looks_like_obj(const char *bytes, size_t len) {
 static int looks_like_xyz(const char *bytes, size_t len) {
     ps_lines lines;
     const char *s, *e;
-    int columns;
     ps_lines_init(&lines, bytes, len);
     if (!ps_lines_next_data(&lines, &s, &e)) return 0;
-    if (is_number_line(s, e, &columns)) return 1;
-    return ps_lines_next_data(&lines, &s, &e) && is_number_line(s, e, &columns);
+    if (is_number_line(s, e)) return 1;
+    return ps_lines_next_data(&lines, &s, &e) && is_number_line(s, e);
 }
 
 ps_format ps_detect_format(const char *bytes, size_t len) {
