@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+const char *const ps_retry_after_header[] = {MHD_HTTP_HEADER_RETRY_AFTER, "1", NULL};
+
 const char *ps_cors_allowed_origin(ps_request *r) {
     const char *allowed = r->srv->cfg->cors_origin;
     const char *origin = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, "Origin");
@@ -75,9 +77,8 @@ enum MHD_Result ps_respond_problem(ps_request *r, int status, const char *const 
 }
 
 enum MHD_Result ps_respond_error(ps_request *r, const ps_api_error *err) {
-    static const char *const retry[] = {MHD_HTTP_HEADER_RETRY_AFTER, "1", NULL};
     int status = err->http_status >= 400 && err->http_status < 600 ? err->http_status : 500;
-    return ps_respond_problem(r, status, status == 503 ? retry : NULL, "%s", err->message);
+    return ps_respond_problem(r, status, status == 503 ? ps_retry_after_header : NULL, "%s", err->message);
 }
 
 enum MHD_Result ps_respond_preflight(ps_request *r) {

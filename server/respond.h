@@ -11,6 +11,10 @@
 
 #include "request.h"
 
+/* The headers list of a 503 answer: Retry-After: 1 (NULL-terminated, as the
+ * headers argument below). */
+extern const char *const ps_retry_after_header[];
+
 /* Queues status with body (malloc'ed; taken and freed; may be NULL when len
  * is 0).  headers: NULL or a NULL-terminated list of name, value, ... */
 enum MHD_Result ps_respond(ps_request *r, int status, const char *media_type, char *body,

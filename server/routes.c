@@ -18,7 +18,6 @@
 static const char *const allow_get[] = {MHD_HTTP_HEADER_ALLOW, "GET, HEAD, OPTIONS", NULL};
 static const char *const allow_post[] = {MHD_HTTP_HEADER_ALLOW, "POST, OPTIONS", NULL};
 static const char *const allow_job[] = {MHD_HTTP_HEADER_ALLOW, "GET, DELETE, OPTIONS", NULL};
-static const char *const retry_after[] = {MHD_HTTP_HEADER_RETRY_AFTER, "1", NULL};
 
 static int is(const ps_request *r, const char *method) { return !strcmp(r->method, method); }
 
@@ -123,7 +122,8 @@ static enum MHD_Result answer_from_job(ps_request *r, ps_job *job, int cancelled
     ps_job_get_status(job, &st);
     if (st.state == PS_JOB_FAILED) return ps_respond_problem(r, st.error_status, NULL, "%s", st.error);
     if (st.state == PS_JOB_CANCELLED)
-        return ps_respond_problem(r, cancelled_status, cancelled_status == 503 ? retry_after : NULL,
+        return ps_respond_problem(r, cancelled_status,
+                                  cancelled_status == 503 ? ps_retry_after_header : NULL,
                                   "job %s was cancelled", st.id);
     return ps_respond_problem(r, 409, NULL, "job %s is %s, not done", st.id, ps_job_state_name(st.state));
 }
@@ -137,17 +137,18 @@ static enum MHD_Result result_route(ps_request *r) {
 }
 
 static enum MHD_Result simple_route(ps_request *r) {
-    cJSON *doc = cJSON_CreateObject();
+    cJSON *doc;
     ps_jobs_stats st;
     size_t len = 0;
     char *text;
     switch (r->route) {
     case PS_ROUTE_HEALTHZ:
+        doc = cJSON_CreateObject();
         cJSON_AddStringToObject(doc, "status", "ok");
         return respond_json(r, 200, doc, NULL);
     case PS_ROUTE_READYZ:
-        cJSON_Delete(doc);
-        if (ps_jobs_full(r->srv->jobs)) return ps_respond_problem(r, 503, retry_after, "the job queue is full");
+        if (ps_jobs_full(r->srv->jobs))
+            return ps_respond_problem(r, 503, ps_retry_after_header, "the job queue is full");
         ps_jobs_get_stats(r->srv->jobs, &st);
         doc = cJSON_CreateObject();
         cJSON_AddStringToObject(doc, "status", "ready");
@@ -155,17 +156,16 @@ static enum MHD_Result simple_route(ps_request *r) {
         cJSON_AddNumberToObject(doc, "capacity", (double)st.capacity);
         return respond_json(r, 200, doc, NULL);
     case PS_ROUTE_VERSION:
+        doc = cJSON_CreateObject();
         cJSON_AddStringToObject(doc, "pointseg", PS_VERSION);
         cJSON_AddStringToObject(doc, "libmicrohttpd", MHD_get_version());
         return respond_json(r, 200, doc, NULL);
     case PS_ROUTE_METRICS:
-        cJSON_Delete(doc);
         ps_jobs_get_stats(r->srv->jobs, &st);
         text = ps_metrics_render(&st, &len);
         if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
         return ps_respond(r, 200, "text/plain; version=0.0.4", text, len, NULL);
     default:
-        cJSON_Delete(doc);
         text = ps_openapi_json(&len);
         if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
         return ps_respond(r, 200, "application/json", text, len, NULL);
@@ -327,8 +327,9 @@ static enum MHD_Result wait_for_job(ps_request *r, ps_pointset *ps, const ps_req
 static enum MHD_Result submit_async(ps_request *r, ps_pointset *ps, const ps_request_params *rp) {
     ps_job *job;
     int rc = ps_jobs_submit(r->srv->jobs, ps, rp, NULL, NULL, &job);
-    if (rc == 503) return ps_respond_problem(r, 503, retry_after, "the job queue is full (%d waiting)",
-                                             r->srv->cfg->queue_size);
+    if (rc == 503)
+        return ps_respond_problem(r, 503, ps_retry_after_header, "the job queue is full (%d waiting)",
+                                  r->srv->cfg->queue_size);
     if (rc) return ps_respond_problem(r, 500, NULL, "out of memory");
     char location[128];
     snprintf(r->job_id, sizeof r->job_id, "%s", ps_job_id(job));
