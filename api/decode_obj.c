@@ -71,25 +71,35 @@ static int read_line(const char *s, const char *e, size_t line, const ps_decode_
     return 0;
 }
 
+static int read_lines(const char *bytes, size_t len, const ps_decode_limits *lim, obj_data *d,
+                      ps_api_error *err) {
+    ps_lines lines;
+    const char *s, *e;
+    ps_lines_init(&lines, bytes, len);
+    while (ps_lines_next_data(&lines, &s, &e))
+        if (read_line(s, e, lines.line, lim, d, err)) return -1;
+    return 0;
+}
+
+/* Hands the vertices to out, and the normals when there is one per vertex. */
+static void move_vertices(obj_data *d, ps_pointset *out) {
+    out->n = d->points.len / 3;
+    out->dim = 3;
+    out->points = d->points.v;
+    if (d->normals.len == d->points.len) out->normals = d->normals.v;
+    else free(d->normals.v);
+}
+
 int ps_decode_obj(const char *bytes, size_t len, const ps_decode_limits *lim,
                   ps_pointset *out, ps_api_error *err) {
     obj_data d = {{0}, {0}, {0}};
-    ps_lines lines;
-    const char *s, *e;
     memset(out, 0, sizeof *out);
-    ps_lines_init(&lines, bytes, len);
-    while (ps_lines_next_data(&lines, &s, &e))
-        if (read_line(s, e, lines.line, lim, &d, err)) {
-            free(d.points.v);
-            free(d.normals.v);
-            free(d.tris.v);
-            return -1;
-        }
-    out->n = d.points.len / 3;
-    out->dim = 3;
-    out->points = d.points.v;
-    if (d.normals.len == d.points.len) out->normals = d.normals.v;
-    else free(d.normals.v);
-    ps_tris_move(&d.tris, out);
-    return ps_decode_finish(out, lim, "vertex", err);
+    int failed = read_lines(bytes, len, lim, &d, err);
+    if (failed) {
+        free(d.points.v);
+        free(d.normals.v);
+    } else {
+        move_vertices(&d, out);
+    }
+    return ps_decode_finish_mesh(failed, &d.tris, out, lim, err);
 }

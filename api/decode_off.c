@@ -129,11 +129,6 @@ int ps_decode_off(const char *bytes, size_t len, const ps_decode_limits *lim,
     ps_tris tris = {0};
     memset(out, 0, sizeof *out);
     ps_lines_init(&r.lines, bytes, len);
-    if (read_off(&r, lim, out, &tris, err)) {
-        free(tris.v);
-        ps_pointset_free(out);
-        return -1;
-    }
-    ps_tris_move(&tris, out);
-    return ps_decode_finish(out, lim, "vertex", err);
+    int failed = read_off(&r, lim, out, &tris, err);
+    return ps_decode_finish_mesh(failed, &tris, out, lim, err);
 }

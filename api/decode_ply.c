@@ -343,11 +343,6 @@ int ps_decode_ply(const char *bytes, size_t len, const ps_decode_limits *lim,
     const ps_ply_element *vertex = ps_ply_find_element(&h, "vertex");
     if (!vertex) return ps_api_fail(err, 422, "PLY file has no vertex element");
     ply_reader r = {bytes, bytes + h.data_offset, bytes + len, h.format};
-    if (read_elements(&h, vertex, &r, lim, out, &tris, err)) {
-        free(tris.v);
-        ps_pointset_free(out);
-        return -1;
-    }
-    ps_tris_move(&tris, out);
-    return ps_decode_finish(out, lim, "vertex", err);
+    int failed = read_elements(&h, vertex, &r, lim, out, &tris, err);
+    return ps_decode_finish_mesh(failed, &tris, out, lim, err);
 }

@@ -102,10 +102,22 @@ int ps_tris_push(ps_tris *t, uint32_t a, uint32_t b, uint32_t c, ps_api_error *e
     return 0;
 }
 
-void ps_tris_move(ps_tris *t, ps_pointset *ps) {
+/* Hands the triangles to ps (NULL when none) and empties t. */
+static void tris_move(ps_tris *t, ps_pointset *ps) {
     ps->n_faces = t->len / 3;
     ps->faces = ps->n_faces ? t->v : NULL;
     if (!ps->n_faces) free(t->v);
     t->v = NULL;
     t->len = t->cap = 0;
+}
+
+int ps_decode_finish_mesh(int failed, ps_tris *t, ps_pointset *ps, const ps_decode_limits *lim,
+                          ps_api_error *err) {
+    if (failed) {
+        free(t->v);
+        *t = (ps_tris){0};
+        return fail_and_free(ps);
+    }
+    tris_move(t, ps);
+    return ps_decode_finish(ps, lim, "vertex", err);
 }

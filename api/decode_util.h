@@ -48,7 +48,11 @@ int ps_tris_reserve(ps_tris *t, size_t n_tris, ps_api_error *err);
 /* Appends the triangle (a, b, c). */
 int ps_tris_push(ps_tris *t, uint32_t a, uint32_t b, uint32_t c, ps_api_error *err);
 
-/* Hands the triangles to ps (faces, n_faces; NULL when none) and empties t. */
-void ps_tris_move(ps_tris *t, ps_pointset *ps);
+/* The end of a mesh decoder (OFF, PLY, OBJ).  failed != 0 (err already
+ * set): frees the triangles and *ps and returns -1.  Else hands the
+ * triangles to ps (faces #F by 3, NULL when none; n_faces) and returns
+ * ps_decode_finish(ps, lim, "vertex", err).  Either way t is left empty. */
+int ps_decode_finish_mesh(int failed, ps_tris *t, ps_pointset *ps, const ps_decode_limits *lim,
+                          ps_api_error *err);
 
 #endif
