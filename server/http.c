@@ -3,6 +3,7 @@
  * that cancels the job of a client that went away. */
 #include "http.h"
 
+#include "deadline.h"
 #include "request.h"
 #include "respond.h"
 #include "routes.h"
@@ -124,10 +125,7 @@ static void *watch_main(void *arg) {
     ps_server *s = arg;
     pthread_mutex_lock(&s->lock);
     while (!s->stop_watch) {
-        struct timespec ts;
-        clock_gettime(CLOCK_REALTIME, &ts);
-        ts.tv_nsec += WATCH_PERIOD_MS * 1000000L;
-        if (ts.tv_nsec >= 1000000000L) ts.tv_sec++, ts.tv_nsec -= 1000000000L;
+        struct timespec ts = ps_deadline_in_ms(WATCH_PERIOD_MS);
         pthread_cond_timedwait(&s->changed, &s->lock, &ts);
         if (s->stop_watch) break;
         pthread_mutex_unlock(&s->lock);
@@ -185,10 +183,7 @@ void ps_http_wait_idle(ps_http *h, double seconds) {
     double deadline = monotonic_seconds() + seconds;
     pthread_mutex_lock(&h->srv.lock);
     while (h->srv.in_flight && monotonic_seconds() < deadline) {
-        struct timespec ts;
-        clock_gettime(CLOCK_REALTIME, &ts);
-        ts.tv_nsec += 50 * 1000000L;
-        if (ts.tv_nsec >= 1000000000L) ts.tv_sec++, ts.tv_nsec -= 1000000000L;
+        struct timespec ts = ps_deadline_in_ms(50);
         pthread_cond_timedwait(&h->srv.changed, &h->srv.lock, &ts);
     }
     pthread_mutex_unlock(&h->srv.lock);

@@ -2,6 +2,7 @@
  * pool of worker threads running ps_segment, and the registry of jobs by id. */
 #include "jobs.h"
 
+#include "deadline.h"
 #include "encode.h"
 
 #include <errno.h>
@@ -405,13 +406,7 @@ int ps_jobs_full(ps_jobs *q) {
 static void wait_idle_locked(ps_jobs *q, double seconds) {
     double deadline = now_seconds() + seconds;
     while ((q->count || q->running) && now_seconds() < deadline) {
-        struct timespec ts;
-        clock_gettime(CLOCK_REALTIME, &ts);
-        ts.tv_nsec += 100 * 1000 * 1000;
-        if (ts.tv_nsec >= 1000000000L) {
-            ts.tv_sec++;
-            ts.tv_nsec -= 1000000000L;
-        }
+        struct timespec ts = ps_deadline_in_ms(100);
         pthread_cond_timedwait(&q->idle, &q->lock, &ts);
     }
 }
