@@ -18,6 +18,7 @@
 
 #include "bfs_order.h"
 #include "centrality_coarse.h"
+#include "control.h"
 #include "dijkstra.h"
 #include "parallel.h"
 
@@ -49,12 +50,8 @@ typedef struct run_ctx {
     double progress_base;      /* fraction reported before the first run */
 } run_ctx;
 
-static int cancel_requested(const ps_control *ctl) {
-    return ctl && ctl->cancel && *ctl->cancel;
-}
-
 static void report(const ps_control *ctl, double fraction) {
-    if (ctl && ctl->progress) ctl->progress(ctl->user, PS_PHASE_CENTRALITY, fraction);
+    ps_control_progress(ctl, PS_PHASE_CENTRALITY, fraction);
 }
 
 static void workers_free(workers *w) {
@@ -91,7 +88,7 @@ static void finish_run(run_ctx *r, int worker) {
 
 static int should_stop(run_ctx *r) {
     if (atomic_load(&r->cancelled)) return 1;
-    if (!cancel_requested(r->ctl)) return 0;
+    if (!ps_control_cancelled(r->ctl)) return 0;
     atomic_store(&r->cancelled, 1);
     return 1;
 }
@@ -172,7 +169,7 @@ static ps_status choose_samples(const ps_bfs_order *o, size_t samples, ps_dijkst
     for (int c = 0; c < count; c++) {
         double bound = 0.0;
         for (size_t i = 0; i < s->count[c]; i++) {
-            if (cancel_requested(ctl)) return PS_ERR_CANCELLED;
+            if (ps_control_cancelled(ctl)) return PS_ERR_CANCELLED;
             uint32_t v = i == 0 ? (uint32_t)o->start[c] : farthest_member(o, c, mind);
             ps_dijkstra_lower(dij, &o->g, v, mind);
             /* After the first run mind holds distances from one vertex; twice

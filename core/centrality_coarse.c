@@ -15,6 +15,7 @@
 #include "centrality_coarse.h"
 
 #include "coarse_graph.h"
+#include "control.h"
 #include "dijkstra.h"
 #include "parallel.h"
 
@@ -56,17 +57,13 @@ typedef struct two_level {
     double progress_lo, progress_hi;
 } two_level;
 
-static int cancel_requested(const ps_control *ctl) {
-    return ctl && ctl->cancel && *ctl->cancel;
-}
-
 static void report(const ps_control *ctl, double fraction) {
-    if (ctl && ctl->progress) ctl->progress(ctl->user, PS_PHASE_CENTRALITY, fraction);
+    ps_control_progress(ctl, PS_PHASE_CENTRALITY, fraction);
 }
 
 static int should_stop(two_level *x) {
     if (atomic_load(&x->cancelled)) return 1;
-    if (!cancel_requested(x->ctl)) return 0;
+    if (!ps_control_cancelled(x->ctl)) return 0;
     atomic_store(&x->cancelled, 1);
     return 1;
 }
@@ -138,7 +135,7 @@ static ps_status choose_samples(const ps_coarse_graph *cg, int n_components, ps_
     for (int k = 0; k < n_components; k++) {
         size_t begin = cg->cell_start[k], end = cg->cell_start[k + 1];
         for (size_t i = t->first[k]; i < t->first[k + 1]; i++) {
-            if (cancel_requested(ctl)) return PS_ERR_CANCELLED;
+            if (ps_control_cancelled(ctl)) return PS_ERR_CANCELLED;
             uint32_t c = i == t->first[k] ? (uint32_t)begin : farthest_cell(begin, end, mind);
             ps_dijkstra_lower(dij, &cg->graph, c, mind);
             t->cells[i] = c;

@@ -11,6 +11,7 @@
  */
 #include "coarse_graph.h"
 
+#include "control.h"
 #include "dijkstra.h"
 #include "parallel.h"
 
@@ -156,10 +157,6 @@ static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
     return PS_OK;
 }
 
-static int raised(const volatile int *cancel) {
-    return cancel && *cancel;
-}
-
 /* Greedy cover in vertex order: seed #M out (sized #P), cell_start out. */
 static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
                        const volatile int *cancel, unsigned char *covered, ps_coarse_graph *cg) {
@@ -168,7 +165,7 @@ static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
         cg->cell_start[k] = m;
         for (size_t v = o->start[k]; v < o->start[k + 1]; v++) {
             if (covered[v]) continue;
-            if (m % CANCEL_POLL == 0 && raised(cancel)) return PS_ERR_CANCELLED;
+            if (m % CANCEL_POLL == 0 && ps_cancel_raised(cancel)) return PS_ERR_CANCELLED;
             cg->seed[m++] = (uint32_t)v;
             ball_run(b, &o->g, (uint32_t)v, radius[k], NULL, 0);
             for (size_t i = 0; i < b->n_reached; i++) covered[b->reached[i]] = 1;
@@ -298,7 +295,7 @@ static void local_runs(void *ctx, size_t begin, size_t end, int worker) {
     local_ctx *l = ctx;
     for (size_t c = begin; c < end; c++) {
         if (atomic_load(&l->stopped)) return;
-        if (raised(l->cancel)) {
+        if (ps_cancel_raised(l->cancel)) {
             atomic_store(&l->stopped, 1);
             return;
         }

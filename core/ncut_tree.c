@@ -10,6 +10,7 @@
  */
 #include "ncut_tree.h"
 
+#include "control.h"
 #include "eigen.h"
 
 #include <math.h>
@@ -37,14 +38,6 @@ typedef struct tree_builder {
     int count, capacity;
 } tree_builder;
 
-static int is_cancelled(const ps_control *ctl) {
-    return ctl && ctl->cancel && __atomic_load_n(ctl->cancel, __ATOMIC_RELAXED);
-}
-
-static void report_progress(const ps_control *ctl, int finalized, int m) {
-    if (ctl && ctl->progress)
-        ctl->progress(ctl->user, PS_PHASE_HIERARCHY, (double)finalized / m);
-}
 
 static void work_free(bisect_work *w) {
     free(w->scaled);
@@ -252,13 +245,13 @@ static ps_status grow_tree(tree_builder *b, bisect_work *w, const int *component
                            double threshold, const ps_control *ctl, ps_error *err) {
     int finalized = 0;
     for (int id = 0; id < b->count; id++) {
-        if (is_cancelled(ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
+        if (ps_control_cancelled(ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
         int leaf_size = 0;
         ps_status st = process_node(b, w, component, threshold, id, &leaf_size, err);
         if (st != PS_OK) return st;
         if (leaf_size > 0) {
             finalized += leaf_size;
-            report_progress(ctl, finalized, w->m);
+            ps_control_progress(ctl, PS_PHASE_HIERARCHY, (double)finalized / w->m);
         }
     }
     return PS_OK;

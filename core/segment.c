@@ -12,6 +12,7 @@
  */
 #include "boundary_cut.h"
 #include "centrality.h"
+#include "control.h"
 #include "crease.h"
 #include "crease_merge.h"
 #include "crease_split.h"
@@ -27,7 +28,6 @@
 #include "supernodes.h"
 
 #include <math.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -62,15 +62,6 @@ static double now_ms(void) {
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-static int cancelled(const ps_control *ctl) {
-    return ctl && ctl->cancel &&
-           atomic_load_explicit((const volatile atomic_int *)ctl->cancel,
-                                memory_order_relaxed);
-}
-
-static void progress(const ps_control *ctl, ps_phase phase, double fraction) {
-    if (ctl && ctl->progress) ctl->progress(ctl->user, phase, fraction);
-}
 
 static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *err) {
     if (!in || !in->points || in->n == 0)
@@ -257,12 +248,12 @@ static ps_status run_phases(pipeline *pl, ps_error *err) {
                                                     phase_supernodes, phase_hierarchy,
                                                     phase_refine};
     for (int ph = 0; ph < PS_PHASE_COUNT; ph++) {
-        if (cancelled(pl->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
+        if (ps_control_cancelled(pl->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
         double start = now_ms();
-        progress(pl->ctl, (ps_phase)ph, 0.0);
+        ps_control_progress(pl->ctl, (ps_phase)ph, 0.0);
         ps_status st = phases[ph](pl, err);
         if (st != PS_OK) return st;
-        progress(pl->ctl, (ps_phase)ph, 1.0);
+        ps_control_progress(pl->ctl, (ps_phase)ph, 1.0);
         pl->timings.ms[ph] = now_ms() - start;
     }
     return PS_OK;
