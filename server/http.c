@@ -4,6 +4,7 @@
 #include "http.h"
 
 #include "deadline.h"
+#include "openapi.h"
 #include "request.h"
 #include "respond.h"
 #include "routes.h"
@@ -23,8 +24,10 @@
 #define IO_THREADS 4
 
 struct ps_http {
-    ps_server srv;
+    ps_server srv;              /* first: ps_http_openapi converts back */
     int port;
+    char *openapi;              /* the OpenAPI document, built at start-up */
+    size_t openapi_len;
 };
 
 static double monotonic_seconds(void) {
@@ -160,6 +163,12 @@ ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t wh
     h->srv.jobs = jobs;
     pthread_mutex_init(&h->srv.lock, NULL);
     pthread_cond_init(&h->srv.changed, NULL);
+    h->openapi = ps_openapi_json(&h->openapi_len);
+    if (!h->openapi) {
+        snprintf(why, why_cap, "out of memory");
+        ps_http_stop(h);
+        return NULL;
+    }
     h->srv.mhd = start_daemon(h, &addr);
     if (!h->srv.mhd) {
         snprintf(why, why_cap, "cannot listen on %s:%d", cfg->bind, cfg->port);
@@ -173,6 +182,12 @@ ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t wh
 }
 
 int ps_http_port(ps_http *h) { return h->port; }
+
+const char *ps_http_openapi(const ps_server *s, size_t *len) {
+    const ps_http *h = (const ps_http *)s; /* every ps_server is the srv of a ps_http */
+    *len = h->openapi_len;
+    return h->openapi;
+}
 
 void ps_http_quiesce(ps_http *h) {
     MHD_socket fd = MHD_quiesce_daemon(h->srv.mhd);
@@ -201,5 +216,6 @@ void ps_http_stop(ps_http *h) {
     if (h->srv.mhd) MHD_stop_daemon(h->srv.mhd);
     pthread_cond_destroy(&h->srv.changed);
     pthread_mutex_destroy(&h->srv.lock);
+    free(h->openapi);
     free(h);
 }

@@ -1,7 +1,7 @@
 /* routes.c: routing, authorization, and the handler of every route. */
 #include "routes.h"
 
-#include "openapi.h"
+#include "http.h"
 #include "respond.h"
 #include "static_files.h"
 
@@ -141,6 +141,7 @@ static enum MHD_Result simple_route(ps_request *r) {
     ps_jobs_stats st;
     size_t len = 0;
     char *text;
+    const char *openapi;
     switch (r->route) {
     case PS_ROUTE_HEALTHZ:
         doc = cJSON_CreateObject();
@@ -166,9 +167,8 @@ static enum MHD_Result simple_route(ps_request *r) {
         if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
         return ps_respond(r, 200, "text/plain; version=0.0.4", text, len, NULL);
     default:
-        text = ps_openapi_json(&len);
-        if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
-        return ps_respond(r, 200, "application/json", text, len, NULL);
+        openapi = ps_http_openapi(r->srv, &len);
+        return ps_respond_copy(r, 200, "application/json", openapi, len, NULL);
     }
 }
 
