@@ -37,17 +37,16 @@ static ps_status inner_graph(const ps_graph *g, const int *supernode_of, ps_grap
     return PS_OK;
 }
 
-/* Sources: each piece's representative when it holds one, else its lowest
- * vertex; #sources out. */
+/* Sources, one per piece (#n_pieces): the piece's representative when it
+ * holds one, else its lowest vertex. */
 static uint32_t *f2_sources(const ps_supernodes *sn, const int *piece, int n_pieces,
-                            size_t n, size_t *count) {
+                            size_t n) {
     uint32_t *src = malloc((size_t)(n_pieces ? n_pieces : 1) * sizeof *src);
     if (!src) return NULL;
     for (int c = 0; c < n_pieces; c++) src[c] = UINT32_MAX;
     for (int s = 0; s < sn->m; s++) src[piece[sn->sinks[s]]] = sn->sinks[s];
     for (size_t p = 0; p < n; p++)
         if (src[piece[p]] == UINT32_MAX) src[piece[p]] = (uint32_t)p;
-    *count = (size_t)n_pieces;
     return src;
 }
 
@@ -55,7 +54,6 @@ ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double pers
                                  ps_supernodes *sn, ps_error *err) {
     ps_graph h = {0};
     ps_flow basins = {0};
-    size_t n_src = 0;
     int *piece = malloc(g->n * sizeof *piece);
     double *f2 = malloc(g->n * sizeof *f2);
     ps_dijkstra *w = ps_dijkstra_new(g->n);
@@ -63,10 +61,10 @@ ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double pers
     ps_status st = piece && f2 && w ? inner_graph(g, sn->supernode_of, &h, err)
                                     : ps_fail(err, PS_ERR_NOMEM, "f2: out of memory");
     int n_pieces = st == PS_OK ? ps_graph_components(&h, piece) : 0;
-    if (st == PS_OK && !(src = f2_sources(sn, piece, n_pieces, g->n, &n_src)))
+    if (st == PS_OK && !(src = f2_sources(sn, piece, n_pieces, g->n)))
         st = ps_fail(err, PS_ERR_NOMEM, "f2: out of memory");
     if (st == PS_OK) {
-        ps_dijkstra_run(w, &h, src, n_src, f2, NULL);
+        ps_dijkstra_run(w, &h, src, (size_t)n_pieces, f2, NULL);
         st = ps_flow_build(&h, f2, +1, &basins, err);
     }
     if (st == PS_OK)

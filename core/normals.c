@@ -115,6 +115,26 @@ static void orient_from(const ps_graph *g, uint32_t root, double *n, unsigned ch
     }
 }
 
+/* PCA normals: each component's root (its point of largest x) is made to
+ * look along +x, and the rest of the component follows it over the tree. */
+static ps_status orient_components(const ps_graph *g, const uint32_t *extreme,
+                                  int n_components, double *normals, ps_error *err) {
+    unsigned char *done = calloc(g->n ? g->n : 1, 1);
+    prim_item *heap = malloc((g->offsets[g->n] + 1) * sizeof *heap);
+    if (!done || !heap) {
+        free(done), free(heap);
+        return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
+    }
+    for (int c = 0; c < n_components; c++) {
+        double *root = normals + 3 * extreme[c];
+        if (root[0] < 0)
+            for (int i = 0; i < 3; i++) root[i] = -root[i];
+        orient_from(g, extreme[c], normals, done, heap);
+    }
+    free(done), free(heap);
+    return PS_OK;
+}
+
 ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
                            const int *component, int n_components, double *normals,
                            ps_error *err) {
@@ -125,26 +145,17 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
         normalize(normals + 3 * p);
     }
     uint32_t *extreme = malloc((size_t)n_components * sizeof *extreme);
-    unsigned char *done = calloc(n ? n : 1, 1);
-    prim_item *heap = malloc((g->offsets[n] + 1) * sizeof *heap);
-    if (!extreme || !done || !heap) {
-        free(extreme), free(done), free(heap);
-        return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
-    }
+    if (!extreme) return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
     for (int c = 0; c < n_components; c++) extreme[c] = UINT32_MAX;
     for (size_t p = 0; p < n; p++) {
         uint32_t *x = &extreme[component[p]];
         if (*x == UINT32_MAX || points[3 * p] > points[3 * *x]) *x = (uint32_t)p;
     }
-    for (int c = 0; c < n_components; c++) {
-        double *root = normals + 3 * extreme[c];
-        if (root[0] < 0 && !given)
-            for (int i = 0; i < 3; i++) root[i] = -root[i];
-        if (!given) orient_from(g, extreme[c], normals, done, heap);
-    }
+    ps_status st = PS_OK;
+    if (!given) st = orient_components(g, extreme, n_components, normals, err);
     for (size_t p = 0; given && p < n; p++) /* given: consistent, maybe inward */
         if (given[3 * extreme[component[p]]] < 0)
             for (int i = 0; i < 3; i++) normals[3 * p + i] = -normals[3 * p + i];
-    free(extreme), free(done), free(heap);
-    return PS_OK;
+    free(extreme);
+    return st;
 }
