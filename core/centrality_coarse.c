@@ -159,12 +159,14 @@ typedef struct coarse_ctx {
     coarse_worker *w;  /* #threads */
 } coarse_ctx;
 
-/* The component of sample i (components with samples in increasing order). */
-static int component_of_sample(const table *t, int n_components, size_t i) {
-    int lo = 0, hi = n_components - 1;
+/* The last range k in [0, count) with start[k] <= i (start increasing):
+ * the component of a sample (start = table.first) or of a vertex (start =
+ * the BFS order's component starts). */
+static int range_of(const size_t *start, int count, size_t i) {
+    int lo = 0, hi = count - 1;
     while (lo < hi) {
         int mid = lo + (hi - lo + 1) / 2;
-        if (t->first[mid] <= i) lo = mid;
+        if (start[mid] <= i) lo = mid;
         else hi = mid - 1;
     }
     return lo;
@@ -173,7 +175,7 @@ static int component_of_sample(const table *t, int n_components, size_t i) {
 static void coarse_block(two_level *x, coarse_worker *w, size_t first, size_t end) {
     const table *t = &x->t;
     const ps_coarse_graph *cg = x->cg;
-    int k = component_of_sample(t, x->o->n_components, first);
+    int k = range_of(t->first, x->o->n_components, first);
     size_t begin = cg->cell_start[k], cells = cg->cell_start[k + 1] - begin;
     for (size_t i = first; i < end; i++) {
         ps_dijkstra_run(w->dij, &cg->graph, &t->cells[i], 1, w->dist, NULL);
@@ -286,17 +288,6 @@ static double vertex_mean(const two_level *x, uint32_t p, int k, float *m) {
     return lane_sum(m, stride) / (double)count;
 }
 
-/* The component whose range of new ids holds v. */
-static int component_of_vertex(const ps_bfs_order *o, size_t v) {
-    int lo = 0, hi = o->n_components - 1;
-    while (lo < hi) {
-        int mid = lo + (hi - lo + 1) / 2;
-        if (o->start[mid] <= v) lo = mid;
-        else hi = mid - 1;
-    }
-    return lo;
-}
-
 static void fine_tasks(void *ctx, size_t begin, size_t end, int worker) {
     fine_ctx *c = ctx;
     two_level *x = c->x;
@@ -304,7 +295,7 @@ static void fine_tasks(void *ctx, size_t begin, size_t end, int worker) {
     for (size_t chunk = begin; chunk < end && !should_stop(x); chunk++) {
         size_t first = chunk * FINE_CHUNK, last = first + FINE_CHUNK;
         if (last > o->g.n) last = o->g.n;
-        int k = component_of_vertex(o, first);
+        int k = range_of(o->start, o->n_components, first);
         for (size_t p = first; p < last; p++) {
             while (o->start[k + 1] <= p) k++;
             x->fine[p] = vertex_mean(x, (uint32_t)p, k, c->scratch[worker]);
