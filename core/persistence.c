@@ -6,6 +6,7 @@
  */
 #include "persistence.h"
 
+#include "component_range.h"
 #include "union_find.h"
 #include <stdlib.h>
 
@@ -45,22 +46,14 @@ static saddle *border_saddles(const ps_graph *g, const double *f, const ps_flow 
 /* Per component: fraction * (max f - min f). */
 static double *component_thresholds(const ps_graph *g, const double *f, const int *component,
                                     int n_components, double fraction) {
-    double *lo = malloc((size_t)n_components * sizeof *lo);
-    double *hi = malloc((size_t)n_components * sizeof *hi);
-    if (!lo || !hi) {
-        free(lo);
-        free(hi);
+    double *threshold = malloc((size_t)(n_components > 0 ? n_components : 1) *
+                               sizeof *threshold);
+    if (!threshold || ps_component_range(f, component, g->n, n_components, threshold) != 0) {
+        free(threshold);
         return NULL;
     }
-    for (int c = 0; c < n_components; c++) lo[c] = 1e300, hi[c] = -1e300;
-    for (size_t p = 0; p < g->n; p++) {
-        int c = component[p];
-        if (f[p] < lo[c]) lo[c] = f[p];
-        if (f[p] > hi[c]) hi[c] = f[p];
-    }
-    for (int c = 0; c < n_components; c++) hi[c] = fraction * (hi[c] - lo[c]);
-    free(lo);
-    return hi;
+    for (int c = 0; c < n_components; c++) threshold[c] *= fraction;
+    return threshold;
 }
 
 /* Is sink a's peak below sink b's?  Ties: the higher vertex id is lower. */

@@ -16,6 +16,8 @@
  */
 #include "refine.h"
 
+#include "component_range.h"
+
 #include <math.h>
 #include <stdlib.h>
 
@@ -119,19 +121,9 @@ static ps_status component_ranges(const double *f, const int *component, size_t 
     int n_comp = 0;
     for (size_t p = 0; p < n; p++)
         if (component[p] >= n_comp) n_comp = component[p] + 1;
-    double *c_min = malloc((size_t)n_comp * sizeof *c_min);
-    *range = malloc((size_t)n_comp * sizeof **range);
-    if (!c_min || !*range) {
-        free(c_min);
+    *range = malloc((size_t)(n_comp > 0 ? n_comp : 1) * sizeof **range);
+    if (!*range || ps_component_range(f, component, n, n_comp, *range) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "refine: out of memory");
-    }
-    for (int c = 0; c < n_comp; c++) c_min[c] = INFINITY, (*range)[c] = -INFINITY;
-    for (size_t p = 0; p < n; p++) {
-        c_min[component[p]] = fmin(c_min[component[p]], f[p]);
-        (*range)[component[p]] = fmax((*range)[component[p]], f[p]);
-    }
-    for (int c = 0; c < n_comp; c++) (*range)[c] -= c_min[c];
-    free(c_min);
     return PS_OK;
 }
 
