@@ -24,10 +24,8 @@
 #define IO_THREADS 4
 
 struct ps_http {
-    ps_server srv;              /* first: ps_http_openapi converts back */
+    ps_server srv;
     int port;
-    char *openapi;              /* the OpenAPI document, built at start-up */
-    size_t openapi_len;
 };
 
 static double monotonic_seconds(void) {
@@ -163,8 +161,8 @@ ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t wh
     h->srv.jobs = jobs;
     pthread_mutex_init(&h->srv.lock, NULL);
     pthread_cond_init(&h->srv.changed, NULL);
-    h->openapi = ps_openapi_json(&h->openapi_len);
-    if (!h->openapi) {
+    h->srv.openapi = ps_openapi_json(&h->srv.openapi_len);
+    if (!h->srv.openapi) {
         snprintf(why, why_cap, "out of memory");
         ps_http_stop(h);
         return NULL;
@@ -182,12 +180,6 @@ ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t wh
 }
 
 int ps_http_port(ps_http *h) { return h->port; }
-
-const char *ps_http_openapi(const ps_server *s, size_t *len) {
-    const ps_http *h = (const ps_http *)s; /* every ps_server is the srv of a ps_http */
-    *len = h->openapi_len;
-    return h->openapi;
-}
 
 void ps_http_quiesce(ps_http *h) {
     MHD_socket fd = MHD_quiesce_daemon(h->srv.mhd);
@@ -216,6 +208,6 @@ void ps_http_stop(ps_http *h) {
     if (h->srv.mhd) MHD_stop_daemon(h->srv.mhd);
     pthread_cond_destroy(&h->srv.changed);
     pthread_mutex_destroy(&h->srv.lock);
-    free(h->openapi);
+    free(h->srv.openapi);
     free(h);
 }

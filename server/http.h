@@ -21,10 +21,6 @@ ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t wh
 /* The port actually bound (useful with --port 0). */
 int ps_http_port(ps_http *h);
 
-/* The OpenAPI document (openapi.h) built once by ps_http_start, for the
- * server s of a request: *len bytes, owned by the server until ps_http_stop. */
-const char *ps_http_openapi(const struct ps_server *s, size_t *len);
-
 /* Stops accepting connections; requests under way go on. */
 void ps_http_quiesce(ps_http *h);
 

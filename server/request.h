@@ -31,6 +31,8 @@ typedef struct ps_server {
     int stop_watch;
     pthread_t watcher;        /* cancels jobs of clients that went away */
     int has_watcher;
+    char *openapi;            /* the OpenAPI document (openapi.h), built at start-up */
+    size_t openapi_len;
 } ps_server;
 
 struct ps_request {

@@ -1,7 +1,6 @@
 /* routes.c: routing, authorization, and the handler of every route. */
 #include "routes.h"
 
-#include "http.h"
 #include "respond.h"
 #include "static_files.h"
 
@@ -141,7 +140,6 @@ static enum MHD_Result simple_route(ps_request *r) {
     ps_jobs_stats st;
     size_t len = 0;
     char *text;
-    const char *openapi;
     switch (r->route) {
     case PS_ROUTE_HEALTHZ:
         doc = cJSON_CreateObject();
@@ -167,8 +165,8 @@ static enum MHD_Result simple_route(ps_request *r) {
         if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
         return ps_respond(r, 200, "text/plain; version=0.0.4", text, len, NULL);
     default:
-        openapi = ps_http_openapi(r->srv, &len);
-        return ps_respond_copy(r, 200, "application/json", openapi, len, NULL);
+        return ps_respond_copy(r, 200, "application/json", r->srv->openapi,
+                               r->srv->openapi_len, NULL);
     }
 }
 
