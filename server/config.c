@@ -12,24 +12,34 @@
 
 typedef enum opt_kind { OPT_INT, OPT_SIZE, OPT_TEXT, OPT_FLAG } opt_kind;
 
+/* Where an option's default comes from: its default_text read like any
+ * value, the number of online cores, or default_text as a directory that is
+ * the default only when it exists (else none). */
+typedef enum default_rule { DEFAULT_TEXT, DEFAULT_CORES, DEFAULT_DIR_IF_PRESENT } default_rule;
+
 typedef struct opt_spec {
     const char *name; /* flag without "--"; env is POINTSEG_ + upper-case, '-' -> '_' */
     opt_kind kind;
     size_t offset;    /* into ps_config */
     size_t text_cap;  /* OPT_TEXT: buffer size */
     double min, max;  /* OPT_INT, OPT_SIZE */
-    const char *default_text;
+    const char *default_text; /* shown by --help; the default itself unless rule says otherwise */
+    default_rule rule;
     const char *help;
 } opt_spec;
 
-#define INT_OPT(n, f, lo, hi, d, h) {n, OPT_INT, offsetof(ps_config, f), 0, lo, hi, d, h}
-#define SIZE_OPT(n, f, lo, hi, d, h) {n, OPT_SIZE, offsetof(ps_config, f), 0, lo, hi, d, h}
-#define TEXT_OPT(n, f, d, h) {n, OPT_TEXT, offsetof(ps_config, f), sizeof(((ps_config *)0)->f), 0, 0, d, h}
+#define INT_OPT(n, f, lo, hi, d, h) {n, OPT_INT, offsetof(ps_config, f), 0, lo, hi, d, DEFAULT_TEXT, h}
+#define SIZE_OPT(n, f, lo, hi, d, h) {n, OPT_SIZE, offsetof(ps_config, f), 0, lo, hi, d, DEFAULT_TEXT, h}
+#define TEXT_SPEC(n, f, d, r, h) \
+    {n, OPT_TEXT, offsetof(ps_config, f), sizeof(((ps_config *)0)->f), 0, 0, d, r, h}
+#define TEXT_OPT(n, f, d, h) TEXT_SPEC(n, f, d, DEFAULT_TEXT, h)
+#define DIR_OPT(n, f, d, h) TEXT_SPEC(n, f, d, DEFAULT_DIR_IF_PRESENT, h)
 
 static const opt_spec options[] = {
     INT_OPT("port", port, 0, 65535, "8080", "TCP port (0 = any free port)"),
     TEXT_OPT("bind", bind, "127.0.0.1", "IPv4 address to listen on"),
-    INT_OPT("threads", threads, 1, 1024, "cores", "worker threads running jobs"),
+    {"threads", OPT_INT, offsetof(ps_config, threads), 0, 1, 1024, "cores", DEFAULT_CORES,
+     "worker threads running jobs"},
     INT_OPT("queue-size", queue_size, 1, 1000000, "64", "jobs waiting for a worker; more is a 503"),
     SIZE_OPT("max-body", max_body, 1, 1e15, "268435456", "largest request body in bytes, after gzip (413)"),
     SIZE_OPT("max-points", max_points, 1, 1e12, "5000000", "most points in one request (413)"),
@@ -38,9 +48,9 @@ static const opt_spec options[] = {
     INT_OPT("drain-seconds", drain_seconds, 0, 86400, "30", "on SIGTERM, wait this long for jobs"),
     TEXT_OPT("token", token, "", "bearer token required on every route but /healthz"),
     TEXT_OPT("cors-origin", cors_origin, "", "allowed CORS origins: * or a comma-separated list"),
-    TEXT_OPT("static-dir", static_dir, "clients/web", "directory served at / (if it exists)"),
+    DIR_OPT("static-dir", static_dir, "clients/web", "directory served at / (if it exists)"),
     TEXT_OPT("replica-name", replica_name, "", "prefix of job ids (routing between replicas)"),
-    {"quiet", OPT_FLAG, offsetof(ps_config, quiet), 0, 0, 1, "off", "no per-request log lines"},
+    {"quiet", OPT_FLAG, offsetof(ps_config, quiet), 0, 0, 1, "off", DEFAULT_TEXT, "no per-request log lines"},
 };
 #define N_OPTIONS (sizeof options / sizeof options[0])
 
@@ -48,23 +58,6 @@ static void env_name(const char *flag, char *out, size_t cap) {
     size_t n = (size_t)snprintf(out, cap, "POINTSEG_");
     for (; *flag && n + 1 < cap; flag++) out[n++] = *flag == '-' ? '_' : (char)toupper((unsigned char)*flag);
     out[n] = 0;
-}
-
-static void set_defaults(ps_config *c) {
-    struct stat st;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    memset(c, 0, sizeof *c);
-    c->port = 8080;
-    snprintf(c->bind, sizeof c->bind, "127.0.0.1");
-    c->threads = cores > 0 ? (int)cores : 1;
-    c->queue_size = 64;
-    c->max_body = (size_t)256 << 20;
-    c->max_points = 5000000;
-    c->job_ttl = 600;
-    c->max_jobs_kept = 1000;
-    c->drain_seconds = 30;
-    if (stat("clients/web", &st) == 0 && S_ISDIR(st.st_mode))
-        snprintf(c->static_dir, sizeof c->static_dir, "clients/web");
 }
 
 static int set_number(ps_config *c, const opt_spec *o, const char *value, const char *source, FILE *err) {
@@ -95,6 +88,26 @@ static int set_option(ps_config *c, const opt_spec *o, const char *value, const 
         return 0;
     }
     return set_number(c, o, value, source, err);
+}
+
+static int is_directory(const char *path) {
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/* Every option's default, from the table (the text --help shows). */
+static int set_defaults(ps_config *c, FILE *err) {
+    memset(c, 0, sizeof *c);
+    for (size_t i = 0; i < N_OPTIONS; i++) {
+        const opt_spec *o = &options[i];
+        if (o->rule == DEFAULT_CORES) {
+            long cores = sysconf(_SC_NPROCESSORS_ONLN);
+            *(int *)((char *)c + o->offset) = cores > 0 ? (int)cores : 1;
+        } else if (o->rule == DEFAULT_TEXT || is_directory(o->default_text)) {
+            if (set_option(c, o, o->default_text, "built-in default", err)) return -1;
+        }
+    }
+    return 0;
 }
 
 static const opt_spec *find_option(const char *name, size_t len) {
@@ -145,8 +158,7 @@ void ps_config_usage(FILE *out) {
 }
 
 int ps_config_load(ps_config *c, int argc, char **argv, FILE *out, FILE *err) {
-    set_defaults(c);
-    if (load_environment(c, err)) return -1;
+    if (set_defaults(c, err) || load_environment(c, err)) return -1;
     for (int i = 1; i < argc;) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             ps_config_usage(out);
