@@ -6,6 +6,7 @@
  */
 #include "remote.h"
 
+#include "commands.h"
 #include "pointseg_client.h"
 
 #include <cjson/cJSON.h>
@@ -14,7 +15,7 @@
 #include <string.h>
 #include <time.h>
 
-enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2, POLL_MS = 100, DETAIL_MAX = 300 };
+enum { POLL_MS = 100, DETAIL_MAX = 300 };
 
 /* Appends text to q percent-encoding all but unreserved characters; q has
  * room (3 bytes per input byte were reserved). */

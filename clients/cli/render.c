@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2, HELP_SHOWN = -1, MAX_SIDE = 8192, GREY = 200 };
+enum { HELP_SHOWN = -1, MAX_SIDE = 8192, GREY = 200 };
 
 typedef struct render_args {
     const char *input, *output;

@@ -21,7 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2, HELP_SHOWN = -1, NOT_HANDLED = -2 };
+enum { HELP_SHOWN = -1, NOT_HANDLED = -2 };
 
 typedef struct flag_value {
     const char *option; /* "--ncut-threshold", for messages */
