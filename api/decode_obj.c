@@ -49,14 +49,13 @@ static int corner_vertex(const char *s, const char *t, size_t line, size_t n_ver
 
 static int read_face(const char *s, const char *e, size_t line, obj_data *d, ps_api_error *err) {
     const char *fs, *ft;
-    uint32_t first = 0, prev = 0, v = 0;
+    uint32_t v = 0;
+    ps_fan fan = {0};
     size_t n_vertices = d->points.len / 3;
-    for (int j = 0; ps_next_field(&s, e, NULL, &fs, &ft) == 1; j++) {
-        if (corner_vertex(fs, ft, line, n_vertices, &v, err)) return -1;
-        if (j == 0) first = v;
-        else if (j >= 2 && ps_tris_push(&d->tris, first, prev, v, err)) return -1;
-        prev = v;
-    }
+    while (ps_next_field(&s, e, NULL, &fs, &ft) == 1)
+        if (corner_vertex(fs, ft, line, n_vertices, &v, err) ||
+            ps_fan_add(&fan, &d->tris, v, err))
+            return -1;
     return 0;
 }
 

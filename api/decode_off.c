@@ -87,7 +87,7 @@ static int read_vertex(off_reader *r, size_t i, int has_normals, ps_pointset *ou
 
 static int read_face(off_reader *r, size_t face, size_t nv, ps_tris *tris, ps_api_error *err) {
     long long k, idx;
-    uint32_t first = 0, prev = 0;
+    ps_fan fan = {0};
     if (next_line(r, "all faces", err) || next_integer(r, "a face's vertex count", &k, err))
         return -1;
     for (long long j = 0; j < k; j++) {
@@ -95,9 +95,7 @@ static int read_face(off_reader *r, size_t face, size_t nv, ps_tris *tris, ps_ap
         if (idx < 0 || (unsigned long long)idx >= nv)
             return ps_api_fail(err, 422, "line %zu: face %zu refers to vertex %lld (the file "
                                "has %zu vertices)", r->lines.line, face, idx, nv);
-        if (j == 0) first = (uint32_t)idx;
-        else if (j >= 2 && ps_tris_push(tris, first, prev, (uint32_t)idx, err)) return -1;
-        prev = (uint32_t)idx;
+        if (ps_fan_add(&fan, tris, (uint32_t)idx, err)) return -1;
     }
     return 0;
 }

@@ -279,7 +279,8 @@ static int face_index_property(const ps_ply_header *h, const ps_ply_element *e) 
 
 static int read_polygon(ply_reader *r, const ps_ply_property *p, uint64_t face,
                         uint64_t n_vertices, ps_tris *tris, ps_api_error *err) {
-    uint32_t count, first = 0, prev = 0;
+    uint32_t count;
+    ps_fan fan = {0};
     int binary = r->format != PS_PLY_ASCII, swap = needs_swap(r->format);
     size_t size = ps_ply_type_size(p->type);
     if (read_list_count(r, p->count_type, &count, err)) return -1;
@@ -296,10 +297,7 @@ static int read_polygon(ply_reader *r, const ps_ply_property *p, uint64_t face,
             return ps_api_fail(err, 422, "face %llu refers to vertex %.17g (the file has %llu "
                                "vertices)", (unsigned long long)face, v,
                                (unsigned long long)n_vertices);
-        uint32_t idx = (uint32_t)v;
-        if (j == 0) first = idx;
-        else if (j >= 2 && ps_tris_push(tris, first, prev, idx, err)) return -1;
-        prev = idx;
+        if (ps_fan_add(&fan, tris, (uint32_t)v, err)) return -1;
     }
     return 0;
 }

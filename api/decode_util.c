@@ -1,5 +1,5 @@
-/* decode_util.c: limits, final validation and growing arrays shared by the
- * decoders (decode_util.h). */
+/* decode_util.c: limits, final validation, growing arrays and fan
+ * triangulation shared by the decoders (decode_util.h). */
 #include "decode_util.h"
 
 #include <math.h>
@@ -99,6 +99,14 @@ int ps_tris_push(ps_tris *t, uint32_t a, uint32_t b, uint32_t c, ps_api_error *e
     t->v[t->len++] = a;
     t->v[t->len++] = b;
     t->v[t->len++] = c;
+    return 0;
+}
+
+int ps_fan_add(ps_fan *fan, ps_tris *t, uint32_t v, ps_api_error *err) {
+    if (fan->corners == 0) fan->first = v;
+    else if (fan->corners >= 2 && ps_tris_push(t, fan->first, fan->prev, v, err)) return -1;
+    fan->prev = v;
+    fan->corners++;
     return 0;
 }
 

@@ -48,6 +48,17 @@ int ps_tris_reserve(ps_tris *t, size_t n_tris, ps_api_error *err);
 /* Appends the triangle (a, b, c). */
 int ps_tris_push(ps_tris *t, uint32_t a, uint32_t b, uint32_t c, ps_api_error *err);
 
+/* A polygon being fan-triangulated: its corners are given one by one with
+ * ps_fan_add; start from ps_fan fan = {0} for each polygon. */
+typedef struct ps_fan {
+    uint32_t first, prev;  /* the polygon's first corner and the last one given */
+    size_t corners;        /* how many were given */
+} ps_fan;
+
+/* Adds corner v to the polygon; from the third corner on, appends the
+ * triangle (first, previous corner, v) to t.  500 on allocation failure. */
+int ps_fan_add(ps_fan *fan, ps_tris *t, uint32_t v, ps_api_error *err);
+
 /* The end of a mesh decoder (OFF, PLY, OBJ).  failed != 0 (err already
  * set): frees the triangles and *ps and returns -1.  Else hands the
  * triangles to ps (faces #F by 3, NULL when none; n_faces) and returns
