@@ -172,11 +172,6 @@ static int read_body(const cJSON *root, const ps_decode_limits *lim, ps_pointset
     return read_params(b.params, out, err);
 }
 
-static const char *skip_space(const char *p, const char *end) {
-    while (p < end && (ps_is_blank(*p) || *p == '\n')) p++;
-    return p;
-}
-
 int ps_decode_json(const char *bytes, size_t len, const ps_decode_limits *lim,
                    ps_pointset *out, ps_api_error *err) {
     const char *stop = NULL;
@@ -184,7 +179,7 @@ int ps_decode_json(const char *bytes, size_t len, const ps_decode_limits *lim,
     cJSON *root = cJSON_ParseWithLengthOpts(bytes, len, &stop, 0);
     size_t at = stop && stop >= bytes ? (size_t)(stop - bytes) : 0;
     if (!root) return ps_api_fail(err, 400, "malformed JSON at byte offset %zu", at);
-    const char *rest = skip_space(stop, bytes + len);
+    const char *rest = ps_skip_space(stop, bytes + len);
     if (rest != bytes + len) {
         cJSON_Delete(root);
         return ps_api_fail(err, 400, "unexpected data after the JSON value at byte offset %zu",

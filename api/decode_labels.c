@@ -8,7 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+/* A labels file's separators: space, tab, \r and \n.  Unlike
+ * ps_skip_space (decode_scan.h) not \v or \f, and the loop that skips them
+ * counts the lines for its messages. */
+static int is_label_separator(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
 
 static int grow(int **v, size_t *room) {
     int *grown = realloc(*v, 2 * *room * sizeof **v);
@@ -24,7 +29,7 @@ int ps_decode_labels(const char *bytes, size_t len, int **values, size_t *count,
     size_t n = 0, room = 1024, line = 1;
     int *v = malloc(room * sizeof *v);
     while (v) {
-        while (p < end && is_space(*p)) line += *p++ == '\n';
+        while (p < end && is_label_separator(*p)) line += *p++ == '\n';
         if (p == end) {
             *values = v;
             *count = n;
@@ -35,7 +40,7 @@ int ps_decode_labels(const char *bytes, size_t len, int **values, size_t *count,
         long long x = 0;
         const char *digits = p;
         while (p < end && *p >= '0' && *p <= '9' && x <= 0x7fffffff) x = 10 * x + (*p++ - '0');
-        if (p == digits || x > 0x7fffffff || (p < end && !is_space(*p))) {
+        if (p == digits || x > 0x7fffffff || (p < end && !is_label_separator(*p))) {
             free(v);
             return ps_api_fail(err, 400, "line %zu: expected an integer", line);
         }

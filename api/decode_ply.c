@@ -94,7 +94,7 @@ static int truncated(const ply_reader *r, ps_api_error *err) {
 }
 
 static int read_ascii(ply_reader *r, double *v, ps_api_error *err) {
-    while (r->pos < r->end && (ps_is_blank(*r->pos) || *r->pos == '\n')) r->pos++;
+    r->pos = ps_skip_space(r->pos, r->end);
     if (r->pos == r->end) return truncated(r, err);
     const char *stop = ps_token_end(r->pos, r->end, NULL);
     if (ps_parse_double(r->pos, (size_t)(stop - r->pos), v))

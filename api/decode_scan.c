@@ -25,6 +25,11 @@ const char *ps_skip_blanks(const char *p, const char *end) {
     return p;
 }
 
+const char *ps_skip_space(const char *p, const char *end) {
+    while (p < end && (ps_is_blank(*p) || *p == '\n')) p++;
+    return p;
+}
+
 int ps_lines_next(ps_lines *c, const char **start, const char **stop) {
     if (c->pos >= c->end) return 0;
     const char *nl = memchr(c->pos, '\n', (size_t)(c->end - c->pos));

@@ -28,8 +28,13 @@ int ps_lines_next_data(ps_lines *c, const char **start, const char **stop);
 /* 1 for space, tab, \r, \v, \f. */
 int ps_is_blank(char ch);
 
-/* The first non-blank at or after p (or end). */
+/* The first non-blank at or after p (or end); stays on the line ('\n' is
+ * not a blank). */
 const char *ps_skip_blanks(const char *p, const char *end);
+
+/* The first byte at or after p (or end) that is neither a blank nor '\n':
+ * white space across lines (JSON's trailing space, ASCII PLY values). */
+const char *ps_skip_space(const char *p, const char *end);
 
 /* The end of the token starting at p: the first blank, byte of seps (may be
  * NULL) or end. */

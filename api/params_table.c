@@ -143,21 +143,26 @@ static int choice_index(const char *const *choices, const char *text, size_t len
     return -1;
 }
 
+/* Past the ' ' at p: spaces only (a value's text is one line), not the
+ * tabs and newlines ps_skip_space of the decoders also passes. */
+static const char *skip_spaces(const char *p) {
+    while (*p == ' ') p++;
+    return p;
+}
+
 /* "a,b" -> bit i set for choice i; spaces around items are ignored and an
  * empty text is the empty list. */
 static int parse_list(const char *const *choices, const char *text, unsigned *bits) {
     *bits = 0;
-    const char *p = text;
-    while (*p == ' ') p++;
+    const char *p = skip_spaces(text);
     if (*p == 0) return 1;
     for (;;) {
-        while (*p == ' ') p++;
+        p = skip_spaces(p);
         size_t len = strcspn(p, ", ");
         int i = choice_index(choices, p, len);
         if (i < 0) return 0;
         *bits |= 1u << i;
-        p += len;
-        while (*p == ' ') p++;
+        p = skip_spaces(p + len);
         if (*p == 0) return 1;
         if (*p != ',') return 0;
         p++;
