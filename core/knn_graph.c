@@ -81,7 +81,7 @@ typedef struct query_job {
 /* Row p's candidates by (exact distance, index), self left out; 0, or -1
  * when FLANN returned fewer than k usable neighbours. */
 static int keep_nearest(const query_job *j, size_t p, const int *found) {
-    candidate c[64 + EXTRA + 1];
+    candidate c[PS_MAX_K + EXTRA + 1];
     const double *x = j->points + p * (size_t)j->dim;
     int m = 0;
     for (int t = 0; t < j->m; t++) {
@@ -235,9 +235,9 @@ static void weigh_rows(void *ctx, size_t begin, size_t end, int worker) {
 static ps_status check_arguments(const double *points, size_t n, int dim, int k, ps_error *err) {
     if (!points) return ps_fail(err, PS_ERR_INVALID, "knn: points is NULL");
     if (dim < 1 || dim > PS_MAX_DIM) return ps_fail(err, PS_ERR_INVALID, "knn: dim %d", dim);
-    if (k < 1 || k > 64 || (size_t)k >= n)
-        return ps_fail(err, PS_ERR_INVALID, "knn: need 1 <= k <= 64 and k < n, got k = %d, n = %zu",
-                       k, n);
+    if (k < 1 || k > PS_MAX_K || (size_t)k >= n)
+        return ps_fail(err, PS_ERR_INVALID, "knn: need 1 <= k <= %d and k < n, got k = %d, n = %zu",
+                       PS_MAX_K, k, n);
     if (n > (size_t)INT32_MAX) return ps_fail(err, PS_ERR_INVALID, "knn: too many points (%zu)", n);
     return PS_OK;
 }

@@ -45,8 +45,8 @@ void ps_params_default(ps_params *p) {
 ps_status ps_params_check(const ps_params *p, ps_error *err) {
     if (p->method < PS_METHOD_AUTO || p->method > PS_METHOD_PAPER)
         return ps_fail(err, PS_ERR_INVALID, "unknown method %d", (int)p->method);
-    if (p->k < 1 || p->k > 64)
-        return ps_fail(err, PS_ERR_INVALID, "k must be in [1, 64], got %d", p->k);
+    if (p->k < 1 || p->k > PS_MAX_K)
+        return ps_fail(err, PS_ERR_INVALID, "k must be in [1, %d], got %d", PS_MAX_K, p->k);
     if (p->centrality < PS_CENTRALITY_AUTO || p->centrality > PS_CENTRALITY_APPROX)
         return ps_fail(err, PS_ERR_INVALID, "unknown centrality mode %d", (int)p->centrality);
     if (p->samples < 0 || p->samples > 100000)

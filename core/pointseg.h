@@ -25,6 +25,7 @@ extern "C" {
 
 #define PS_VERSION "0.1.0"
 #define PS_MAX_DIM 64 /* largest supported point dimension */
+#define PS_MAX_K 64   /* largest supported k (neighbours per point in the kNN graph) */
 #define PS_MAX_COORDINATE 1e150 /* larger coordinates are refused: their
                                    squared distances would overflow */
 
