@@ -22,13 +22,6 @@ static cJSON *choices_array(const char *const *choices) {
     return a;
 }
 
-/* "a|b|c" from a NULL-terminated list. */
-static void join_choices(const char *const *choices, char *out, size_t cap) {
-    size_t n = 0;
-    for (; choices && *choices && n < cap; choices++)
-        n += (size_t)snprintf(out + n, cap - n, "%s%s", *choices, choices[1] ? "|" : "");
-}
-
 static cJSON *param_schema(const ps_param_spec *p) {
     static const char *const types[] = {"integer", "number", "boolean", "string", "string"};
     cJSON *s = cJSON_CreateObject();
@@ -39,8 +32,8 @@ static cJSON *param_schema(const ps_param_spec *p) {
     }
     if (p->type == PS_PT_ENUM) cJSON_AddItemToObject(s, "enum", choices_array(p->choices));
     if (p->type == PS_PT_LIST) {
-        char alternatives[200] = "", pattern[512];
-        join_choices(p->choices, alternatives, sizeof alternatives);
+        char alternatives[200], pattern[512];
+        ps_params_join_choices(p->choices, "|", alternatives, sizeof alternatives);
         snprintf(pattern, sizeof pattern, "^$|^(%s)(,(%s))*$", alternatives, alternatives);
         cJSON_AddStringToObject(s, "pattern", pattern);
         cJSON_AddStringToObject(s, "description", "comma-separated list");

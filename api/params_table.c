@@ -169,16 +169,17 @@ static int parse_list(const char *const *choices, const char *text, unsigned *bi
     }
 }
 
-/* "a, b, c" into buf. */
-static void join_choices(const char *const *choices, char *buf, size_t size) {
+void ps_params_join_choices(const char *const *choices, const char *sep, char *buf,
+                            size_t size) {
     size_t used = 0;
     buf[0] = 0;
-    for (int i = 0; choices[i] && used < size; i++) {
-        size_t len = strlen(choices[i]);
-        if (used + len + 3 > size) break;
-        if (i) { memcpy(buf + used, ", ", 2); used += 2; }
-        memcpy(buf + used, choices[i], len + 1);
-        used += len;
+    for (int i = 0; choices && choices[i]; i++) {
+        const char *before = i ? sep : "";
+        size_t before_len = strlen(before), len = strlen(choices[i]);
+        if (used + before_len + len >= size) break;
+        memcpy(buf + used, before, before_len);
+        memcpy(buf + used + before_len, choices[i], len + 1);
+        used += before_len + len;
     }
 }
 
@@ -196,11 +197,11 @@ static int bad_value(const ps_param_spec *s, const char *value, ps_api_error *er
                            "parameter '%s' must be true or false (or 1/0, yes/no), got '%.100s'",
                            s->name, value);
     case PS_PT_ENUM:
-        join_choices(s->choices, choices, sizeof choices);
+        ps_params_join_choices(s->choices, ", ", choices, sizeof choices);
         return ps_api_fail(err, 422, "parameter '%s' must be one of %s, got '%.100s'", s->name,
                            choices, value);
     case PS_PT_LIST:
-        join_choices(s->choices, choices, sizeof choices);
+        ps_params_join_choices(s->choices, ", ", choices, sizeof choices);
         return ps_api_fail(err, 422,
                            "parameter '%s' must be a comma-separated list of %s, got '%.100s'",
                            s->name, choices, value);

@@ -35,6 +35,13 @@ const ps_param_spec *ps_param_table(size_t *count);
 const ps_param_spec *ps_param_find(const char *name);
 void ps_request_params_default(ps_request_params *rp);
 
+/* Joins the NULL-terminated choices (may be NULL: none) with sep between
+ * them into buf (#size bytes, size >= 1): "auto, exact" or "auto|exact".
+ * Stops before a choice that would not fit with its NUL, so the text never
+ * ends inside a choice.  buf is always NUL-terminated. */
+void ps_params_join_choices(const char *const *choices, const char *sep, char *buf,
+                            size_t size);
+
 /* Sets one parameter from text.  Unknown name: 400 naming it; bad value or
  * out of range: 422 naming the parameter and its range/choices. */
 int ps_request_param_set(ps_request_params *rp, const char *name, const char *value,

@@ -4,22 +4,11 @@
 
 #include "params_table.h"
 
-#include <string.h>
-
 /* "ncut_threshold" -> "ncut-threshold", the spelling flags usually take. */
 static void flag_spelling(const char *name, char *flag, size_t size) {
     size_t i = 0;
     for (; name[i] && i + 1 < size; i++) flag[i] = name[i] == '_' ? '-' : name[i];
     flag[i] = 0;
-}
-
-/* "a|b|c" (ENUM) or "a,b" (LIST) into buf. */
-static void join_choices(const char *const *choices, const char *sep, char *buf, size_t size) {
-    buf[0] = 0;
-    for (int i = 0; choices[i]; i++) {
-        if (i) strncat(buf, sep, size - strlen(buf) - 1);
-        strncat(buf, choices[i], size - strlen(buf) - 1);
-    }
 }
 
 /* The value placeholder after the flag (" N", " X", " auto|exact|approx"). */
@@ -29,7 +18,7 @@ static void metavar(const ps_param_spec *s, char *buf, size_t size) {
     if (s->type == PS_PT_DOUBLE) snprintf(buf, size, " X");
     if (s->type == PS_PT_ENUM || s->type == PS_PT_LIST) {
         buf[0] = ' ';
-        join_choices(s->choices, s->type == PS_PT_ENUM ? "|" : ",", buf + 1, size - 1);
+        ps_params_join_choices(s->choices, s->type == PS_PT_ENUM ? "|" : ",", buf + 1, size - 1);
     }
 }
 

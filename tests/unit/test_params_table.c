@@ -1,6 +1,6 @@
 /* test_params_table.c: the parameter table (api/params_table.c): lookups in
  * both spellings, defaults that agree with ps_params_default, every value
- * type, and the 400/422 errors with their messages. */
+ * type, the 400/422 errors with their messages, and joining choices. */
 #include "params_table.h"
 #include "testlib.h"
 
@@ -189,7 +189,25 @@ static void test_long_value_is_clipped(void) {
     CHECK(strlen(err.message) < sizeof err.message - 1);
 }
 
+static void test_join_choices(void) {
+    static const char *const choices[] = {"auto", "exact", "approx", NULL};
+    char buf[64];
+    ps_params_join_choices(choices, ", ", buf, sizeof buf);
+    CHECK(strcmp(buf, "auto, exact, approx") == 0);
+    ps_params_join_choices(choices, "|", buf, sizeof buf);
+    CHECK(strcmp(buf, "auto|exact|approx") == 0);
+    ps_params_join_choices(choices, "|", buf, 11);
+    CHECK_MSG(strcmp(buf, "auto|exact") == 0, "exact fit: '%s'", buf);
+    ps_params_join_choices(choices, "|", buf, 10);
+    CHECK_MSG(strcmp(buf, "auto") == 0, "no partial choice: '%s'", buf);
+    ps_params_join_choices(choices, "|", buf, 4);
+    CHECK(buf[0] == 0);
+    ps_params_join_choices(NULL, "|", buf, sizeof buf);
+    CHECK(buf[0] == 0);
+}
+
 PS_TEST_MAIN(TEST(test_table_lists_every_parameter), TEST(test_find_both_spellings),
              TEST(test_defaults_agree_with_core), TEST(test_set_every_type),
              TEST(test_bool_spellings), TEST(test_include_list), TEST(test_unknown_name_is_400),
-             TEST(test_bad_values_are_422), TEST(test_long_value_is_clipped))
+             TEST(test_bad_values_are_422), TEST(test_long_value_is_clipped),
+             TEST(test_join_choices))
