@@ -1,51 +1,22 @@
 /* test_ncut.c: phase 2 on hand-made graphs (ncut.h): sink distances through
  * cell borders, the scale-free similarity, components, shared sinks. */
+#include "hand_graph.h"
 #include "ncut.h"
 #include "testlib.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#define MAX_V 64
-
-/* A CSR graph from undirected edges, rows sorted by neighbour. */
-typedef struct hand_graph {
-    ps_graph g;
-    size_t offsets[MAX_V + 1];
-    uint32_t neighbors[4 * MAX_V];
-    double weights[4 * MAX_V];
-} hand_graph;
-
-/* Paths 0 - 1 - ... - n-1 with edge lengths `length`, except that no edge
- * joins `cut_before` - 1 and `cut_before` (0: none cut). */
-static void make_path(hand_graph *h, size_t n, double length, size_t cut_before) {
-    size_t e = 0;
-    for (size_t p = 0; p < n; p++) {
-        h->offsets[p] = e;
-        if (p > 0 && p != cut_before) {
-            h->neighbors[e] = (uint32_t)(p - 1);
-            h->weights[e++] = length;
-        }
-        if (p + 1 < n && p + 1 != cut_before) {
-            h->neighbors[e] = (uint32_t)(p + 1);
-            h->weights[e++] = length;
-        }
-    }
-    h->offsets[n] = e;
-    h->g = (ps_graph){.n = n, .offsets = h->offsets, .neighbors = h->neighbors,
-                      .weights = h->weights};
-}
-
 typedef struct hand_supernodes {
     ps_supernode_graph sg;
-    uint32_t sinks[MAX_V];
-    size_t sizes[MAX_V];
-    int supernode_of[MAX_V];
-    int component[MAX_V];
+    uint32_t sinks[PS_HAND_GRAPH_MAX_V];
+    size_t sizes[PS_HAND_GRAPH_MAX_V];
+    int supernode_of[PS_HAND_GRAPH_MAX_V];
+    int component[PS_HAND_GRAPH_MAX_V];
 } hand_supernodes;
 
 /* Supernode u has sink sinks[u] and owns the vertices nearest to it. */
-static void make_supernodes(hand_supernodes *s, const hand_graph *h, const uint32_t *sinks,
+static void make_supernodes(hand_supernodes *s, const ps_hand_graph *h, const uint32_t *sinks,
                             int m) {
     for (int u = 0; u < m; u++) s->sinks[u] = sinks[u], s->sizes[u] = 0;
     for (size_t p = 0; p < h->g.n; p++) {
@@ -77,9 +48,9 @@ static double pair_ncut(const double W[3][3], int alone) {
  * computed here. */
 static void test_path_distances_and_sigma(void) {
     static const uint32_t sinks[3] = {0, 4, 10};
-    hand_graph h;
+    ps_hand_graph h;
     hand_supernodes s;
-    make_path(&h, 11, 1, 0);
+    ps_hand_graph_path(&h, 11, 1, 0);
     make_supernodes(&s, &h, sinks, 3);
     double d[3][3] = {{0, 4, 10}, {4, 0, 6}, {10, 6, 0}}, W[3][3];
     double sigma = PS_NCUT_SIGMA_SCALE * 20.0 / 3;
@@ -97,9 +68,9 @@ static void test_path_distances_and_sigma(void) {
 
 static void run_two_groups(double length, ps_tree_node **tree, int *n) {
     static const uint32_t sinks[6] = {1, 3, 5, 40, 42, 44};
-    hand_graph h;
+    ps_hand_graph h;
     hand_supernodes s;
-    make_path(&h, 46, length, 0);
+    ps_hand_graph_path(&h, 46, length, 0);
     make_supernodes(&s, &h, sinks, 6);
     *tree = NULL;
     REQUIRE(ps_ncut_hierarchy(&h.g, &s.sg, 0.3, 2, NULL, tree, n, NULL) == PS_OK);
@@ -133,9 +104,9 @@ static void test_two_groups_scale_free(void) {
  * keeps only those splits). */
 static void test_components_and_shared_sink(void) {
     static const uint32_t sinks[6] = {0, 10, 4, 10, 5, 9};
-    hand_graph h;
+    ps_hand_graph h;
     hand_supernodes s;
-    make_path(&h, 10, 1, 5);
+    ps_hand_graph_path(&h, 10, 1, 5);
     h.offsets[11] = h.offsets[10]; /* vertex 10: no edges */
     h.g.n = 11;
     make_supernodes(&s, &h, sinks, 6);
@@ -157,9 +128,9 @@ static void test_components_and_shared_sink(void) {
 
 static void test_empty_supernode_rejected(void) {
     static const uint32_t sinks[2] = {0, 3};
-    hand_graph h;
+    ps_hand_graph h;
     hand_supernodes s;
-    make_path(&h, 4, 1, 0);
+    ps_hand_graph_path(&h, 4, 1, 0);
     make_supernodes(&s, &h, sinks, 2);
     s.sizes[1] = 0;
     ps_tree_node *tree;

@@ -2,39 +2,19 @@
  * into its neighbour, a prominent peak survives, fraction 0 keeps all, and
  * components are judged by their own range. */
 #include "flow.h"
+#include "hand_graph.h"
 #include "persistence.h"
 #include "testlib.h"
 
 #include <stdlib.h>
-
-#define MAX_PATH 10
-
-/* Path 0-1-...-(n-1), n <= MAX_PATH, unit weights, in its own arrays. */
-typedef struct path_graph {
-    ps_graph g;
-    size_t off[MAX_PATH + 1];
-    uint32_t nbr[2 * MAX_PATH];
-    double w[2 * MAX_PATH];
-} path_graph;
-
-static void make_path(path_graph *h, size_t n) {
-    size_t e = 0;
-    for (size_t p = 0; p < n; p++) {
-        h->off[p] = e;
-        if (p > 0) h->nbr[e] = (uint32_t)(p - 1), h->w[e++] = 1;
-        if (p + 1 < n) h->nbr[e] = (uint32_t)(p + 1), h->w[e++] = 1;
-    }
-    h->off[n] = e;
-    h->g = (ps_graph){n, h->off, h->nbr, h->w};
-}
 
 /* f on 9 vertices: big peak at 1 (10), ripple at 4 (5.5) over saddle 3 (5),
  * then rising to a peak at 8 (9).  Range 10 - 5 = 5: the ripple (5.5 over
  * the saddle 5.2 towards 5: persistence 0.3) merges at fraction 0.1; the
  * peak at 8 (persistence 9 - 5 = 4) needs a fraction above 0.8. */
 static void test_ripple_merges(void) {
-    path_graph h;
-    make_path(&h, 9);
+    ps_hand_graph h;
+    ps_hand_graph_path(&h, 9, 1, 0);
     ps_graph g = h.g;
     const double f[9] = {9, 10, 6, 5, 5.5, 5.2, 7, 8, 9};
     const int zero[9] = {0};
@@ -59,26 +39,11 @@ static void test_ripple_merges(void) {
 /* Two components, each a path with two peaks; component 0 has a tall range
  * so its second peak is relatively small, component 1 is judged alone. */
 static void test_threshold_per_component(void) {
-    path_graph h;
-    make_path(&h, 10);
-    const size_t *off = h.off;
-    const uint32_t *nbr = h.nbr;
-    const double *w = h.w;
-    /* cut the edge 4-5: rebuild rows 4 and 5 without it */
+    ps_hand_graph h;
+    ps_hand_graph_path(&h, 10, 1, 5); /* no edge 4-5 */
+    ps_graph cut = h.g;
     const double f[10] = {100, 0, 1, 0.5, 0.2, 0.01, 1, 0.5, 0.9, 0.02};
     const int comp[10] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1};
-    static size_t off2[11];
-    static uint32_t nbr2[18];
-    static double w2[18];
-    size_t e = 0;
-    for (size_t p = 0; p < 10; p++) {
-        off2[p] = e;
-        for (size_t k = off[p]; k < off[p + 1]; k++)
-            if (!((p == 4 && nbr[k] == 5) || (p == 5 && nbr[k] == 4)))
-                nbr2[e] = nbr[k], w2[e++] = w[k];
-    }
-    off2[10] = e;
-    ps_graph cut = {10, off2, nbr2, w2};
     ps_flow fl;
     REQUIRE(ps_flow_build(&cut, f, +1, &fl, NULL) == PS_OK);
     int before = fl.n_sinks;
@@ -95,8 +60,8 @@ static void test_threshold_per_component(void) {
  * the 5-point basin when min_size asks for 5, and survives with 0; the
  * merged basin keeps the larger basin's sink. */
 static void test_tiny_basin_merges(void) {
-    path_graph h;
-    make_path(&h, 9);
+    ps_hand_graph h;
+    ps_hand_graph_path(&h, 9, 1, 0);
     ps_graph g = h.g;
     const double f[9] = {1, 2, 3, 4, 5, 0, 9, 1, 0};
     const int zero[9] = {0};

@@ -1,39 +1,10 @@
 /* test_refine.c: phase 3 on hand-made graphs and trees (refine.h): which
  * segment merges, into which neighbour, in which order, and which stay. */
+#include "hand_graph.h"
 #include "refine.h"
 #include "testlib.h"
 
 #include <stdlib.h>
-
-#define MAX_V 32
-
-typedef struct hand_graph {
-    ps_graph g;
-    size_t offsets[MAX_V + 1];
-    uint32_t neighbors[4 * MAX_V];
-    double weights[4 * MAX_V];
-} hand_graph;
-
-/* CSR from n_edges undirected unit edges (pairs), rows sorted. */
-static void make_graph(hand_graph *h, size_t n, const int (*edges)[2], int n_edges) {
-    size_t fill[MAX_V + 1] = {0};
-    for (int e = 0; e < n_edges; e++) fill[edges[e][0] + 1]++, fill[edges[e][1] + 1]++;
-    for (size_t p = 0; p < n; p++) fill[p + 1] += fill[p];
-    for (size_t p = 0; p <= n; p++) h->offsets[p] = fill[p];
-    for (int e = 0; e < n_edges; e++)
-        for (int end = 0; end < 2; end++) {
-            int p = edges[e][end], q = edges[e][1 - end];
-            size_t at = fill[p]++;
-            while (at > h->offsets[p] && h->neighbors[at - 1] > (uint32_t)q) {
-                h->neighbors[at] = h->neighbors[at - 1];
-                at--;
-            }
-            h->neighbors[at] = (uint32_t)q;
-        }
-    for (size_t e = 0; e < h->offsets[n]; e++) h->weights[e] = 1;
-    h->g = (ps_graph){.n = n, .offsets = h->offsets, .neighbors = h->neighbors,
-                      .weights = h->weights};
-}
 
 /* Tree: root 0 = {0, 1, 2} -> 1 = {0} and 2 = {1, 2}; 2 -> 3 = {1}, 4 = {2}. */
 static int all3[3] = {0, 1, 2}, only0[1] = {0}, pair12[2] = {1, 2}, only1[1] = {1},
@@ -67,8 +38,8 @@ static void test_merges_into_longer_border(void) {
     tree[6] = (ps_tree_node){6, 0, {-1, -1}, 1, only3, -1};
     tree[0].children[1] = 6;
     /* leaves: 2 = {0}, 4 = {1}, 5 = {2}, 6 = {3} */
-    hand_graph h;
-    make_graph(&h, 13, edges, (int)(sizeof edges / sizeof edges[0]));
+    ps_hand_graph h;
+    ps_hand_graph_edges(&h, 13, edges, (int)(sizeof edges / sizeof edges[0]), 1);
     int group[7];
     ps_merge *merges;
     int n_merges;
@@ -95,8 +66,8 @@ static void test_merge_order_and_borders_move(void) {
         supernode_of[p] = p < 6 ? 0 : p < 8 ? 1 : 2;
         if (p < 9) edges[p][0] = p, edges[p][1] = p + 1;
     }
-    hand_graph h;
-    make_graph(&h, 10, (const int(*)[2])edges, 9);
+    ps_hand_graph h;
+    ps_hand_graph_edges(&h, 10, (const int(*)[2])edges, 9, 1);
     int group[5];
     ps_merge *merges;
     int n_merges;
@@ -129,8 +100,8 @@ static void test_large_feature_outweighs_border(void) {
     static const double f[10] = {0, 1, 3, 4, 5, 6, 7, 8, 9, 10};
     static const int supernode_of[10] = {0, 0, 1, 2, 2, 2, 2, 2, 2, 2};
     static const int component[10] = {0};
-    hand_graph h;
-    make_graph(&h, 10, edges, (int)(sizeof edges / sizeof edges[0]));
+    ps_hand_graph h;
+    ps_hand_graph_edges(&h, 10, edges, (int)(sizeof edges / sizeof edges[0]), 1);
     int group[5];
     ps_merge *merges;
     int n_merges;
@@ -149,8 +120,8 @@ static void test_bad_supernode(void) {
     static const int edges[][2] = {{0, 1}};
     static const double f[2] = {0, 1};
     static const int supernode_of[2] = {0, 7}, component[2] = {0, 0};
-    hand_graph h;
-    make_graph(&h, 2, edges, 1);
+    ps_hand_graph h;
+    ps_hand_graph_edges(&h, 2, edges, 1, 1);
     int group[5];
     ps_merge *merges;
     int n_merges;
