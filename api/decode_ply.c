@@ -33,62 +33,6 @@ typedef struct ply_vertex_plan {
 
 static size_t offset_of(const ply_reader *r) { return (size_t)(r->pos - r->base); }
 
-static const ps_ply_property *property_of(const ps_ply_header *h, const ps_ply_element *e,
-                                          int i) {
-    return &h->properties[e->first_property + i];
-}
-
-/* 1 when the file's byte order differs from this machine's. */
-static int needs_swap(ps_ply_format f) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-    return f == PS_PLY_BINARY_LE;
-#else
-    return f == PS_PLY_BINARY_BE;
-#endif
-}
-
-static uint16_t load16(const char *p, int swap) {
-    uint16_t v;
-    memcpy(&v, p, sizeof v);
-    return swap ? __builtin_bswap16(v) : v;
-}
-
-static uint32_t load32(const char *p, int swap) {
-    uint32_t v;
-    memcpy(&v, p, sizeof v);
-    return swap ? __builtin_bswap32(v) : v;
-}
-
-static uint64_t load64(const char *p, int swap) {
-    uint64_t v;
-    memcpy(&v, p, sizeof v);
-    return swap ? __builtin_bswap64(v) : v;
-}
-
-static double load_binary(const char *at, ps_ply_type t, int swap) {
-    switch (t) {
-    case PS_PLY_INT8: return (int8_t)*at;
-    case PS_PLY_UINT8: return (uint8_t)*at;
-    case PS_PLY_INT16: return (int16_t)load16(at, swap);
-    case PS_PLY_UINT16: return load16(at, swap);
-    case PS_PLY_INT32: return (int32_t)load32(at, swap);
-    case PS_PLY_UINT32: return load32(at, swap);
-    case PS_PLY_FLOAT32: {
-        uint32_t bits = load32(at, swap);
-        float f;
-        memcpy(&f, &bits, sizeof f);
-        return f;
-    }
-    case PS_PLY_FLOAT64: {
-        uint64_t bits = load64(at, swap);
-        double d;
-        memcpy(&d, &bits, sizeof d);
-        return d;
-    }
-    }
-    return 0;
-}
-
 static int truncated(const ply_reader *r, ps_api_error *err) {
     return ps_api_fail(err, 400, "PLY data truncated at byte offset %zu", offset_of(r));
 }
@@ -108,7 +52,7 @@ static int read_value(ply_reader *r, ps_ply_type t, double *v, ps_api_error *err
     if (r->format == PS_PLY_ASCII) return read_ascii(r, v, err);
     size_t size = ps_ply_type_size(t);
     if ((size_t)(r->end - r->pos) < size) return truncated(r, err);
-    *v = load_binary(r->pos, t, needs_swap(r->format));
+    *v = ps_ply_load_binary(r->pos, t, ps_ply_needs_swap(r->format));
     r->pos += size;
     return 0;
 }
@@ -146,7 +90,7 @@ static int skip_property(ply_reader *r, const ps_ply_property *p, ps_api_error *
 static size_t min_record_bytes(const ps_ply_header *h, const ps_ply_element *e) {
     size_t bytes = 0;
     for (int i = 0; i < e->n_properties; i++) {
-        const ps_ply_property *p = property_of(h, e, i);
+        const ps_ply_property *p = ps_ply_property_of(h, e, i);
         if (h->format == PS_PLY_ASCII) bytes += 2;
         else bytes += ps_ply_type_size(p->is_list ? p->count_type : p->type);
     }
@@ -155,7 +99,7 @@ static size_t min_record_bytes(const ps_ply_header *h, const ps_ply_element *e) 
 
 static int has_lists(const ps_ply_header *h, const ps_ply_element *e) {
     for (int i = 0; i < e->n_properties; i++)
-        if (property_of(h, e, i)->is_list) return 1;
+        if (ps_ply_property_of(h, e, i)->is_list) return 1;
     return 0;
 }
 
@@ -183,7 +127,7 @@ static int skip_element(const ps_ply_header *h, const ps_ply_element *e, ply_rea
     }
     for (uint64_t i = 0; i < (e->n_properties ? e->count : 0); i++)
         for (int k = 0; k < e->n_properties; k++)
-            if (skip_property(r, property_of(h, e, k), err)) return -1;
+            if (skip_property(r, ps_ply_property_of(h, e, k), err)) return -1;
     return 0;
 }
 
@@ -191,10 +135,9 @@ static void add_field(ply_vertex_plan *plan, const ps_ply_header *h, const ps_pl
                       int property, double *dst) {
     ply_field *f = &plan->fields[plan->n_fields++];
     f->property = property;
-    f->type = property_of(h, e, property)->type;
+    f->type = ps_ply_property_of(h, e, property)->type;
     f->dst = dst;
-    f->offset = 0;
-    for (int i = 0; i < property; i++) f->offset += ps_ply_type_size(property_of(h, e, i)->type);
+    f->offset = ps_ply_scalar_offset(h, e, property);
 }
 
 /* Finds x y [z] and nx ny [nz]; sets plan->dim and has_normals. */
@@ -213,13 +156,13 @@ static int plan_vertices(const ps_ply_header *h, const ps_ply_element *e,
 
 static int read_vertices_fixed(const ply_vertex_plan *plan, size_t count, size_t stride,
                                ply_reader *r) {
-    int swap = needs_swap(r->format);
+    int swap = ps_ply_needs_swap(r->format);
     size_t dim = (size_t)plan->dim;
     for (size_t i = 0; i < count; i++) {
         const char *rec = r->pos + i * stride;
         for (int k = 0; k < plan->n_fields; k++)
             plan->fields[k].dst[i * dim] =
-                load_binary(rec + plan->fields[k].offset, plan->fields[k].type, swap);
+                ps_ply_load_binary(rec + plan->fields[k].offset, plan->fields[k].type, swap);
     }
     r->pos += count * stride;
     return 0;
@@ -229,7 +172,7 @@ static int read_vertex_record(const ps_ply_header *h, const ps_ply_element *e,
                               const ply_vertex_plan *plan, size_t i, ply_reader *r,
                               ps_api_error *err) {
     for (int k = 0; k < e->n_properties; k++) {
-        const ps_ply_property *p = property_of(h, e, k);
+        const ps_ply_property *p = ps_ply_property_of(h, e, k);
         const ply_field *f = NULL;
         for (int j = 0; j < plan->n_fields && !f; j++)
             if (plan->fields[j].property == k) f = &plan->fields[j];
@@ -270,7 +213,7 @@ static int read_vertices(const ps_ply_header *h, const ps_ply_element *e, ply_re
 /* Index within e of its vertex_indices (or vertex_index) list, or -1. */
 static int face_index_property(const ps_ply_header *h, const ps_ply_element *e) {
     for (int i = 0; i < e->n_properties; i++) {
-        const ps_ply_property *p = property_of(h, e, i);
+        const ps_ply_property *p = ps_ply_property_of(h, e, i);
         if (p->is_list && (!strcmp(p->name, "vertex_indices") || !strcmp(p->name, "vertex_index")))
             return i;
     }
@@ -281,14 +224,14 @@ static int read_polygon(ply_reader *r, const ps_ply_property *p, uint64_t face,
                         uint64_t n_vertices, ps_tris *tris, ps_api_error *err) {
     uint32_t count;
     ps_fan fan = {0};
-    int binary = r->format != PS_PLY_ASCII, swap = needs_swap(r->format);
+    int binary = r->format != PS_PLY_ASCII, swap = ps_ply_needs_swap(r->format);
     size_t size = ps_ply_type_size(p->type);
     if (read_list_count(r, p->count_type, &count, err)) return -1;
     if (binary && (size_t)(r->end - r->pos) / size < count) return truncated(r, err);
     for (uint32_t j = 0; j < count; j++) {
         double v;
         if (binary) {
-            v = load_binary(r->pos, p->type, swap);
+            v = ps_ply_load_binary(r->pos, p->type, swap);
             r->pos += size;
         } else if (read_ascii(r, &v, err)) {
             return -1;
@@ -309,7 +252,7 @@ static int read_faces(const ps_ply_header *h, const ps_ply_element *e, uint64_t 
         return -1;
     for (uint64_t i = 0; i < e->count; i++)
         for (int k = 0; k < e->n_properties; k++) {
-            const ps_ply_property *p = property_of(h, e, k);
+            const ps_ply_property *p = ps_ply_property_of(h, e, k);
             int rc = k == indices ? read_polygon(r, p, i, n_vertices, tris, err)
                                   : skip_property(r, p, err);
             if (rc) return -1;

@@ -1,5 +1,5 @@
-/* decode_ply_header.c: parsing the text header of a PLY file
- * (decode_ply_header.h). */
+/* decode_ply_header.c: parsing the text header of a PLY file, and reading
+ * one binary value in the file's byte order (decode_ply_header.h). */
 #include "decode_ply_header.h"
 
 #include <string.h>
@@ -168,10 +168,71 @@ const ps_ply_element *ps_ply_find_element(const ps_ply_header *h, const char *na
     return NULL;
 }
 
+const ps_ply_property *ps_ply_property_of(const ps_ply_header *h, const ps_ply_element *e,
+                                          int i) {
+    return &h->properties[e->first_property + i];
+}
+
 int ps_ply_find_scalar(const ps_ply_header *h, const ps_ply_element *e, const char *name) {
     for (int i = 0; i < e->n_properties; i++) {
-        const ps_ply_property *p = &h->properties[e->first_property + i];
+        const ps_ply_property *p = ps_ply_property_of(h, e, i);
         if (!p->is_list && !strcmp(p->name, name)) return i;
     }
     return -1;
+}
+
+size_t ps_ply_scalar_offset(const ps_ply_header *h, const ps_ply_element *e, int i) {
+    size_t offset = 0;
+    for (int k = 0; k < i; k++) offset += ps_ply_type_size(ps_ply_property_of(h, e, k)->type);
+    return offset;
+}
+
+int ps_ply_needs_swap(ps_ply_format f) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    return f == PS_PLY_BINARY_LE;
+#else
+    return f == PS_PLY_BINARY_BE;
+#endif
+}
+
+static uint16_t load16(const char *p, int swap) {
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap16(v) : v;
+}
+
+static uint32_t load32(const char *p, int swap) {
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap32(v) : v;
+}
+
+static uint64_t load64(const char *p, int swap) {
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap64(v) : v;
+}
+
+double ps_ply_load_binary(const char *at, ps_ply_type t, int swap) {
+    switch (t) {
+    case PS_PLY_INT8: return (int8_t)*at;
+    case PS_PLY_UINT8: return (uint8_t)*at;
+    case PS_PLY_INT16: return (int16_t)load16(at, swap);
+    case PS_PLY_UINT16: return load16(at, swap);
+    case PS_PLY_INT32: return (int32_t)load32(at, swap);
+    case PS_PLY_UINT32: return load32(at, swap);
+    case PS_PLY_FLOAT32: {
+        uint32_t bits = load32(at, swap);
+        float f;
+        memcpy(&f, &bits, sizeof f);
+        return f;
+    }
+    case PS_PLY_FLOAT64: {
+        uint64_t bits = load64(at, swap);
+        double d;
+        memcpy(&d, &bits, sizeof d);
+        return d;
+    }
+    }
+    return 0;
 }

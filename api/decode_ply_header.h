@@ -1,7 +1,9 @@
 /*
- * decode_ply_header.h: the header of a PLY file (internal to api/): format,
- * elements in file order with their counts and properties, and where the
- * data starts.
+ * decode_ply_header.h: the header of a PLY file (format, elements in file
+ * order with their counts and properties, where the data starts) and the
+ * reading of one binary value.  Internal to api/ (decode_ply.c), and shared
+ * with the CLI's colour reader (clients/cli/ply_colors.c), which reads the
+ * vertex colours that the point decoder skips.
  */
 #ifndef PS_DECODE_PLY_HEADER_H
 #define PS_DECODE_PLY_HEADER_H
@@ -55,5 +57,22 @@ const ps_ply_element *ps_ply_find_element(const ps_ply_header *h, const char *na
 
 /* Index within e (0-based) of its scalar property named name, or -1. */
 int ps_ply_find_scalar(const ps_ply_header *h, const ps_ply_element *e, const char *name);
+
+/* Property i (0-based, < e->n_properties) of element e. */
+const ps_ply_property *ps_ply_property_of(const ps_ply_header *h, const ps_ply_element *e,
+                                          int i);
+
+/* Byte offset of property i of e within one binary record, as the sum of
+ * the sizes of the properties before it (meaningful when none of them is a
+ * list); i == e->n_properties gives the record's size. */
+size_t ps_ply_scalar_offset(const ps_ply_header *h, const ps_ply_element *e, int i);
+
+/* 1 when a binary file of format f has the other byte order than this
+ * machine (its values must be byte-swapped), else 0. */
+int ps_ply_needs_swap(ps_ply_format f);
+
+/* The value of type t stored at `at` (ps_ply_type_size(t) bytes, byte-swapped
+ * first when swap), as a double. */
+double ps_ply_load_binary(const char *at, ps_ply_type t, int swap);
 
 #endif

@@ -1,12 +1,12 @@
 /*
  * ply_colors.c: reads vertex red/green/blue from a PLY (ply_colors.h),
- * using the PLY header parser of api/ (decode_ply_header.h).
+ * using the PLY header parser and binary value reader of api/
+ * (decode_ply_header.h).
  */
 #include "ply_colors.h"
 
 #include "decode_ply_header.h"
 
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,7 +19,7 @@ typedef struct color_plan {
 } color_plan;
 
 static const ps_ply_property *vertex_property(const color_plan *p, int i) {
-    return &p->h->properties[p->vertex->first_property + i];
+    return ps_ply_property_of(p->h, p->vertex, i);
 }
 
 static int is_float(ps_ply_type t) { return t == PS_PLY_FLOAT32 || t == PS_PLY_FLOAT64; }
@@ -37,7 +37,6 @@ static int make_plan(const ps_ply_header *h, color_plan *p) {
     p->h = h;
     p->vertex = h->n_elements > 0 ? &h->elements[0] : NULL;
     if (!p->vertex || strcmp(p->vertex->name, "vertex") != 0) return 0;
-    p->record_bytes = 0;
     for (int c = 0; c < 3; c++) p->channel[c] = -1;
     for (int i = 0; i < p->vertex->n_properties; i++) {
         const ps_ply_property *prop = vertex_property(p, i);
@@ -45,53 +44,31 @@ static int make_plan(const ps_ply_header *h, color_plan *p) {
         for (int c = 0; c < 3; c++) {
             if (strcmp(prop->name, names[c]) != 0) continue;
             p->channel[c] = i;
-            p->offset[c] = p->record_bytes;
+            p->offset[c] = ps_ply_scalar_offset(h, p->vertex, i);
         }
-        p->record_bytes += ps_ply_type_size(prop->type);
     }
+    p->record_bytes = ps_ply_scalar_offset(h, p->vertex, p->vertex->n_properties);
     return p->channel[0] >= 0 && p->channel[1] >= 0 && p->channel[2] >= 0;
-}
-
-static double load_binary(const char *src, ps_ply_type t, int swap) {
-    unsigned char b[8];
-    size_t size = ps_ply_type_size(t);
-    for (size_t i = 0; i < size; i++) b[i] = (unsigned char)src[swap ? size - 1 - i : i];
-    switch (t) {
-    case PS_PLY_INT8: return (int8_t)b[0];
-    case PS_PLY_UINT8: return b[0];
-    case PS_PLY_INT16: { int16_t v; memcpy(&v, b, 2); return v; }
-    case PS_PLY_UINT16: { uint16_t v; memcpy(&v, b, 2); return v; }
-    case PS_PLY_INT32: { int32_t v; memcpy(&v, b, 4); return v; }
-    case PS_PLY_UINT32: { uint32_t v; memcpy(&v, b, 4); return v; }
-    case PS_PLY_FLOAT32: { float v; memcpy(&v, b, 4); return v; }
-    case PS_PLY_FLOAT64: { double v; memcpy(&v, b, 8); return v; }
-    }
-    return 0;
-}
-
-static int host_is_big_endian(void) {
-    const uint16_t one = 1;
-    unsigned char first;
-    memcpy(&first, &one, 1);
-    return first == 0;
 }
 
 static int read_binary(const color_plan *p, const char *data, size_t avail, size_t n,
                        unsigned char *rgb) {
     if (avail / p->record_bytes < n) return -1;
-    int file_big = p->h->format == PS_PLY_BINARY_BE;
-    int swap = file_big != host_is_big_endian();
+    int swap = ps_ply_needs_swap(p->h->format);
     for (size_t v = 0; v < n; v++) {
         const char *record = data + v * p->record_bytes;
         for (int c = 0; c < 3; c++) {
             ps_ply_type t = vertex_property(p, p->channel[c])->type;
-            rgb[3 * v + (size_t)c] = to_byte(load_binary(record + p->offset[c], t, swap), t);
+            double value = ps_ply_load_binary(record + p->offset[c], t, swap);
+            rgb[3 * v + (size_t)c] = to_byte(value, t);
         }
     }
     return 1;
 }
 
-/* ASCII: one vertex per line, whitespace-separated values. */
+/* ASCII: one vertex per line, whitespace-separated values.  The gaps are
+ * space, tab, \r and \n only (not the \v and \f of api's ps_skip_space)
+ * and a value ends at any byte <= ' '. */
 static int read_ascii(const color_plan *p, const char *data, const char *end, size_t n,
                       unsigned char *rgb) {
     char token[64];

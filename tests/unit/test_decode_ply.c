@@ -1,6 +1,7 @@
 /* test_decode_ply.c: the PLY decoder: ascii and both binary byte orders,
  * every scalar type, skipped properties and elements, faces, and bad input
- * (truncated, lying or huge counts, NaN, bad indices, limits). */
+ * (truncated, lying or huge counts, NaN, bad indices, limits); the header
+ * helpers shared with the CLI's colour reader. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -8,6 +9,7 @@
 
 #include "decode.h"
 #include "decode_check.h"
+#include "decode_ply_header.h"
 #include "testlib.h"
 
 typedef struct bytes_out {
@@ -303,8 +305,31 @@ static void check_model(const char *name, size_t n, size_t n_faces, int normals)
 static void test_horse(void) { check_model("horse.ply", 48485, 96966, 1); }
 static void test_bunny(void) { check_model("bunny.ply", 35947, 69451, 0); }
 
+/* The header helpers the CLI's colour reader shares (decode_ply_header.h). */
+static void test_shared_value_reader(void) {
+    static const char text[] = "ply\nformat binary_big_endian 1.0\nelement vertex 1\n"
+                               "property short a\nproperty float b\nproperty uchar c\n"
+                               "property double d\nend_header\n";
+    static const char big_minus_two[] = {(char)0xff, (char)0xfe};
+    static const char big_one_and_a_half[] = {0x3f, (char)0xc0, 0, 0};
+    ps_ply_header h;
+    ps_api_error err;
+    REQUIRE(ps_ply_parse_header(text, sizeof text - 1, &h, &err) == 0);
+    const ps_ply_element *v = ps_ply_find_element(&h, "vertex");
+    REQUIRE(v && v->n_properties == 4);
+    CHECK(!strcmp(ps_ply_property_of(&h, v, 2)->name, "c"));
+    static const size_t offsets[] = {0, 2, 6, 7, 15};
+    for (int i = 0; i <= 4; i++) CHECK_MSG(ps_ply_scalar_offset(&h, v, i) == offsets[i], "%d", i);
+    int swap = ps_ply_needs_swap(h.format);
+    CHECK(swap != ps_ply_needs_swap(PS_PLY_BINARY_LE));
+    CHECK(ps_ply_load_binary(big_minus_two, PS_PLY_INT16, swap) == -2);
+    CHECK(ps_ply_load_binary(big_minus_two, PS_PLY_UINT16, swap) == 65534);
+    CHECK(ps_ply_load_binary(big_one_and_a_half, PS_PLY_FLOAT32, swap) == 1.5);
+    CHECK(ps_ply_load_binary(big_minus_two, PS_PLY_INT8, swap) == -1);
+}
+
 PS_TEST_MAIN(TEST(test_ascii_crlf_any_order), TEST(test_binary_every_type_both_endians),
              TEST(test_two_dimensional), TEST(test_missing_coordinate),
              TEST(test_huge_declared_count), TEST(test_truncated_and_lying),
              TEST(test_non_finite_and_bad_index), TEST(test_limits_and_garbage),
-             TEST(test_horse), TEST(test_bunny))
+             TEST(test_horse), TEST(test_bunny), TEST(test_shared_value_reader))
