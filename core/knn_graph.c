@@ -15,6 +15,7 @@
 
 #include "morton.h"
 #include "parallel.h"
+#include "sort_util.h"
 #include "union_find.h"
 
 #include <flann/flann.h>
@@ -170,15 +171,10 @@ static ps_status directed_knn(const double *points, size_t n, int dim, int k, in
     return st;
 }
 
-static int compare_u32(const void *pa, const void *pb) {
-    uint32_t a = *(const uint32_t *)pa, b = *(const uint32_t *)pb;
-    return (a > b) - (a < b);
-}
-
 /* Insertion sort for the usual short row; qsort for a hub's long one. */
 static void sort_row(uint32_t *row, size_t len) {
     if (len > 64) {
-        qsort(row, len, sizeof *row, compare_u32);
+        qsort(row, len, sizeof *row, ps_compare_u32);
         return;
     }
     for (size_t i = 1; i < len; i++) {

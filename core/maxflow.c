@@ -9,6 +9,8 @@
  */
 #include "maxflow.h"
 
+#include "sort_util.h"
+
 #include <stdlib.h>
 
 typedef struct flow_state {
@@ -22,11 +24,6 @@ typedef struct flow_state {
     double tolerance;
 } flow_state;
 
-static int compare_u32(const void *a, const void *b) {
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* Reverse arcs by binary search in the sorted rows; -1 if one is missing. */
 static int find_reverse_arcs(flow_state *st) {
     const ps_flow_graph *g = st->g;
@@ -35,7 +32,7 @@ static int find_reverse_arcs(flow_state *st) {
             uint32_t q = g->heads[e];
             const uint32_t *row = g->heads + g->offsets[q];
             const uint32_t *hit = bsearch(&p, row, g->offsets[q + 1] - g->offsets[q],
-                                          sizeof *row, compare_u32);
+                                          sizeof *row, ps_compare_u32);
             if (!hit) return -1;
             st->reverse[e] = (size_t)(hit - g->heads);
         }

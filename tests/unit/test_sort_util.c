@@ -1,0 +1,23 @@
+/* test_sort_util.c: the shared qsort / bsearch comparison (sort_util.h),
+ * including values whose difference overflows an int. */
+#include "sort_util.h"
+#include "testlib.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+
+static void test_compare_u32_orders_full_range(void) {
+    uint32_t v[6] = {UINT32_MAX, 0, 7, 0x80000000u, 7, 1};
+    static const uint32_t sorted[6] = {0, 1, 7, 7, 0x80000000u, UINT32_MAX};
+    qsort(v, 6, sizeof *v, ps_compare_u32);
+    for (int i = 0; i < 6; i++) CHECK_MSG(v[i] == sorted[i], "v[%d] = %u", i, (unsigned)v[i]);
+    uint32_t a = 0, b = UINT32_MAX;
+    CHECK(ps_compare_u32(&a, &b) == -1 && ps_compare_u32(&b, &a) == 1);
+    CHECK(ps_compare_u32(&a, &a) == 0);
+    uint32_t key = 0x80000000u, missing = 2;
+    const uint32_t *hit = bsearch(&key, v, 6, sizeof *v, ps_compare_u32);
+    CHECK(hit == &v[4]);
+    CHECK(bsearch(&missing, v, 6, sizeof *v, ps_compare_u32) == NULL);
+}
+
+PS_TEST_MAIN(TEST(test_compare_u32_orders_full_range))
