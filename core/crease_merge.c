@@ -12,6 +12,7 @@
 
 #include "crease.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 typedef struct boundary {
@@ -52,21 +53,51 @@ static void coalesce(merge_state *s) {
     s->count = out;
 }
 
-/* p's largest angular term over its edges into segments a and b: only
- * those can make a crease of the boundary between a and b (a wing root
- * next to the boundary between nose and fuselage does not). */
+/* Whether edge p-r runs within PS_CREASE_MERGE_CONE of the line of the
+ * boundary edge across (unit, #3): it measures bending across the
+ * boundary, not along it. */
+static int along(const double *points, size_t p, size_t r, const double *across) {
+    double d[3], length2 = 0, dot = 0;
+    for (int i = 0; i < 3; i++) {
+        d[i] = points[3 * r + i] - points[3 * p + i];
+        length2 += d[i] * d[i];
+        dot += d[i] * across[i];
+    }
+    return dot * dot >= PS_CREASE_MERGE_CONE * PS_CREASE_MERGE_CONE * length2;
+}
+
+/* p's largest angular term over its edges into segments a and b that run
+ * along the boundary edge's line (across, unit #3): only those can make a
+ * crease of the boundary between a and b.  A wing root next to the
+ * boundary between nose and fuselage is in a third segment; a fillet
+ * running across that boundary bends along it, not across. */
 static double strength_within(const ps_crease_merge_input *in, const int *group, size_t p,
-                              int a, int b) {
+                              int a, int b, const double *across) {
     const ps_graph *g = in->graph;
     double best = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         size_t r = g->neighbors[e];
-        if (group[r] != a && group[r] != b) continue;
+        if ((group[r] != a && group[r] != b) || !along(in->points, p, r, across)) continue;
         double ang = ps_crease_angular(in->points + 3 * p, in->normals + 3 * p,
                                        in->points + 3 * r, in->normals + 3 * r, 0.0);
         if (ang > best) best = ang;
     }
     return best;
+}
+
+/* Whether the boundary edge p-q is creased (see crease_merge.h). */
+static long creased_edge(const ps_crease_merge_input *in, const int *group, size_t p, size_t q,
+                         double crease) {
+    double across[3], length2 = 0;
+    for (int i = 0; i < 3; i++) {
+        across[i] = in->points[3 * q + i] - in->points[3 * p + i];
+        length2 += across[i] * across[i];
+    }
+    if (length2 > 0)
+        for (int i = 0; i < 3; i++) across[i] /= sqrt(length2);
+    int a = group[p], b = group[q];
+    return strength_within(in, group, p, a, b, across) >= crease ||
+           strength_within(in, group, q, a, b, across) >= crease;
 }
 
 /* One record per edge p < q joining two segments. */
@@ -84,8 +115,7 @@ static ps_status gather_boundaries(const ps_crease_merge_input *in, const int *g
             size_t q = g->neighbors[e];
             int a = group[p], b = group[q];
             if (q <= p || a == b) continue;
-            long creased = strength_within(in, group, p, a, b) >= crease ||
-                           strength_within(in, group, q, a, b) >= crease;
+            long creased = creased_edge(in, group, p, q, crease);
             s->list[s->count++] = (boundary){a < b ? a : b, a < b ? b : a, creased, 1};
         }
     coalesce(s);

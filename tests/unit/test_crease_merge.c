@@ -5,10 +5,12 @@
  * halfway along, the sphere through its equator) merge back into exactly
  * the true parts, with one merge per extra piece recorded (smaller piece
  * into larger, feature size from f), leaves renamed to their survivor, and
- * the same answer on every run.
+ * the same answer on every run.  On three hand-placed points, a concave
+ * bend counts against a merge only when it runs across the boundary.
  */
 #include "crease.h"
 #include "crease_merge.h"
+#include "hand_graph.h"
 #include "star_fixture.h"
 #include "testlib.h"
 
@@ -128,5 +130,42 @@ static void test_deterministic(void) {
     ps_star_free(&s);
 }
 
+/* p (segment 0) at the origin, q (segment 1) at (1, 0, 0): the boundary
+ * edge runs along x.  r (segment 0) one unit from p along `toward`, with
+ * the edge p-r a concave bend (normals tilted towards each other); q's
+ * normal is p's, so p-q itself is flat.  Returns how many merges. */
+static int merges_with_bend(const double toward[3]) {
+    const double s = 0.6, c = 0.8;
+    double points[9] = {0, 0, 0, 1, 0, 0, toward[0], toward[1], toward[2]};
+    double normals[9] = {s * toward[0],  s * toward[1],  c, s * toward[0], s * toward[1], c,
+                         -s * toward[0], -s * toward[1], c};
+    const int edges[2][2] = {{0, 1}, {0, 2}};
+    ps_hand_graph h;
+    ps_hand_graph_edges(&h, 3, edges, 2, 1.0);
+    double f[3] = {0, 1, 0};
+    double bend = ps_crease_angular(points, normals, points + 6, normals + 6, 0.0);
+    ps_crease_merge_input in = {.graph = &h.g, .points = points, .normals = normals, .f = f,
+                                .mean_angular = bend / 2, .n_groups = 2,
+                                .threshold = PS_CREASE_MERGE_FRACTION};
+    int group[3] = {0, 1, 0}, leaf[2] = {0, 1}, n_merges = 0;
+    ps_merge *merges = NULL;
+    ps_error err = {0};
+    CHECK(bend > 0);
+    CHECK(ps_crease_merge(&in, group, leaf, &merges, &n_merges, &err) == PS_OK);
+    free(merges);
+    return n_merges;
+}
+
+static void test_bend_across_boundary_keeps_apart(void) {
+    const double behind[3] = {-1, 0, 0}; /* the crease runs across the boundary line */
+    CHECK(merges_with_bend(behind) == 0);
+}
+
+static void test_bend_along_boundary_merges(void) {
+    const double beside[3] = {0, -1, 0}; /* a fillet the boundary crosses */
+    CHECK(merges_with_bend(beside) == 1);
+}
+
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_smooth_cuts_merge_back),
-             TEST(test_deterministic))
+             TEST(test_deterministic), TEST(test_bend_across_boundary_keeps_apart),
+             TEST(test_bend_along_boundary_merges))
