@@ -3,11 +3,12 @@
  * coarse_graph.h.
  *
  * Steps: the median edge length per component (quickselect), the greedy
- * cover (sequential: each seed depends on the cover so far), the cells
- * (one multi-source ps_dijkstra_run), the near lists (cell members by
- * counting sort), the local distances (one bounded Dijkstra per seed in
- * parallel; the run from c writes only the slots (p, c), so no two workers
- * share a slot) and the coarse graph read off the seeds' rows.
+ * cover (sequential: each seed depends on the cover so far; one
+ * ps_dijkstra_ball within the radius per seed), the cells (one
+ * multi-source ps_dijkstra_run), the near lists (cell members by counting
+ * sort), the local distances (one ps_dijkstra_ball per seed over its near
+ * cells, in parallel; the run from c writes only the slots (p, c), so no
+ * two workers share a slot) and the coarse graph read off the seeds' rows.
  */
 #include "coarse_graph.h"
 
@@ -26,92 +27,38 @@
 
 /* ---- a bounded Dijkstra (one thread's workspace) ------------------------ */
 
-typedef struct heap_item {
-    double key;
-    uint32_t vertex;
-} heap_item;
-
 typedef struct ball {
+    ps_dijkstra *dijkstra;
     double *dist;       /* #P, INFINITY outside the current run */
     uint32_t *reached;  /* #P vertices of the current run, in settling order */
     size_t n_reached;
-    heap_item *heap;    /* #P binary min-heap */
-    uint32_t *pos;      /* #P heap slot of each vertex or NO_SLOT */
-    size_t size;
     uint32_t *mark;     /* #M cells of the current region hold its stamp */
 } ball;
 
 static void ball_free(ball *b) {
-    free(b->dist), free(b->reached), free(b->heap), free(b->pos), free(b->mark);
+    ps_dijkstra_free(b->dijkstra);
+    free(b->dist), free(b->reached), free(b->mark);
 }
 
 static ps_status ball_init(ball *b, size_t n, size_t n_cells) {
     size_t alloc_n = n ? n : 1, alloc_m = n_cells ? n_cells : 1;
     memset(b, 0, sizeof *b);
+    b->dijkstra = ps_dijkstra_new(n);
     b->dist = malloc(alloc_n * sizeof *b->dist);
     b->reached = malloc(alloc_n * sizeof *b->reached);
-    b->heap = malloc(alloc_n * sizeof *b->heap);
-    b->pos = malloc(alloc_n * sizeof *b->pos);
     b->mark = malloc(alloc_m * sizeof *b->mark);
-    if (!b->dist || !b->reached || !b->heap || !b->pos || !b->mark) return PS_ERR_NOMEM;
-    for (size_t v = 0; v < n; v++) b->dist[v] = INFINITY, b->pos[v] = NO_SLOT;
+    if (!b->dijkstra || !b->dist || !b->reached || !b->mark) return PS_ERR_NOMEM;
+    for (size_t v = 0; v < n; v++) b->dist[v] = INFINITY;
     for (size_t c = 0; c < n_cells; c++) b->mark[c] = NO_SLOT;
     return PS_OK;
-}
-
-static void heap_place(ball *b, size_t i, heap_item e) {
-    b->heap[i] = e;
-    b->pos[e.vertex] = (uint32_t)i;
-}
-
-static void heap_set(ball *b, uint32_t v, double key) {
-    size_t i = b->pos[v] == NO_SLOT ? b->size++ : b->pos[v];
-    heap_item e = {key, v};
-    while (i > 0 && b->heap[(i - 1) / 2].key > key) {
-        heap_place(b, i, b->heap[(i - 1) / 2]);
-        i = (i - 1) / 2;
-    }
-    heap_place(b, i, e);
-}
-
-static uint32_t heap_pop(ball *b) {
-    uint32_t top = b->heap[0].vertex;
-    b->pos[top] = NO_SLOT;
-    if (--b->size == 0) return top;
-    heap_item e = b->heap[b->size];
-    size_t i = 0;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= b->size) break;
-        if (c + 1 < b->size && b->heap[c + 1].key < b->heap[c].key) c++;
-        if (b->heap[c].key >= e.key) break;
-        heap_place(b, i, b->heap[c]);
-        i = c;
-    }
-    heap_place(b, i, e);
-    return top;
 }
 
 /* Dijkstra from source over the vertices within radius; with cell_of, only
  * over vertices whose cell is marked with stamp.  b->reached lists them. */
 static void ball_run(ball *b, const ps_graph *g, uint32_t source, double radius,
                      const uint32_t *cell_of, uint32_t stamp) {
-    b->n_reached = 0;
-    b->dist[source] = 0.0;
-    heap_set(b, source, 0.0);
-    while (b->size > 0) {
-        uint32_t u = heap_pop(b);
-        b->reached[b->n_reached++] = u;
-        double du = b->dist[u];
-        for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
-            uint32_t v = g->neighbors[e];
-            double nd = du + g->weights[e];
-            if (nd >= b->dist[v] || nd > radius) continue;
-            if (cell_of && b->mark[cell_of[v]] != stamp) continue;
-            b->dist[v] = nd;
-            heap_set(b, v, nd);
-        }
-    }
+    ps_dijkstra_limits limits = {radius, cell_of, b->mark, stamp};
+    b->n_reached = ps_dijkstra_ball(b->dijkstra, g, source, &limits, b->dist, b->reached);
 }
 
 static void ball_clear(ball *b) {

@@ -4,7 +4,8 @@
  *
  * The workspace keeps the heap and positions between runs; every run empties
  * the heap, so positions are back to NOT_IN_HEAP and nothing is reset or
- * allocated per run.
+ * allocated per run.  All runs share one settling loop; a ball run adds its
+ * limits (checked only on an improving edge) and its reached list.
  */
 #include "dijkstra.h"
 
@@ -97,15 +98,30 @@ static int improves(const ps_dijkstra *w, double nd, double old, const int *owne
     return owner && nd == old && w->pos[v] != NOT_IN_HEAP && owner[u] < owner[v];
 }
 
-/* Pops the heap until it is empty, relaxing each popped vertex's edges. */
-static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner) {
+/* A ball run's limits and the list of what it settled. */
+typedef struct ball {
+    const ps_dijkstra_limits *limits;
+    uint32_t *reached;
+    size_t count;
+} ball;
+
+static int within(const ps_dijkstra_limits *l, double nd, uint32_t v) {
+    if (nd > l->radius) return 0;
+    return !l->label || l->mark[l->label[v]] == l->stamp;
+}
+
+/* Pops the heap until it is empty, relaxing each popped vertex's edges;
+ * with b, only into vertices within its limits, listing each popped one. */
+static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, ball *b) {
     while (w->size > 0) {
         uint32_t u = heap_pop(w);
+        if (b) b->reached[b->count++] = u;
         double du = dist[u];
         for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
             uint32_t v = g->neighbors[e];
             double nd = du + g->weights[e];
             if (!improves(w, nd, dist[v], owner, u, v)) continue;
+            if (b && !within(b->limits, nd, v)) continue;
             dist[v] = nd;
             if (owner) owner[v] = owner[u];
             heap_set(w, v, nd);
@@ -125,7 +141,7 @@ void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
         if (owner) owner[v] = (int)s;
         heap_set(w, v, 0.0);
     }
-    settle(w, g, dist, owner);
+    settle(w, g, dist, owner, NULL);
 }
 
 void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
@@ -135,9 +151,18 @@ void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *s
             dist[sources[i]] = 0.0;
             heap_set(w, sources[i], 0.0);
         }
-    settle(w, g, dist, NULL);
+    settle(w, g, dist, NULL, NULL);
 }
 
 void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, double *dist) {
     ps_dijkstra_lower_many(w, g, &source, 1, dist);
+}
+
+size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
+                        const ps_dijkstra_limits *limits, double *dist, uint32_t *reached) {
+    ball b = {limits, reached, 0};
+    dist[source] = 0.0;
+    heap_set(w, source, 0.0);
+    settle(w, g, dist, NULL, &b);
+    return b.count;
 }

@@ -2,7 +2,10 @@
  * dijkstra.h: single- and multi-source shortest paths on a ps_graph.
  *
  * A workspace holds the heap and scratch arrays for one thread so repeated
- * runs allocate nothing.  Unreachable vertices get INFINITY.
+ * runs allocate nothing.  Unreachable vertices get INFINITY.  A ball run
+ * (ps_dijkstra_ball) stays within a radius and a region and lists the
+ * vertices it reaches, so a caller can run many small searches on a large
+ * graph and reset only what each one touched.
  */
 #ifndef PS_DIJKSTRA_H
 #define PS_DIJKSTRA_H
@@ -30,5 +33,25 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source,
  * to explore only the vertices closer than R. */
 void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
                             size_t n_sources, double *dist);
+
+/* Where a ball run may go: vertices at distance <= radius (inclusive;
+ * INFINITY for no bound) and, when label is not NULL, only the vertices v
+ * with mark[label[v]] == stamp (label #P, e.g. the cell of each vertex;
+ * mark #L, e.g. a stamp on the cells the run may enter). */
+typedef struct ps_dijkstra_limits {
+    double radius;
+    const uint32_t *label;
+    const uint32_t *mark;
+    uint32_t stamp;
+} ps_dijkstra_limits;
+
+/* Dijkstra from source (always reached) within limits.  dist #P must be
+ * INFINITY at every vertex on entry; on return it holds the distance of
+ * each reached vertex and INFINITY elsewhere.  reached #P out: the reached
+ * vertices in settling order (source first, distances nondecreasing).
+ * Returns their count.  Setting dist[reached[i]] = INFINITY for i < count
+ * readies dist for the next ball. */
+size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
+                        const ps_dijkstra_limits *limits, double *dist, uint32_t *reached);
 
 #endif

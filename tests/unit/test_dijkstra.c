@@ -1,7 +1,10 @@
 /* test_dijkstra.c: distances and owners equal Bellman-Ford on random graphs
  * (integer weights make ties exact), unreachable vertices get INFINITY, and
  * ps_dijkstra_lower equals the minimum of full runs; ps_dijkstra_lower_many
- * from a cap equals a multi-source run clipped at the cap. */
+ * from a cap equals a multi-source run clipped at the cap.  Ball runs on a
+ * hand-built graph: the radius is inclusive, a region detours around the
+ * vertices outside it, the reached list is in settling order and resets
+ * dist; on a random graph a ball equals Bellman-Ford within the radius. */
 #include "dijkstra.h"
 #include "knn_graph.h"
 #include "testlib.h"
@@ -54,22 +57,47 @@ static void bellman_ford(const ps_graph *g, uint32_t source, double *d) {
     }
 }
 
-static void test_single_source(void) {
+/* A ball of radius R from s reaches exactly the vertices with ref <= R, at
+ * their ref distance, in settling order; dist (#P) is INFINITY before and
+ * after.  Returns how many vertices are exactly at R. */
+static size_t check_ball(ps_dijkstra *w, const ps_graph *g, uint32_t s, const double *ref,
+                         double radius, double *dist, uint32_t *reached) {
+    ps_dijkstra_limits limits = {radius, NULL, NULL, 0};
+    size_t count = ps_dijkstra_ball(w, g, s, &limits, dist, reached), inside = 0, at = 0;
+    for (size_t v = 0; v < g->n; v++) {
+        inside += ref[v] <= radius, at += ref[v] == radius;
+        CHECK(dist[v] == (ref[v] <= radius ? ref[v] : INFINITY));
+    }
+    CHECK(count == inside && reached[0] == s);
+    for (size_t i = 1; i < count; i++) CHECK(dist[reached[i - 1]] <= dist[reached[i]]);
+    for (size_t i = 0; i < count; i++) dist[reached[i]] = INFINITY;
+    return at;
+}
+
+/* Full runs, and balls of radius 7 (integer weights put many vertices
+ * exactly at 7, so the inclusive bound is exercised). */
+static void test_single_source_and_ball(void) {
     size_t n = 120;
     ps_graph g;
     random_graph(n, 4, 7, &g);
     ps_dijkstra *w = ps_dijkstra_new(n);
-    double *d = malloc(n * sizeof *d), *ref = malloc(n * sizeof *ref);
-    REQUIRE(w && d && ref && g.weights);
+    double *d = malloc(n * sizeof *d), *ref = malloc(n * sizeof *ref),
+           *ball = malloc(n * sizeof *ball);
+    uint32_t *reached = malloc(n * sizeof *reached);
+    REQUIRE(w && d && ref && ball && reached && g.weights);
+    for (size_t v = 0; v < n; v++) ball[v] = INFINITY;
+    size_t at_radius = 0;
     for (uint32_t s = 0; s < n; s += 7) {
         ps_dijkstra_run(w, &g, &s, 1, d, NULL);
         bellman_ford(&g, s, ref);
         for (size_t v = 0; v < n; v++) CHECK(d[v] == ref[v]);
+        at_radius += check_ball(w, &g, s, ref, 7.0, ball, reached);
     }
+    CHECK(at_radius > 5);
     uint32_t zero = 0;
     ps_dijkstra_run(w, &g, &zero, 1, d, NULL);
     CHECK(isinf(d[n - 1]));
-    free(d), free(ref);
+    free(d), free(ref), free(ball), free(reached);
     ps_dijkstra_free(w);
     ps_graph_free(&g);
 }
@@ -156,5 +184,96 @@ static void test_lower_many_is_capped_run(void) {
     ps_graph_free(&g);
 }
 
-PS_TEST_MAIN(TEST(test_single_source), TEST(test_multi_source_owner),
-             TEST(test_lower_is_min_of_runs), TEST(test_lower_many_is_capped_run))
+/* Hand-built: a path 0-1-2-3-4 of unit edges and a detour 0-5-2 of two
+ * edges of length 2.  From 0: d = 0 1 2 3 4 2. */
+static const size_t hand_offsets[] = {0, 2, 4, 7, 9, 10, 12};
+static const uint32_t hand_neighbors[] = {1, 5, 0, 2, 1, 3, 5, 2, 4, 3, 0, 2};
+static const double hand_weights[] = {1, 2, 1, 1, 1, 1, 2, 1, 1, 1, 2, 2};
+#define HAND_N 6
+
+/* One workspace on the hand-built graph; dist is INFINITY between balls. */
+typedef struct hand_ball {
+    ps_graph g;
+    ps_dijkstra *w;
+    double dist[HAND_N];
+    uint32_t reached[HAND_N];
+    size_t count;
+} hand_ball;
+
+static int hand_open(hand_ball *h) {
+    h->g = (ps_graph){HAND_N, (size_t *)hand_offsets, (uint32_t *)hand_neighbors,
+                      (double *)hand_weights};
+    h->w = ps_dijkstra_new(HAND_N);
+    for (size_t v = 0; v < HAND_N; v++) h->dist[v] = INFINITY;
+    h->count = 0;
+    return h->w != NULL;
+}
+
+/* Undoes the last ball through its reached list. */
+static void hand_reset(hand_ball *h) {
+    for (size_t i = 0; i < h->count; i++) h->dist[h->reached[i]] = INFINITY;
+    h->count = 0;
+}
+
+static void hand_run(hand_ball *h, uint32_t source, double radius, const uint32_t *label,
+                     const uint32_t *mark, uint32_t stamp) {
+    hand_reset(h);
+    ps_dijkstra_limits limits = {radius, label, mark, stamp};
+    h->count = ps_dijkstra_ball(h->w, &h->g, source, &limits, h->dist, h->reached);
+}
+
+static void check_dists(const hand_ball *h, const double *want) {
+    for (size_t v = 0; v < HAND_N; v++)
+        CHECK_MSG(h->dist[v] == want[v], "dist[%zu] = %g, want %g", v, h->dist[v], want[v]);
+}
+
+/* Radius 2 takes vertices 2 and 5, exactly at 2; radius 1.5 does not. */
+static void test_ball_radius_is_inclusive(void) {
+    hand_ball h;
+    REQUIRE(hand_open(&h));
+    hand_run(&h, 0, 2.0, NULL, NULL, 0);
+    CHECK(h.count == 4);
+    check_dists(&h, (const double[HAND_N]){0, 1, 2, INFINITY, INFINITY, 2});
+    hand_run(&h, 0, 1.5, NULL, NULL, 0);
+    CHECK(h.count == 2 && h.reached[0] == 0 && h.reached[1] == 1);
+    check_dists(&h, (const double[HAND_N]){0, 1, INFINITY, INFINITY, INFINITY, INFINITY});
+    ps_dijkstra_free(h.w);
+}
+
+/* Vertex 1 is in label 1, not stamped: the run goes round by 5. */
+static void test_ball_region(void) {
+    hand_ball h;
+    REQUIRE(hand_open(&h));
+    const uint32_t label[HAND_N] = {0, 1, 0, 0, 0, 2}, mark[3] = {7, 3, 7};
+    hand_run(&h, 0, INFINITY, label, mark, 7);
+    CHECK(h.count == 5);
+    check_dists(&h, (const double[HAND_N]){0, INFINITY, 4, 5, 6, 2});
+    hand_run(&h, 0, 4.0, label, mark, 7);
+    CHECK(h.count == 3);
+    check_dists(&h, (const double[HAND_N]){0, INFINITY, 4, INFINITY, INFINITY, 2});
+    ps_dijkstra_free(h.w);
+}
+
+/* Settling order from 3 within 2.5: 3, then 2 and 4 (1 each, in either
+ * order), then 1 (2); 5 and 0 (3) are beyond. */
+static void test_ball_reached_list(void) {
+    hand_ball h;
+    REQUIRE(hand_open(&h));
+    hand_run(&h, 3, 2.5, NULL, NULL, 0);
+    REQUIRE(h.count == 4);
+    const uint32_t *r = h.reached;
+    CHECK(r[0] == 3 && r[3] == 1);
+    CHECK((r[1] == 2 && r[2] == 4) || (r[1] == 4 && r[2] == 2));
+    hand_reset(&h);
+    for (size_t v = 0; v < HAND_N; v++) CHECK(isinf(h.dist[v])); /* the list named all it set */
+    double full[HAND_N];
+    uint32_t source = 3;
+    ps_dijkstra_run(h.w, &h.g, &source, 1, full, NULL); /* the workspace is ready again */
+    CHECK(full[0] == 3 && full[5] == 3);
+    ps_dijkstra_free(h.w);
+}
+
+PS_TEST_MAIN(TEST(test_single_source_and_ball), TEST(test_multi_source_owner),
+             TEST(test_lower_is_min_of_runs), TEST(test_lower_many_is_capped_run),
+             TEST(test_ball_radius_is_inclusive), TEST(test_ball_region),
+             TEST(test_ball_reached_list))
