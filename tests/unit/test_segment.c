@@ -372,6 +372,19 @@ static void test_bad_input(void) {
     expect_invalid(pts, 20, 3, "huge coordinate");
 }
 
+/* Every status has its own name, for messages. */
+static void test_status_names(void) {
+    const ps_status all[] = {PS_OK, PS_ERR_INVALID, PS_ERR_NOMEM, PS_ERR_CANCELLED,
+                             PS_ERR_INTERNAL};
+    const int n = (int)(sizeof all / sizeof all[0]);
+    for (int i = 0; i < n; i++) {
+        CHECK(strcmp(ps_status_name(all[i]), "unknown status") != 0);
+        for (int j = 0; j < i; j++) CHECK(strcmp(ps_status_name(all[i]), ps_status_name(all[j])));
+    }
+    CHECK(strcmp(ps_status_name(PS_OK), "ok") == 0);
+    CHECK(strcmp(ps_status_name(PS_ERR_NOMEM), "out of memory") == 0);
+}
+
 static int progress_calls, last_phase;
 static void on_progress(void *user, ps_phase phase, double fraction) {
     (void)user;
@@ -406,5 +419,5 @@ PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
              TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
-             TEST(test_disconnected_scans), TEST(test_bad_input),
+             TEST(test_disconnected_scans), TEST(test_bad_input), TEST(test_status_names),
              TEST(test_progress_and_cancel))
