@@ -1,6 +1,19 @@
 /* decode_off.c: OFF meshes (also COFF, NOFF, CNOFF): "OFF", counts
- * "nv nf [ne]", nv vertex lines "x y z [nx ny nz] [colour...]", nf face
- * lines "k i1 .. ik [colour...]" fan-triangulated; '#' comments allowed. */
+ * "nv nf [ne]", nv vertex records "x y z [nx ny nz] [colour...]", nf face
+ * records "k i1 .. ik [colour...]" fan-triangulated.
+ *
+ * Tokens are separated by white space; a line ends at LF, CR or CRLF, and
+ * '#' starts a comment to the end of its line.  Every record (the counts, a
+ * vertex, a face) starts on a new line.  A record whose line holds all its
+ * numbers ends with that line: further tokens on it (colours) are skipped.
+ * A record that is incomplete on its line continues on the next lines (one
+ * number per line, wrapped face lines), and ends with the line that
+ * completes it, whose further tokens are skipped the same way.  So two
+ * records never share a line, and colours are only recognized after the
+ * last number of a record, on the same line.  The counts follow "OFF" on
+ * its line or start on the next; "ne" may be left out when nv and nf are on
+ * one line, and is required when they are on different lines (else it
+ * could not be told from the first vertex's x). */
 #include "decode_text.h"
 
 #include <stdlib.h>
@@ -10,56 +23,98 @@
 #include "decode_util.h"
 
 typedef struct off_reader {
-    ps_lines lines;
-    const char *s, *e; /* rest of the current line */
+    const char *p, *end; /* the bytes not read yet */
+    size_t line;         /* the line p is on, from 1 */
 } off_reader;
 
-/* Reads the next field of the current line as an integer. */
-static int next_integer(off_reader *r, const char *what, long long *v, ps_api_error *err) {
-    const char *fs, *ft;
-    if (ps_next_field(&r->s, r->e, NULL, &fs, &ft) != 1 ||
-        ps_parse_integer(fs, (size_t)(ft - fs), v))
-        return ps_api_fail(err, 400, "line %zu: expected %s", r->lines.line, what);
+static const char counts_syntax[] = "\"vertex_count face_count edge_count\"";
+
+static int is_line_end(char ch) { return ch == '\n' || ch == '\r'; }
+
+/* White space within a line (ps_is_blank without CR, which ends a line). */
+static int is_inline_blank(char ch) { return ch != '\r' && ps_is_blank(ch); }
+
+/* Moves past the rest of the line and its LF, CR or CRLF.  Returns 0 when
+ * the data ends first. */
+static int skip_line(off_reader *r) {
+    while (r->p < r->end && !is_line_end(*r->p)) r->p++;
+    if (r->p == r->end) return 0;
+    if (*r->p == '\r' && r->p + 1 < r->end && r->p[1] == '\n') r->p++;
+    r->p++;
+    r->line++;
+    return 1;
+}
+
+/* The next token [*s, *t) on the current line, moving past it; 0 when the
+ * line has no more (its end or a '#' comment). */
+static int line_token(off_reader *r, const char **s, const char **t) {
+    while (r->p < r->end && is_inline_blank(*r->p)) r->p++;
+    if (r->p == r->end || is_line_end(*r->p) || *r->p == '#') return 0;
+    *s = r->p;
+    while (r->p < r->end && !is_inline_blank(*r->p) && !is_line_end(*r->p)) r->p++;
+    *t = r->p;
+    return 1;
+}
+
+/* The next token on this line or a later one (past blank and comment
+ * lines); 0 when the data ends first. */
+static int data_token(off_reader *r, const char **s, const char **t) {
+    while (!line_token(r, s, t))
+        if (!skip_line(r)) return 0;
+    return 1;
+}
+
+static int ends_before(const off_reader *r, const char *what, ps_api_error *err) {
+    return ps_api_fail(err, 400, "line %zu: the file ends before %s", r->line, what);
+}
+
+/* Parses the token [s, t) of the current line as an integer. */
+static int token_integer(const off_reader *r, const char *s, const char *t, const char *what,
+                         long long *v, ps_api_error *err) {
+    if (ps_parse_integer(s, (size_t)(t - s), v))
+        return ps_api_fail(err, 400, "line %zu: expected %s", r->line, what);
     return 0;
 }
 
-static int next_line(off_reader *r, const char *what, ps_api_error *err) {
-    if (!ps_lines_next_data(&r->lines, &r->s, &r->e))
-        return ps_api_fail(err, 400, "line %zu: the file ends before %s", r->lines.line + 1, what);
-    return 0;
+/* The next token, which the counts need, as an integer. */
+static int count_token(off_reader *r, long long *v, ps_api_error *err) {
+    const char *s, *t;
+    if (!data_token(r, &s, &t)) return ends_before(r, "the counts", err);
+    return token_integer(r, s, t, counts_syntax, v, err);
 }
 
 static int parse_variant(off_reader *r, int *has_normals, ps_api_error *err) {
-    const char *t = ps_token_end(r->s, r->e, NULL);
-    size_t n = (size_t)(t - r->s);
+    const char *s, *t;
+    if (!data_token(r, &s, &t)) return ends_before(r, "the OFF keyword", err);
+    size_t n = (size_t)(t - s);
     static const char *const known[] = {"OFF", "COFF", "NOFF", "CNOFF", "NCOFF"};
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
-        if (n == strlen(known[i]) && !memcmp(r->s, known[i], n)) {
-            *has_normals = memchr(r->s, 'N', n) != NULL;
-            r->s = t;
+        if (n == strlen(known[i]) && !memcmp(s, known[i], n)) {
+            *has_normals = memchr(s, 'N', n) != NULL;
             return 0;
         }
     char shown[41];
-    ps_preview(r->s, n, shown, sizeof shown);
+    ps_preview(s, n, shown, sizeof shown);
     return ps_api_fail(err, 422, "line %zu: OFF variant \"%s\" is not supported (OFF, COFF, "
-                       "NOFF and CNOFF are)", r->lines.line, shown);
+                       "NOFF and CNOFF are)", r->line, shown);
 }
 
-/* "nv nf [ne]" on the rest of the first line or on the next data line. */
+/* "nv nf [ne]" after "OFF" on its line or from the next data line on; ne
+ * is read (and required) only when nv and nf are on different lines. */
 static int parse_counts(off_reader *r, long long *nv, long long *nf, ps_api_error *err) {
-    if (ps_skip_blanks(r->s, r->e) == r->e && next_line(r, "the counts", err)) return -1;
-    if (next_integer(r, "\"vertex_count face_count edge_count\"", nv, err) ||
-        next_integer(r, "\"vertex_count face_count edge_count\"", nf, err))
-        return -1;
-    if (*nv < 0 || *nf < 0)
-        return ps_api_fail(err, 400, "line %zu: negative count", r->lines.line);
+    long long ne;
+    if (count_token(r, nv, err)) return -1;
+    size_t nv_line = r->line;
+    if (count_token(r, nf, err) || (r->line != nv_line && count_token(r, &ne, err))) return -1;
+    if (*nv < 0 || *nf < 0) return ps_api_fail(err, 400, "line %zu: negative count", r->line);
+    skip_line(r);
     return 0;
 }
 
-/* 400 when the counts cannot fit in the bytes left (a vertex line takes at
- * least 6 bytes, a face line 2), checked before allocating. */
+/* 400 when the counts cannot fit in the bytes left (a vertex takes at least
+ * 6 bytes, a face 2), checked before allocating. */
 static int check_counts(const off_reader *r, long long nv, long long nf, ps_api_error *err) {
-    unsigned long long remain = (unsigned long long)(r->lines.end - r->lines.pos) + 1;
+    unsigned long long remain = (unsigned long long)(r->end - r->p) + 1;
     if ((unsigned long long)nv > remain / 6)
         return ps_api_fail(err, 400, "vertex count %lld exceeds the data (needs %llu bytes, "
                            "%llu remain)", nv, 6ULL * (unsigned long long)nv, remain);
@@ -72,31 +127,42 @@ static int check_counts(const off_reader *r, long long nv, long long nf, ps_api_
 
 static int read_vertex(off_reader *r, size_t i, int has_normals, ps_pointset *out,
                        ps_api_error *err) {
-    if (next_line(r, "all vertices", err)) return -1;
-    for (int k = 0; k < (has_normals ? 6 : 3); k++) {
-        const char *fs, *ft;
+    const int need = has_normals ? 6 : 3;
+    size_t first_line = r->line;
+    for (int k = 0; k < need; k++) {
+        const char *s, *t;
         double *dst = k < 3 ? &out->points[3 * i + (size_t)k]
                             : &out->normals[3 * i + (size_t)k - 3];
-        if (ps_next_field(&r->s, r->e, NULL, &fs, &ft) != 1)
-            return ps_api_fail(err, 400, "line %zu: vertex %zu needs %d numbers", r->lines.line,
-                               i, has_normals ? 6 : 3);
-        if (ps_field_number(fs, ft, r->lines.line, dst, err)) return -1;
+        if (!data_token(r, &s, &t)) {
+            if (k == 0) return ends_before(r, "all vertices", err);
+            return ps_api_fail(err, 400, "line %zu: vertex %zu needs %d numbers (the file ends "
+                               "after %d)", first_line, i, need, k);
+        }
+        if (k == 0) first_line = r->line;
+        if (ps_field_number(s, t, r->line, dst, err)) return -1;
     }
+    skip_line(r);
     return 0;
 }
 
 static int read_face(off_reader *r, size_t face, size_t nv, ps_tris *tris, ps_api_error *err) {
+    const char *s, *t;
     long long k, idx;
     ps_fan fan = {0};
-    if (next_line(r, "all faces", err) || next_integer(r, "a face's vertex count", &k, err))
-        return -1;
+    if (!data_token(r, &s, &t)) return ends_before(r, "all faces", err);
+    size_t first_line = r->line;
+    if (token_integer(r, s, t, "a face's vertex count", &k, err)) return -1;
     for (long long j = 0; j < k; j++) {
-        if (next_integer(r, "a vertex index", &idx, err)) return -1;
+        if (!data_token(r, &s, &t))
+            return ps_api_fail(err, 400, "line %zu: face %zu needs %lld vertex indices (the "
+                               "file ends after %lld)", first_line, face, k, j);
+        if (token_integer(r, s, t, "a vertex index", &idx, err)) return -1;
         if (idx < 0 || (unsigned long long)idx >= nv)
             return ps_api_fail(err, 422, "line %zu: face %zu refers to vertex %lld (the file "
-                               "has %zu vertices)", r->lines.line, face, idx, nv);
+                               "has %zu vertices)", r->line, face, idx, nv);
         if (ps_fan_add(&fan, tris, (uint32_t)idx, err)) return -1;
     }
+    skip_line(r);
     return 0;
 }
 
@@ -104,9 +170,8 @@ static int read_off(off_reader *r, const ps_decode_limits *lim, ps_pointset *out
                     ps_tris *tris, ps_api_error *err) {
     long long nv, nf;
     int has_normals = 0;
-    if (next_line(r, "the OFF keyword", err) || parse_variant(r, &has_normals, err) ||
-        parse_counts(r, &nv, &nf, err) || check_counts(r, nv, nf, err) ||
-        ps_decode_check_points((size_t)nv, lim, err))
+    if (parse_variant(r, &has_normals, err) || parse_counts(r, &nv, &nf, err) ||
+        check_counts(r, nv, nf, err) || ps_decode_check_points((size_t)nv, lim, err))
         return -1;
     out->n = (size_t)nv;
     out->dim = 3;
@@ -123,10 +188,9 @@ static int read_off(off_reader *r, const ps_decode_limits *lim, ps_pointset *out
 
 int ps_decode_off(const char *bytes, size_t len, const ps_decode_limits *lim,
                   ps_pointset *out, ps_api_error *err) {
-    off_reader r;
+    off_reader r = {bytes, bytes + len, 1};
     ps_tris tris = {0};
     memset(out, 0, sizeof *out);
-    ps_lines_init(&r.lines, bytes, len);
     int failed = read_off(&r, lim, out, &tris, err);
     return ps_decode_finish_mesh(failed, &tris, out, lim, err);
 }
