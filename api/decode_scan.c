@@ -30,14 +30,21 @@ const char *ps_skip_space(const char *p, const char *end) {
     return p;
 }
 
+/* The first '\n' or '\r' in [p, end), or end. */
+static const char *line_break(const char *p, const char *end) {
+    while (p < end && *p != '\n' && *p != '\r') p++;
+    return p;
+}
+
 int ps_lines_next(ps_lines *c, const char **start, const char **stop) {
     if (c->pos >= c->end) return 0;
-    const char *nl = memchr(c->pos, '\n', (size_t)(c->end - c->pos));
-    const char *line_end = nl ? nl : c->end;
+    const char *line_end = line_break(c->pos, c->end);
     const char *s = ps_skip_blanks(c->pos, line_end);
     const char *e = line_end;
     while (e > s && ps_is_blank(e[-1])) e--;
-    c->pos = nl ? nl + 1 : c->end;
+    c->pos = line_end;
+    if (c->pos < c->end && *c->pos == '\r') c->pos++;
+    if (c->pos < c->end && *c->pos == '\n') c->pos++;
     c->line++;
     *start = s;
     *stop = e;

@@ -18,8 +18,9 @@ typedef struct ps_lines {
 
 void ps_lines_init(ps_lines *c, const char *bytes, size_t len);
 
-/* The next line as [*start, *stop), without "\n" or "\r\n" and with
- * surrounding blanks trimmed.  Returns 0 when there are no more lines. */
+/* The next line as [*start, *stop), without its end ("\n", "\r\n" or a
+ * lone "\r") and with surrounding blanks trimmed.  Returns 0 when there are
+ * no more lines. */
 int ps_lines_next(ps_lines *c, const char **start, const char **stop);
 
 /* The next line that is neither empty nor a '#' comment (same contract). */

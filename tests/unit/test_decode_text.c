@@ -25,6 +25,7 @@ static void test_detect(void) {
         {"1 2 3\nv 1 2 3\n", PS_FORMAT_XYZ},        {"x,y,z\n1,2,3\n", PS_FORMAT_XYZ},
         {"# c\n\n1;2\n", PS_FORMAT_XYZ},            {"hello world\n", PS_FORMAT_UNKNOWN},
         {"", PS_FORMAT_UNKNOWN},                    {"OFFICE 1 2\n", PS_FORMAT_UNKNOWN},
+        {"# c\rOFF\r1 0 0\r", PS_FORMAT_OFF},      {"# c\rv 1 2 3\r", PS_FORMAT_OBJ},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         CHECK_MSG(ps_detect_format(cases[i].text, strlen(cases[i].text)) == cases[i].f,
@@ -109,10 +110,15 @@ static void test_xyz(void) {
     REQUIRE(ps_check_decodes("1 2 3 4\n5 6 7 8\n", &ps));
     CHECK(ps.n == 2 && ps.dim == 4 && ps.points[7] == 8);
     ps_pointset_free(&ps);
+    /* old Mac line ends (a lone CR), mixed with CRLF and LF */
+    REQUIRE(ps_check_decodes("# scan\r1 2 3\r4 5 6\r\n7 8 9\n10 11 12\r", &ps));
+    CHECK(ps.n == 4 && ps.dim == 3 && ps.points[3] == 4 && ps.points[11] == 12);
+    ps_pointset_free(&ps);
 }
 
 static void test_xyz_errors(void) {
     CHECK(fails("1 2 3\n4 5 6\n7 8\n", NULL, 400, "line 3: 2 columns, expected 3"));
+    CHECK(fails("1 2 3\r4 5 6\r\n7 8\r", NULL, 400, "line 3: 2 columns, expected 3"));
     CHECK(fails("1 2 3\n4 5 six\n", NULL, 400, "line 2: \"six\" is not a number"));
     CHECK(fails("1 2 3\n4 5 nan\n", NULL, 422, "line 2: non-finite"));
     CHECK(fails("1\n2\n", NULL, 422, "line 1: 1 column"));
