@@ -23,7 +23,6 @@
 #include "parallel.h"
 
 #include <math.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 
 #define FIXED_POINT_RANGE 1125899906842624.0 /* 2^50: bound on a vertex's sum */
@@ -44,10 +43,6 @@ typedef struct run_ctx {
     const int *component;      /* #P component of each old id */
     double *f;                 /* exact: #P out (old ids) */
     const ps_control *ctl;
-    atomic_int cancelled;
-    atomic_size_t done;
-    size_t total;
-    double progress_base;      /* fraction reported before the first run */
 } run_ctx;
 
 static void report(const ps_control *ctl, double fraction) {
@@ -79,48 +74,30 @@ static ps_status workers_build(size_t n, int count, int with_sums, workers *w) {
     return PS_OK;
 }
 
-/* Worker 0 alone reports, so fractions are monotone and never concurrent. */
-static void finish_run(run_ctx *r, int worker) {
-    size_t done = atomic_fetch_add(&r->done, 1) + 1;
-    double share = 1.0 - r->progress_base;
-    if (worker == 0) report(r->ctl, r->progress_base + share * (double)done / (double)r->total);
-}
-
-static int should_stop(run_ctx *r) {
-    if (atomic_load(&r->cancelled)) return 1;
-    if (!ps_control_cancelled(r->ctl)) return 0;
-    atomic_store(&r->cancelled, 1);
-    return 1;
-}
-
-static void exact_runs(void *ctx, size_t begin, size_t end, int worker) {
+/* f of vertex s (new id) from a Dijkstra from it. */
+static void exact_run(void *ctx, size_t s, int worker) {
     run_ctx *r = ctx;
     const ps_bfs_order *o = r->o;
     double *dist = r->w->dist[worker];
-    for (size_t s = begin; s < end && !should_stop(r); s++) {
-        uint32_t source = (uint32_t)s;
-        ps_dijkstra_run(r->w->dijkstra[worker], &o->g, &source, 1, dist, NULL);
-        int c = r->component[o->old_of[s]];
-        double sum = 0.0;
-        for (size_t v = o->start[c]; v < o->start[c + 1]; v++) sum += dist[v];
-        r->f[o->old_of[s]] = sum / (double)(o->start[c + 1] - o->start[c]);
-        finish_run(r, worker);
-    }
+    uint32_t source = (uint32_t)s;
+    ps_dijkstra_run(r->w->dijkstra[worker], &o->g, &source, 1, dist, NULL);
+    int c = r->component[o->old_of[s]];
+    double sum = 0.0;
+    for (size_t v = o->start[c]; v < o->start[c + 1]; v++) sum += dist[v];
+    r->f[o->old_of[s]] = sum / (double)(o->start[c + 1] - o->start[c]);
 }
 
-static void sample_runs(void *ctx, size_t begin, size_t end, int worker) {
+/* Sample s's quantized distances added into the worker's sums. */
+static void sample_run(void *ctx, size_t s, int worker) {
     run_ctx *r = ctx;
     const ps_bfs_order *o = r->o;
     double *dist = r->w->dist[worker];
     int64_t *sums = r->w->sums[worker];
-    for (size_t s = begin; s < end && !should_stop(r); s++) {
-        uint32_t source = r->sources[s];
-        ps_dijkstra_run(r->w->dijkstra[worker], &o->g, &source, 1, dist, NULL);
-        int c = r->component[o->old_of[source]];
-        double scale = r->scale[c];
-        for (size_t v = o->start[c]; v < o->start[c + 1]; v++) sums[v] += llround(dist[v] * scale);
-        finish_run(r, worker);
-    }
+    uint32_t source = r->sources[s];
+    ps_dijkstra_run(r->w->dijkstra[worker], &o->g, &source, 1, dist, NULL);
+    int c = r->component[o->old_of[source]];
+    double scale = r->scale[c];
+    for (size_t v = o->start[c]; v < o->start[c + 1]; v++) sums[v] += llround(dist[v] * scale);
 }
 
 /* Samples per component: round(S * size / n), at least 1, at most size. */
@@ -193,13 +170,10 @@ static void fixed_point_means(const ps_bfs_order *o, const sampling *s, const wo
         }
 }
 
-static ps_status run_parallel(run_ctx *r, int threads, ps_range_fn fn) {
-    atomic_init(&r->cancelled, 0);
-    atomic_init(&r->done, 0);
-    ps_parallel_for(threads, r->total, 1, fn, r);
-    if (atomic_load(&r->cancelled)) return PS_ERR_CANCELLED;
-    report(r->ctl, 1.0);
-    return PS_OK;
+/* fn for runs [0, count), progress from lo to 1. */
+static ps_status run_parallel(run_ctx *r, int threads, size_t count, ps_item_fn fn, double lo) {
+    ps_progress_span span = {r->ctl, PS_PHASE_CENTRALITY, lo, 1.0};
+    return ps_parallel_for_tracked(threads, count, 1, fn, r, &span);
 }
 
 static ps_status approx_centrality(run_ctx *r, size_t samples, sampling *s) {
@@ -208,9 +182,7 @@ static ps_status approx_centrality(run_ctx *r, size_t samples, sampling *s) {
     if (st != PS_OK) return st;
     r->sources = s->ids;
     r->scale = s->scale;
-    r->total = s->total;
-    r->progress_base = FPS_SHARE;
-    st = run_parallel(r, w->count, sample_runs);
+    st = run_parallel(r, w->count, s->total, sample_run, FPS_SHARE);
     if (st == PS_OK) fixed_point_means(r->o, s, w, r->f);
     return st;
 }
@@ -247,9 +219,9 @@ static ps_status fine_centrality(const ps_bfs_order *o, const int *component, in
                                  uint32_t **sample_ids, int *samples_used, ps_error *err) {
     workers w = {0};
     sampling s = {0};
-    run_ctx r = {.o = o, .w = &w, .component = component, .f = f, .ctl = ctl, .total = o->g.n};
+    run_ctx r = {.o = o, .w = &w, .component = component, .f = f, .ctl = ctl};
     ps_status st = workers_build(o->g.n, ps_parallel_threads(threads), !exact, &w);
-    if (st == PS_OK && exact) st = run_parallel(&r, w.count, exact_runs);
+    if (st == PS_OK && exact) st = run_parallel(&r, w.count, o->g.n, exact_run, 0.0);
     else if (st == PS_OK) st = approx_centrality(&r, samples, &s);
     if (st == PS_OK && !exact) give_samples(o, &s, sample_ids, samples_used);
     sampling_free(&s);

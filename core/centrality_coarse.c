@@ -20,7 +20,6 @@
 #include "parallel.h"
 
 #include <math.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 
 #define LANES 8            /* floats per step of the inner loops */
@@ -51,39 +50,18 @@ typedef struct two_level {
     double *f;           /* #P out, old ids */
     double *fine;        /* #P f in new ids, then smoothed */
     double *spare;       /* #P the smoothing's other buffer */
-    atomic_int cancelled;
-    atomic_size_t done;
-    size_t total;
-    double progress_lo, progress_hi;
 } two_level;
 
 static void report(const ps_control *ctl, double fraction) {
     ps_control_progress(ctl, PS_PHASE_CENTRALITY, fraction);
 }
 
-static int should_stop(two_level *x) {
-    if (atomic_load(&x->cancelled)) return 1;
-    if (!ps_control_cancelled(x->ctl)) return 0;
-    atomic_store(&x->cancelled, 1);
-    return 1;
-}
-
-/* Worker 0 alone reports, so fractions are monotone and never concurrent. */
-static void finish_items(two_level *x, size_t items, int worker) {
-    size_t done = atomic_fetch_add(&x->done, items) + items;
-    double share = x->progress_hi - x->progress_lo;
-    if (worker == 0) report(x->ctl, x->progress_lo + share * (double)done / (double)x->total);
-}
-
-/* fn(ctx, ...) over [0, total) with progress from lo to hi. */
-static ps_status run_parallel(two_level *x, int threads, size_t total, size_t chunk,
-                              ps_range_fn fn, void *ctx, double lo, double hi) {
-    atomic_store(&x->done, 0);
-    x->total = total, x->progress_lo = lo, x->progress_hi = hi;
-    ps_parallel_for(threads, total, chunk, fn, ctx);
-    if (atomic_load(&x->cancelled)) return PS_ERR_CANCELLED;
-    report(x->ctl, hi);
-    return PS_OK;
+/* fn(ctx, item, worker) for items [0, count), one per hand-out, with
+ * progress from lo to hi. */
+static ps_status run_parallel(const two_level *x, int threads, size_t count, ps_item_fn fn,
+                              void *ctx, double lo, double hi) {
+    ps_progress_span span = {x->ctl, PS_PHASE_CENTRALITY, lo, hi};
+    return ps_parallel_for_tracked(threads, count, 1, fn, ctx, &span);
 }
 
 static void table_free(table *t) {
@@ -189,14 +167,10 @@ static void coarse_block(two_level *x, coarse_worker *w, size_t first, size_t en
     }
 }
 
-static void coarse_tasks(void *ctx, size_t begin, size_t end, int worker) {
+static void coarse_task(void *ctx, size_t task, int worker) {
     coarse_ctx *c = ctx;
     two_level *x = c->x;
-    for (size_t task = begin; task < end && !should_stop(x); task++) {
-        size_t first = x->task_first[task], last = x->task_first[task + 1];
-        coarse_block(x, &c->w[worker], first, last);
-        finish_items(x, 1, worker);
-    }
+    coarse_block(x, &c->w[worker], x->task_first[task], x->task_first[task + 1]);
 }
 
 /* Tasks: up to BLOCK consecutive samples of one component.  Returns count. */
@@ -241,7 +215,7 @@ static ps_status coarse_distances(two_level *x, int threads) {
     if (st == PS_OK) {
         coarse_ctx c = {x, w};
         size_t tasks = make_tasks(&x->t, count, x->task_first);
-        st = run_parallel(x, threads, tasks, 1, coarse_tasks, &c, SAMPLES_SHARE, COARSE_SHARE);
+        st = run_parallel(x, threads, tasks, coarse_task, &c, SAMPLES_SHARE, COARSE_SHARE);
     }
     coarse_workers_free(w, threads);
     return st;
@@ -288,19 +262,17 @@ static double vertex_mean(const two_level *x, uint32_t p, int k, float *m) {
     return lane_sum(m, stride) / (double)count;
 }
 
-static void fine_tasks(void *ctx, size_t begin, size_t end, int worker) {
+/* f of the vertices of one chunk of FINE_CHUNK. */
+static void fine_task(void *ctx, size_t chunk, int worker) {
     fine_ctx *c = ctx;
     two_level *x = c->x;
     const ps_bfs_order *o = x->o;
-    for (size_t chunk = begin; chunk < end && !should_stop(x); chunk++) {
-        size_t first = chunk * FINE_CHUNK, last = first + FINE_CHUNK;
-        if (last > o->g.n) last = o->g.n;
-        int k = range_of(o->start, o->n_components, first);
-        for (size_t p = first; p < last; p++) {
-            while (o->start[k + 1] <= p) k++;
-            x->fine[p] = vertex_mean(x, (uint32_t)p, k, c->scratch[worker]);
-        }
-        finish_items(x, 1, worker);
+    size_t first = chunk * FINE_CHUNK, last = first + FINE_CHUNK;
+    if (last > o->g.n) last = o->g.n;
+    int k = range_of(o->start, o->n_components, first);
+    for (size_t p = first; p < last; p++) {
+        while (o->start[k + 1] <= p) k++;
+        x->fine[p] = vertex_mean(x, (uint32_t)p, k, c->scratch[worker]);
     }
 }
 
@@ -316,7 +288,7 @@ static ps_status fine_level(two_level *x, int threads) {
     if (st == PS_OK) {
         fine_ctx c = {x, scratch};
         size_t chunks = (x->o->g.n + FINE_CHUNK - 1) / FINE_CHUNK;
-        st = run_parallel(x, threads, chunks, 1, fine_tasks, &c, COARSE_SHARE, 1.0);
+        st = run_parallel(x, threads, chunks, fine_task, &c, COARSE_SHARE, 1.0);
     }
     for (int i = 0; scratch && i < threads; i++) free(scratch[i]);
     free(scratch);
@@ -399,8 +371,6 @@ ps_status ps_centrality_coarse(const ps_bfs_order *o, size_t samples, int thread
     if (st != PS_OK) return st;
     report(ctl, BUILD_SHARE);
     two_level x = {.o = o, .cg = &cg, .ctl = ctl, .f = f};
-    atomic_init(&x.cancelled, 0);
-    atomic_init(&x.done, 0);
     x.fine = malloc(o->g.n * sizeof *x.fine);
     x.spare = malloc(o->g.n * sizeof *x.spare);
     st = x.fine && x.spare ? sample_and_solve(&x, samples, threads) : PS_ERR_NOMEM;

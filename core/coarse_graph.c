@@ -17,7 +17,6 @@
 #include "parallel.h"
 
 #include <math.h>
-#include <stdatomic.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -223,8 +222,6 @@ typedef struct local_ctx {
     const ps_graph *g;
     ps_coarse_graph *cg;
     ball *balls;              /* #threads */
-    const volatile int *cancel;
-    atomic_int stopped;
 } local_ctx;
 
 static void local_from_seed(const ps_graph *g, ps_coarse_graph *cg, ball *b, uint32_t c) {
@@ -238,16 +235,9 @@ static void local_from_seed(const ps_graph *g, ps_coarse_graph *cg, ball *b, uin
     ball_clear(b);
 }
 
-static void local_runs(void *ctx, size_t begin, size_t end, int worker) {
+static void local_run(void *ctx, size_t c, int worker) {
     local_ctx *l = ctx;
-    for (size_t c = begin; c < end; c++) {
-        if (atomic_load(&l->stopped)) return;
-        if (ps_cancel_raised(l->cancel)) {
-            atomic_store(&l->stopped, 1);
-            return;
-        }
-        local_from_seed(l->g, l->cg, &l->balls[worker], (uint32_t)c);
-    }
+    local_from_seed(l->g, l->cg, &l->balls[worker], (uint32_t)c);
 }
 
 static ps_status local_distances(const ps_graph *g, ball *balls, int threads,
@@ -260,10 +250,10 @@ static ps_status local_distances(const ps_graph *g, ball *balls, int threads,
     }
     cg->local = malloc((cg->local_offsets[g->n] ? cg->local_offsets[g->n] : 1) * sizeof *cg->local);
     if (!cg->local) return PS_ERR_NOMEM;
-    local_ctx l = {.g = g, .cg = cg, .balls = balls, .cancel = cancel};
-    atomic_init(&l.stopped, 0);
-    ps_parallel_for(threads, cg->n_cells, 0, local_runs, &l);
-    return atomic_load(&l.stopped) ? PS_ERR_CANCELLED : PS_OK;
+    local_ctx l = {g, cg, balls};
+    ps_control ctl = {.cancel = cancel}; /* cancel only: no progress here */
+    ps_progress_span span = {&ctl, PS_PHASE_CENTRALITY, 0.0, 0.0};
+    return ps_parallel_for_tracked(threads, cg->n_cells, 0, local_run, &l, &span);
 }
 
 /* ---- coarse graph ------------------------------------------------------------ */

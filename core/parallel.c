@@ -1,5 +1,8 @@
-/* parallel.c: the chunked parallel for loop of parallel.h on pthreads. */
+/* parallel.c: the chunked parallel for loop of parallel.h on pthreads, and
+ * its tracked form (cancel and progress between items). */
 #include "parallel.h"
+
+#include "control.h"
 
 #include <pthread.h>
 #include <stdatomic.h>
@@ -60,4 +63,43 @@ void ps_parallel_for(int threads, size_t count, size_t chunk, ps_range_fn fn,
     run_worker(&args[0]); /* the caller works too; it also finishes what
                              threads that failed to start would have done */
     for (int w = 1; w <= started; w++) pthread_join(tid[w], NULL);
+}
+
+typedef struct tracked {
+    ps_item_fn fn;
+    void *ctx;
+    const ps_progress_span *span;
+    size_t count;
+    atomic_int cancelled; /* a worker saw the cancel flag */
+    atomic_size_t done;   /* items finished */
+} tracked;
+
+static int tracked_stop(tracked *t) {
+    if (atomic_load(&t->cancelled)) return 1;
+    if (!ps_control_cancelled(t->span->ctl)) return 0;
+    atomic_store(&t->cancelled, 1);
+    return 1;
+}
+
+static void tracked_range(void *p, size_t begin, size_t end, int worker) {
+    tracked *t = p;
+    const ps_progress_span *s = t->span;
+    for (size_t i = begin; i < end && !tracked_stop(t); i++) {
+        t->fn(t->ctx, i, worker);
+        size_t done = atomic_fetch_add(&t->done, 1) + 1;
+        if (worker == 0)
+            ps_control_progress(s->ctl, s->phase,
+                                s->lo + (s->hi - s->lo) * (double)done / (double)t->count);
+    }
+}
+
+ps_status ps_parallel_for_tracked(int threads, size_t count, size_t chunk, ps_item_fn fn,
+                                  void *ctx, const ps_progress_span *span) {
+    tracked t = {.fn = fn, .ctx = ctx, .span = span, .count = count};
+    atomic_init(&t.cancelled, 0);
+    atomic_init(&t.done, 0);
+    ps_parallel_for(threads, count, chunk, tracked_range, &t);
+    if (atomic_load(&t.cancelled)) return PS_ERR_CANCELLED;
+    ps_control_progress(span->ctl, span->phase, span->hi);
+    return PS_OK;
 }
