@@ -5,7 +5,10 @@
  * (out along odd arms, into the sphere for even ones); after the cut more
  * points agree with their part, the boundaries lie on the creases, every
  * supernode's points share its sink's segment, and the answer is the same
- * on every run.  Starting from the true parts, the cut keeps them.
+ * on every run.  Starting from the true parts, the cut keeps them.  From
+ * messy segments (blobs of other segments, two of them split in pieces,
+ * and scattered points), sinks keep their segments and every point the cut
+ * moves lies within the band's cap of a boundary it started next to.
  */
 #include "boundary_cut.h"
 #include "star_fixture.h"
@@ -145,5 +148,98 @@ static void test_deterministic(void) {
     star_free(&s);
 }
 
+#define N_MESSY (N_PARTS + 2) /* the parts and two segments made of blobs only */
+#define N_BLOBS 24
+
+/* The true parts, then blobs (radius 0.3 around every n/N_BLOBS-th point)
+ * of segment j % N_MESSY, then every 29th point takes its first
+ * neighbour's segment. */
+static void messy_groups(const star *s, int *group) {
+    const double *x = s->shape.points;
+    memcpy(group, s->shape.part, s->shape.n * sizeof *group);
+    for (size_t j = 0; j < N_BLOBS; j++) {
+        const double *c = x + 3 * (j * (s->shape.n / N_BLOBS));
+        for (size_t p = 0; p < s->shape.n; p++) {
+            double dx = x[3 * p] - c[0], dy = x[3 * p + 1] - c[1], dz = x[3 * p + 2] - c[2];
+            if (dx * dx + dy * dy + dz * dz < 0.09) group[p] = (int)(j % N_MESSY);
+        }
+    }
+    for (size_t p = 0; p < s->shape.n; p += 29)
+        group[p] = group[s->shape.graph.neighbors[s->shape.graph.offsets[p]]];
+}
+
+/* One supernode per segment, its sink the segment's lowest point. */
+static int messy_supernodes(const star *s, const int *group, int *supernode_of,
+                            uint32_t *sinks) {
+    int of_group[N_MESSY], m = 0;
+    for (int k = 0; k < N_MESSY; k++) of_group[k] = -1;
+    for (uint32_t p = 0; p < s->shape.n; p++) {
+        if (of_group[group[p]] < 0) of_group[group[p]] = m, sinks[m++] = p;
+        supernode_of[p] = of_group[group[p]];
+    }
+    return m;
+}
+
+static double mean_edge(const ps_graph *g) {
+    double sum = 0;
+    for (size_t e = 0; e < g->offsets[g->n]; e++) sum += g->weights[e];
+    return sum / (double)g->offsets[g->n];
+}
+
+/* Euclidean distance from p to the nearest point with a neighbour in
+ * another segment of group. */
+static double to_boundary(const star *s, const int *group, size_t p) {
+    const ps_graph *g = &s->shape.graph;
+    const double *x = s->shape.points;
+    double best = INFINITY;
+    for (size_t q = 0; q < g->n; q++)
+        for (size_t e = g->offsets[q]; e < g->offsets[q + 1]; e++) {
+            if (group[g->neighbors[e]] == group[q]) continue;
+            double dx = x[3 * p] - x[3 * q], dy = x[3 * p + 1] - x[3 * q + 1];
+            double dz = x[3 * p + 2] - x[3 * q + 2];
+            best = fmin(best, sqrt(dx * dx + dy * dy + dz * dz));
+            break;
+        }
+    return best;
+}
+
+static void test_messy_segments_move_only_near_boundaries(void) {
+    star s;
+    REQUIRE(star_build(&s));
+    size_t n = s.shape.n;
+    int *start = malloc(n * sizeof *start), *group = malloc(n * sizeof *group);
+    int *again = malloc(n * sizeof *again), *supernode_of = malloc(n * sizeof *supernode_of);
+    uint32_t sinks[N_MESSY];
+    REQUIRE(start && group && again && supernode_of);
+    messy_groups(&s, start);
+    int m = messy_supernodes(&s, start, supernode_of, sinks);
+    ps_boundary_cut_input in = {.graph = &s.shape.graph, .points = s.shape.points,
+                                .normals = s.shape.normals, .n_groups = N_MESSY,
+                                .n_supernodes = m, .sinks = sinks};
+    ps_error err = {0};
+    memcpy(group, start, n * sizeof *group);
+    REQUIRE(ps_boundary_cut(&in, group, supernode_of, &err) == PS_OK);
+    double cap = PS_BOUNDARY_CUT_MAX_EDGES * mean_edge(&s.shape.graph) + 1e-9;
+    size_t moved = 0;
+    for (size_t p = 0; p < n; p++) {
+        CHECK(group[p] == group[sinks[supernode_of[p]]]);
+        if (group[p] == start[p]) continue;
+        moved++;
+        CHECK_MSG(to_boundary(&s, start, p) <= cap, "point %zu moved %.3f from a boundary",
+                  p, to_boundary(&s, start, p));
+    }
+    for (int k = 0; k < m; k++) CHECK(group[sinks[k]] == start[sinks[k]]);
+    CHECK_MSG(moved > n / 100, "only %zu of %zu points moved", moved, n);
+    messy_supernodes(&s, start, supernode_of, sinks);
+    memcpy(again, start, n * sizeof *again);
+    REQUIRE(ps_boundary_cut(&in, again, supernode_of, &err) == PS_OK);
+    CHECK(memcmp(group, again, n * sizeof *group) == 0);
+    free(start);
+    free(group);
+    free(again);
+    free(supernode_of);
+    star_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_star_boundaries_move_to_creases), TEST(test_true_parts_stay),
-             TEST(test_deterministic))
+             TEST(test_deterministic), TEST(test_messy_segments_move_only_near_boundaries))
