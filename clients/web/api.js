@@ -1,5 +1,6 @@
 // api.js: the daemon's HTTP interface as the page uses it: the parameter
-// specs from /openapi.json, POST /jobs (FormData), polling GET /jobs/{id},
+// specs from /openapi.json, POST /jobs (FormData, or a gzip file with
+// Content-Encoding: gzip), polling GET /jobs/{id},
 // GET /jobs/{id}/result, and RFC 9457 problem+json turned into readable
 // errors.
 
@@ -56,13 +57,27 @@ export async function fetchParamSpecs() {
     }));
 }
 
-// Posts the file as a job; params: {name: text} sent as form fields.
-// Returns the job id.
-export async function submitJob(blob, filename, params) {
-  const form = new FormData();
-  form.append('file', blob, filename);
-  for (const [name, value] of Object.entries(params)) form.append(name, value);
-  const resp = await request(`jobs?include=${INCLUDE}`, { method: 'POST', body: form });
+// Posts the file as a job; params: {name: text}.  A plain file goes as a
+// form (params as fields); a gzip file (gzip true) goes as it is, with
+// Content-Encoding: gzip so the daemon inflates it, and params in the
+// query.  Returns the job id.
+export async function submitJob(blob, filename, params, gzip = false) {
+  let url = `jobs?include=${INCLUDE}`;
+  let options;
+  if (gzip) {
+    const query = new URLSearchParams(params).toString();
+    if (query) url += `&${query}`;
+    options = {
+      method: 'POST', body: blob,
+      headers: { 'Content-Type': 'application/octet-stream', 'Content-Encoding': 'gzip' },
+    };
+  } else {
+    const form = new FormData();
+    form.append('file', blob, filename);
+    for (const [name, value] of Object.entries(params)) form.append(name, value);
+    options = { method: 'POST', body: form };
+  }
+  const resp = await request(url, options);
   return (await resp.json()).id;
 }
 

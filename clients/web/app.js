@@ -7,7 +7,7 @@
 import { fetchParamSpecs, submitJob, waitForJob } from './api.js';
 import { paint, rampCss, rampIndex, rampTable, segmentTable } from './colours.js';
 import { colouredPlyBlob, jsonBlob, labelsBlob, pointsPlyBlob, saveBlob } from './downloads.js';
-import { parsePointFile } from './formats.js';
+import { gunzip, isGzip, parsePointFile } from './formats.js';
 import { levelTable, nodeDepths } from './hierarchy.js';
 import { buildParamsForm, fillLegend, fillMerges } from './panels.js';
 import { makeDumbbell, makeHand } from './shapes.js';
@@ -15,7 +15,7 @@ import { makeDumbbell, makeHand } from './shapes.js';
 const $ = (id) => document.getElementById(id);
 
 const state = {
-  input: null,      // {name, blob, count, positions, faces}
+  input: null,      // {name, blob, gzip, count, positions, faces}; blob as chosen (gzip when gzip)
   doc: null,        // the result document
   text: '',         // ... as the server sent it
   depth: null,      // {depth: Int32Array, max} of the hierarchy
@@ -147,7 +147,7 @@ async function run() {
   showProgress({ status: 'queued', phase: '', fraction: 0 });
   try {
     const params = state.params ? state.params.values() : {};
-    const id = await submitJob(state.input.blob, state.input.name, params);
+    const id = await submitJob(state.input.blob, state.input.name, params, state.input.gzip);
     state.jobId = id;
     const { doc, text } = await waitForJob(id, showProgress, () => state.cancelled);
     showResult(doc, text);
@@ -160,12 +160,14 @@ async function run() {
   }
 }
 
-// Shows the new input at once (grey), then segments it.
-function useInput(name, blob, parsed) {
-  state.input = { name, blob, ...parsed };
+// Shows the new input at once (grey), then segments it.  gzip: blob is
+// gzip-compressed (parsed from its decompressed bytes).
+function useInput(name, blob, parsed, gzip = false) {
+  state.input = { name, blob, gzip, ...parsed };
   state.doc = null;
   $('input-name').textContent = `${name}: ${parsed.count.toLocaleString('en')} points` +
-    (parsed.faces ? `, ${(parsed.faces.length / 3).toLocaleString('en')} triangles` : '');
+    (parsed.faces ? `, ${(parsed.faces.length / 3).toLocaleString('en')} triangles` : '') +
+    (gzip ? ' (gzip)' : '');
   $('placeholder').hidden = true;
   for (const id of ['view-box', 'legend-box', 'download-box']) $(id).hidden = true;
   $('summary').textContent = '';
@@ -180,9 +182,12 @@ function useInput(name, blob, parsed) {
 
 async function useFile(file) {
   clearError();
+  setState('reading');
   try {
-    const parsed = parsePointFile(new Uint8Array(await file.arrayBuffer()));
-    await useInput(file.name, file, parsed);
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    const gzip = isGzip(bytes);
+    const parsed = parsePointFile(gzip ? await gunzip(bytes) : bytes);
+    await useInput(file.name, file, parsed, gzip);
   } catch (err) {
     showError({ title: `Cannot read ${file.name}`, detail: err.message });
   }
@@ -196,7 +201,7 @@ function useExample(shape) {
 // ---- wiring -----------------------------------------------------------------
 
 function baseName() {
-  return state.input.name.replace(/\.[^.]*$/, '');
+  return state.input.name.replace(/\.gz$/i, '').replace(/\.[^.]*$/, '');
 }
 
 function wireDownloads() {

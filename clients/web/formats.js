@@ -5,6 +5,8 @@
 // JSON request document.  Returns {count, positions: Float32Array #P*3,
 // faces: Uint32Array #F*3 (triangles, fans of polygons) or null}.  Points
 // of dimension 2 get z = 0; of dimension > 3 keep their first three.
+// A gzip-compressed file is undone first by gunzip (the browser's own
+// DecompressionStream), as the daemon undoes Content-Encoding: gzip.
 
 const PLY_TYPES = {
   char: ['getInt8', 1], int8: ['getInt8', 1], uchar: ['getUint8', 1], uint8: ['getUint8', 1],
@@ -202,8 +204,27 @@ function parseJson(text) {
   return finish(positions, []);
 }
 
-// bytes: Uint8Array of the whole file (gzip is not undone here).
+// True when bytes start with the gzip magic 1f 8b.
+export function isGzip(bytes) {
+  return bytes.length >= 2 && bytes[0] === 0x1f && bytes[1] === 0x8b;
+}
+
+// bytes: Uint8Array of a gzip file.  Resolves to the decompressed
+// Uint8Array; rejects with a FormatError saying why it could not.
+export async function gunzip(bytes) {
+  if (typeof DecompressionStream !== 'function')
+    throw new FormatError('gzip: this browser cannot decompress (no DecompressionStream); upload the file uncompressed');
+  try {
+    const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('gzip'));
+    return new Uint8Array(await new Response(stream).arrayBuffer());
+  } catch (err) {
+    throw new FormatError(`gzip: the file starts like gzip but does not decompress (${err.message || err})`);
+  }
+}
+
+// bytes: Uint8Array of the whole file, already decompressed (see gunzip).
 export function parsePointFile(bytes) {
+  if (isGzip(bytes)) throw new FormatError('the file is still gzip-compressed: gunzip it first');
   const start = new TextDecoder('latin1').decode(bytes.subarray(0, 64)).trimStart();
   if (start.startsWith('ply')) return parsePly(bytes);
   const text = new TextDecoder().decode(bytes);

@@ -2,7 +2,8 @@
 // Starts pointsegd on a free port serving clients/web, uploads the horse
 // (../shared/data/models, or the synthetic hand when that is absent), and
 // checks the legend, the hierarchy slider, toggles, downloads, a server
-// error, the missing-vendor message and a million-point result.  Prints
+// error, the missing-vendor message, gzip uploads, hover picking in the 3D
+// view and a million-point result.  Prints
 // "PASS browser:<name>" / "FAIL browser:<name>: why" and "N passed, N failed".
 //   node tests/browser/viewer.test.mjs BUILD    (pointsegd in BUILD,
 //   screenshots in BUILD/browser-artifacts)
@@ -10,10 +11,12 @@
 import { spawn } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
+import { gzipSync } from 'node:zlib';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
-import { parsePointFile } from '../../clients/web/formats.js';
+import { gunzip, parsePointFile } from '../../clients/web/formats.js';
+import { makeHand } from '../../clients/web/shapes.js';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const BUILD = resolve(ROOT, process.argv[2] || 'build');
@@ -149,6 +152,70 @@ async function pageParsers() {
   }
 }
 
+// The synthetic hand as XYZ text (one point a line).
+function handXyz() {
+  const p = makeHand();
+  const lines = [];
+  for (let i = 0; i < p.length; i += 3) lines.push(`${p[i]} ${p[i + 1]} ${p[i + 2]}`);
+  return lines.join('\n') + '\n';
+}
+
+// A gzip file has the 1f 8b magic and a trailer; this has the magic only.
+const BAD_GZIP = Buffer.from([0x1f, 0x8b, 0x08, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x03, 0x99, 0x42, 0x17]);
+
+async function gzipParsers() {
+  await check('parse-gzip-xyz', async () => {
+    const plain = Buffer.from(handXyz());
+    const a = parsePointFile(new Uint8Array(plain));
+    const b = parsePointFile(await gunzip(new Uint8Array(gzipSync(plain))));
+    assert(a.count > 100 && b.count === a.count, `${b.count} points from gzip, ${a.count} plain`);
+    assert(b.positions.every((v, i) => v === a.positions[i]), 'gzip gives other coordinates');
+  });
+  await check('parse-gzip-corrupt', async () => {
+    const err = await gunzip(new Uint8Array(BAD_GZIP)).then(() => null, (e) => e);
+    assert(err && /gzip/.test(err.message), `corrupt gzip gave ${err ? err.message : 'no error'}`);
+  });
+}
+
+// Uploads one file through the file input; resolves {shown: the page's
+// point count, server: the result's n_points, encoding: of the POST}.
+async function uploadFile(page, base, name, buffer) {
+  let encoding = null;
+  const onRequest = (r) => {
+    if (r.method() === 'POST' && /\/jobs\?/.test(r.url())) encoding = r.headers()['content-encoding'] || 'none';
+  };
+  page.on('request', onRequest);
+  await page.setInputFiles('#file', { name, mimeType: 'application/octet-stream', buffer });
+  await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+  page.off('request', onRequest);
+  const error = await page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
+  assert(!error, `${name}: the page shows an error: ${error}`);
+  const shown = await page.evaluate(() => window.pointseg.state.input.count);
+  const id = await page.evaluate(() => window.pointseg.state.jobId);
+  const server = (await (await fetch(`${base}/jobs/${id}/result`)).json()).n_points;
+  return { shown, server, encoding };
+}
+
+async function gzipUploads(page, base) {
+  await check('gzip-upload', async () => {
+    const xyz = Buffer.from(handXyz());
+    const plain = await uploadFile(page, base, 'hand.xyz', xyz);
+    const gz = await uploadFile(page, base, 'hand.xyz.gz', gzipSync(xyz));
+    assert(plain.shown === plain.server, `plain: page ${plain.shown}, server ${plain.server}`);
+    assert(gz.shown === plain.shown && gz.server === plain.server,
+      `gzip: page ${gz.shown}, server ${gz.server}; plain ${plain.shown}`);
+    assert(gz.encoding === 'gzip' && plain.encoding === 'none', `sent with ${gz.encoding} / ${plain.encoding}`);
+    const name = await page.textContent('#input-name');
+    assert(name.startsWith('hand.xyz.gz') && name.includes('(gzip)'), `input shown as '${name}'`);
+  });
+  await check('gzip-corrupt-message', async () => {
+    await page.setInputFiles('#file', { name: 'bad.ply.gz', mimeType: 'application/gzip', buffer: BAD_GZIP });
+    await page.waitForSelector('body[data-state=error]', { timeout: LONG });
+    const text = await page.textContent('#error');
+    assert(text.includes('Cannot read bad.ply.gz') && text.includes('gzip'), `error shown: '${text}'`);
+  });
+}
+
 async function mainFlow(context, base) {
   const page = await context.newPage();
   const consoleErrors = [];
@@ -234,6 +301,7 @@ async function mainFlow(context, base) {
     assert(name.startsWith('hand.ply') && rows >= 6, `${name}: ${rows} segments, want the palm and 5 fingers`);
     await shot(page, 'hand');
   });
+  await gzipUploads(page, base);
   await check('server-error', async () => {
     await page.click('#params-box summary');
     await page.fill('#param-k', '1000');
@@ -242,6 +310,12 @@ async function mainFlow(context, base) {
     const text = await page.textContent('#error');
     assert(text.includes("parameter 'k'") && text.includes('[1, 64]'), `error shown: '${text}'`);
     await shot(page, 'error');
+  });
+  await check('gzip-params-in-query', async () => {
+    await page.setInputFiles('#file', { name: 'hand.xyz.gz', mimeType: 'application/gzip', buffer: gzipSync(handXyz()) });
+    await page.waitForSelector('body[data-state=error]', { timeout: LONG });
+    const text = await page.textContent('#error');
+    assert(text.includes("parameter 'k'"), `k=1000 with a gzip upload gave: '${text}'`);
   });
   await check('no-console-errors', async () => {
     const real = consoleErrors.filter((e) => !/422|Unprocessable/.test(e));
@@ -330,6 +404,7 @@ async function millionPoints(context, base) {
 async function main() {
   mkdirSync(ARTIFACTS, { recursive: true });
   await pageParsers();
+  await gzipParsers();
   const { proc, base } = await startDaemon();
   const profile = mkdtempSync(join(tmpdir(), 'pointseg-chromium-'));
   const context = await chromium.launchPersistentContext(profile, {
