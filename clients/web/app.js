@@ -1,7 +1,8 @@
 // app.js: the viewer page's controller.  Reads the chosen file (or makes a
 // synthetic example), posts it to /jobs, follows the job, then shows the
 // result: colours by segment, by a level of the hierarchy or by centrality,
-// the legend, merges, sinks and downloads.  Its state is exposed as
+// the legend, merges, sinks and downloads.  Hovering a legend row or a
+// point in the 3D view lights that point's segment.  Its state is exposed as
 // window.pointseg for scripted checks (tests/browser/viewer.test.mjs).
 
 import { fetchParamSpecs, submitJob, waitForJob } from './api.js';
@@ -9,7 +10,7 @@ import { paint, rampCss, rampIndex, rampTable, segmentTable } from './colours.js
 import { colouredPlyBlob, jsonBlob, labelsBlob, pointsPlyBlob, saveBlob } from './downloads.js';
 import { gunzip, isGzip, parsePointFile } from './formats.js';
 import { levelTable, nodeDepths } from './hierarchy.js';
-import { buildParamsForm, fillLegend, fillMerges } from './panels.js';
+import { buildParamsForm, fillLegend, fillMerges, markLegendRow, segmentSize } from './panels.js';
 import { makeDumbbell, makeHand } from './shapes.js';
 
 const $ = (id) => document.getElementById(id);
@@ -21,6 +22,7 @@ const state = {
   depth: null,      // {depth: Int32Array, max} of the hierarchy
   level: 0,         // 0..depth.max = a tree level; depth.max + 1 = final segments
   highlight: -1,    // hovered segment
+  hoverPoint: -1,   // the point under the cursor in the 3D view
   cancelled: false,
   viewer: null,
   params: null,
@@ -85,6 +87,49 @@ function updateLevelLabel() {
   label.textContent = `level ${state.level}: ${parts} part${parts === 1 ? '' : 's'}`;
 }
 
+// ---- hovering ---------------------------------------------------------------
+
+// Lights segment id (-1: none), from the legend or from point `point` in
+// the 3D view: greys the others, marks its legend row and names it over
+// the view.
+function setHighlight(id, point = -1) {
+  state.hoverPoint = point;
+  const seg = id >= 0 && state.doc ? state.doc.segments.find((s) => s.id === id) : null;
+  const info = $('hover-info');
+  info.hidden = !seg;
+  if (seg) info.textContent = `segment #${id}: ${segmentSize(seg, state.doc.n_points, ' points')}` +
+    (point >= 0 ? ` · point ${point}` : '');
+  if (id === state.highlight) return;
+  state.highlight = id;
+  const row = markLegendRow($('legend').querySelector('tbody'), id);
+  if (row && point >= 0) row.scrollIntoView({ block: 'nearest' });
+  repaint();
+}
+
+// Picks the point under the cursor once per animation frame while it moves
+// over the canvas (not while dragging: that orbits); leaving clears.
+function wireCanvasHover(viewer) {
+  const canvas = viewer.renderer.domElement;
+  let at = null, queued = false;
+  const pickNow = () => {
+    queued = false;
+    if (!at || !state.doc) return;
+    const point = viewer.pick(at.x, at.y);
+    setHighlight(point >= 0 ? state.doc.labels[point] : -1, point);
+  };
+  canvas.addEventListener('pointermove', (e) => {
+    if (e.buttons) return;
+    const box = canvas.getBoundingClientRect();
+    at = { x: e.clientX - box.left, y: e.clientY - box.top };
+    if (!queued) requestAnimationFrame(pickNow);
+    queued = true;
+  });
+  canvas.addEventListener('pointerleave', () => {
+    at = null;
+    if (state.doc) setHighlight(-1);
+  });
+}
+
 // ---- showing a result -------------------------------------------------------
 
 function showSummary(doc) {
@@ -106,10 +151,7 @@ function showResult(doc, text) {
   $('show-centrality').disabled = !state.ramp;
   $('segment-count').textContent = String(doc.n_segments);
   $('merge-count').textContent = String(doc.merges.length);
-  fillLegend($('legend').querySelector('tbody'), doc, (id) => {
-    state.highlight = id;
-    repaint();
-  });
+  fillLegend($('legend').querySelector('tbody'), doc, (id) => setHighlight(id));
   fillMerges($('merges'), doc);
   showSummary(doc);
   updateLevelLabel();
@@ -165,6 +207,8 @@ async function run() {
 function useInput(name, blob, parsed, gzip = false) {
   state.input = { name, blob, gzip, ...parsed };
   state.doc = null;
+  state.hoverPoint = -1;
+  $('hover-info').hidden = true;
   $('input-name').textContent = `${name}: ${parsed.count.toLocaleString('en')} points` +
     (parsed.faces ? `, ${(parsed.faces.length / 3).toLocaleString('en')} triangles` : '') +
     (gzip ? ' (gzip)' : '');
@@ -283,6 +327,7 @@ async function start() {
     showError(err);
     return;
   }
+  wireCanvasHover(state.viewer);
   setState('ready');
 }
 

@@ -66,17 +66,21 @@ function formatSize(v) {
   return Number(v).toPrecision(3);
 }
 
+// A segment's size: "1,234 (12.3%)", or with unit "1,234 points (12.3%)".
+export function segmentSize(seg, nPoints, unit = '') {
+  return `${seg.size.toLocaleString('en')}${unit} (${((100 * seg.size) / nPoints).toFixed(1)}%)`;
+}
+
 // Rows of the legend; onHover(segment id or -1).
 export function fillLegend(tbody, doc, onHover) {
   tbody.replaceChildren();
   for (const seg of doc.segments) {
-    const share = ((100 * seg.size) / doc.n_points).toFixed(1);
     const swatch = element('span', { className: 'swatch' });
     swatch.style.background = rgbCss(segmentRgb(seg.id));
     const row = element('tr', {}, [
       element('td', {}, [swatch]),
       element('td', { textContent: `#${seg.id}` }),
-      element('td', { textContent: `${seg.size.toLocaleString('en')} (${share}%)` }),
+      element('td', { textContent: segmentSize(seg, doc.n_points) }),
       element('td', { textContent: formatSize(seg.feature_size) }),
     ]);
     row.dataset.segment = seg.id;
@@ -84,6 +88,14 @@ export function fillLegend(tbody, doc, onHover) {
     row.addEventListener('mouseleave', () => onHover(-1));
     tbody.append(row);
   }
+}
+
+// Marks the legend row of segment id as lit (none for -1); returns it.
+export function markLegendRow(tbody, id) {
+  for (const row of tbody.querySelectorAll('tr.lit')) row.classList.remove('lit');
+  const row = id >= 0 ? tbody.querySelector(`tr[data-segment="${id}"]`) : null;
+  if (row) row.classList.add('lit');
+  return row;
 }
 
 export function fillMerges(list, doc) {

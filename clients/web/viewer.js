@@ -1,10 +1,14 @@
 // viewer.js: the three.js view: one BufferGeometry of the points (typed
 // arrays, no per-point objects, so a million points is fine), drawn as
 // round points, or as a lit surface when the input had faces; sink markers
-// on top; orbit controls; rendering only when something changed.
+// on top; orbit controls; rendering only when something changed; picking
+// the point under a pixel.
 
 import * as THREE from 'three';
 import { OrbitControls } from './vendor/OrbitControls.js';
+
+// A point is picked within this many CSS pixels even when drawn smaller.
+const PICK_MIN_PX = 3;
 
 // A round sprite: white disc, with a dark rim when `rim`, on black (used as
 // an alpha map for plain points, so their edges keep the point's colour).
@@ -56,6 +60,8 @@ export class Viewer {
     this.surfaceMaterial = new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide });
     this.pointScale = 1;
     this.objects = [];
+    this.raycaster = new THREE.Raycaster();
+    this.viewProjection = new THREE.Matrix4();
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
   }
@@ -206,6 +212,59 @@ export class Viewer {
     this.controls.target.copy(center);
     this.controls.update();
     this.requestRender();
+  }
+
+  // The point drawn at (x, y), CSS pixels from the canvas's top left, or
+  // -1: on the surface the nearest corner of the triangle hit, as points
+  // the nearest to the camera of those whose disc covers (x, y).
+  pick(x, y) {
+    const { clientWidth: w, clientHeight: h } = this.renderer.domElement;
+    if (!this.points || !w || !h) return -1;
+    this.camera.updateMatrixWorld();
+    const ndcX = (2 * x) / w - 1, ndcY = 1 - (2 * y) / h;
+    if (this.surface && this.surface.visible) return this.pickSurface(ndcX, ndcY);
+    return this.pickPoints(ndcX, ndcY, w, h);
+  }
+
+  // One pass over the points in clip space, no allocation.  A point at
+  // depth d is drawn as a disc of radius size * h / (4 d) CSS pixels
+  // (three's size attenuation), so with offsets scaled by d the radius is
+  // the constant size * h / 4.
+  pickPoints(ndcX, ndcY, w, h) {
+    const e = this.viewProjection.multiplyMatrices(this.camera.projectionMatrix, this.camera.matrixWorldInverse).elements;
+    const pos = this.positionAttr.array;
+    const disc = (this.pointMaterial.size * h) / 4;
+    let best = -1, bestDepth = Infinity;
+    for (let i = 0; i < pos.length; i += 3) {
+      const x = pos[i], y = pos[i + 1], z = pos[i + 2];
+      const depth = e[3] * x + e[7] * y + e[11] * z + e[15];
+      if (depth <= 0 || depth >= bestDepth) continue;
+      const dx = (e[0] * x + e[4] * y + e[8] * z + e[12] - ndcX * depth) * (w / 2);
+      const dy = (e[1] * x + e[5] * y + e[9] * z + e[13] - ndcY * depth) * (h / 2);
+      const r = Math.max(disc, PICK_MIN_PX * depth);
+      if (dx * dx + dy * dy <= r * r) {
+        best = i / 3;
+        bestDepth = depth;
+      }
+    }
+    return best;
+  }
+
+  pickSurface(ndcX, ndcY) {
+    this.raycaster.setFromCamera(new THREE.Vector2(ndcX, ndcY), this.camera);
+    const hit = this.raycaster.intersectObject(this.surface, false)[0];
+    if (!hit) return -1;
+    const corner = new THREE.Vector3();
+    const away = (v) => corner.fromBufferAttribute(this.positionAttr, v).distanceToSquared(hit.point);
+    return [hit.face.a, hit.face.b, hit.face.c].reduce((a, b) => (away(b) < away(a) ? b : a));
+  }
+
+  // Where point i is drawn: {x, y} CSS pixels from the canvas's top left.
+  screenPosition(i) {
+    this.camera.updateMatrixWorld();
+    const p = new THREE.Vector3().fromBufferAttribute(this.positionAttr, i).project(this.camera);
+    const { clientWidth: w, clientHeight: h } = this.renderer.domElement;
+    return { x: ((p.x + 1) / 2) * w, y: ((1 - p.y) / 2) * h };
   }
 
   snapshot() {

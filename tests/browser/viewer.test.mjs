@@ -94,6 +94,23 @@ function colourDigest(page) {
   }))));
 }
 
+// The point nearest the camera (so nothing is drawn over it): {index, x,
+// y} with x, y where it is drawn, CSS pixels from the canvas's top left.
+function nearestPoint(page) {
+  return page.evaluate(() => {
+    const viewer = window.pointseg.state.viewer;
+    const eye = viewer.camera.position;
+    const ahead = viewer.camera.getWorldDirection(eye.clone());
+    const p = viewer.positionAttr.array;
+    let index = -1, best = Infinity;
+    for (let i = 0; i < p.length / 3; i++) {
+      const d = (p[3 * i] - eye.x) * ahead.x + (p[3 * i + 1] - eye.y) * ahead.y + (p[3 * i + 2] - eye.z) * ahead.z;
+      if (d < best) [index, best] = [i, d];
+    }
+    return { index, ...viewer.screenPosition(index) };
+  });
+}
+
 async function setLevel(page, level) {
   await page.$eval('#level', (el, v) => {
     el.value = String(v);
@@ -267,8 +284,44 @@ async function mainFlow(context, base) {
     const lit = await colourDigest(page);
     assert(lit.colours !== before.colours, 'hovering a segment changed nothing');
     await shot(page, 'hover');
-    await page.mouse.move(900, 400);
+    await page.mouse.move(100, 30);
     assert((await colourDigest(page)).colours === before.colours, 'leaving the legend did not restore colours');
+  });
+  for (const surface of [true, false]) await check(`canvas-hover-${surface ? 'surface' : 'points'}`, async () => {
+    const toggle = await page.isVisible('#surface-toggle');
+    if (surface && !toggle) console.log('  (no faces: the surface case picks points too)');
+    if (toggle) await page.setChecked('#show-surface', surface);
+    const known = await nearestPoint(page);
+    const box = await page.locator('#canvas canvas').boundingBox();
+    await page.mouse.move(box.x + known.x, box.y + known.y);
+    const lit = await colourDigest(page);
+    const hover = await page.evaluate(() => ({ point: window.pointseg.state.hoverPoint, segment: window.pointseg.state.highlight }));
+    assert(hover.point === known.index && hover.segment === doc.labels[known.index],
+      `at point ${known.index} (segment ${doc.labels[known.index]}) picked point ${hover.point}, segment ${hover.segment}`);
+    assert(lit.colours !== before.colours, 'hovering a point changed no colour');
+    const info = await page.textContent('#hover-info');
+    assert(info.startsWith(`segment #${hover.segment}:`) && await page.isVisible('#hover-info'), `hover info '${info}'`);
+    const row = await page.$eval('#legend tbody tr.lit', (r) => r.dataset.segment).catch(() => null);
+    assert(Number(row) === hover.segment, `legend row lit: ${row}`);
+    await shot(page, `canvas-hover-${surface ? 'surface' : 'points'}`);
+    await page.mouse.move(100, 30);
+    const left = await colourDigest(page);
+    assert(left.colours === before.colours, 'leaving the canvas did not restore colours');
+    assert(!(await page.isVisible('#hover-info')) && !(await page.$('#legend tbody tr.lit')), 'leaving left the hover shown');
+    if (toggle) await page.setChecked('#show-surface', true);
+  });
+  await check('canvas-orbit', async () => {
+    const camera = () => page.evaluate(() => window.pointseg.state.viewer.camera.position.toArray());
+    const box = await page.locator('#canvas canvas').boundingBox();
+    const from = await camera();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 30, { steps: 8 });
+    await page.mouse.up();
+    const to = await camera();
+    assert(from.some((v, i) => Math.abs(v - to[i]) > 1e-3), 'dragging on the canvas did not orbit the camera');
+    await page.mouse.move(100, 30);
+    await page.click('#fit');
   });
   await check('toggles', async () => {
     await page.check('#show-sinks');
@@ -393,9 +446,18 @@ async function millionPoints(context, base) {
     });
     const b = await colourDigest(page);
     assert(a.drawn > 2000 && a.colours !== b.colours, 'a million points not drawn or not recoloured');
+    const pick = await page.evaluate(() => {
+      const viewer = window.pointseg.state.viewer;
+      const t = performance.now();
+      const point = viewer.pick(viewer.renderer.domElement.clientWidth / 2, viewer.renderer.domElement.clientHeight / 2);
+      return { point, ms: Math.round(performance.now() - t) };
+    });
+    assert(pick.point >= 0, 'no point picked at the centre of the sphere');
     await shot(page, 'million');
-    console.log(`  1M points: read, fetched and shown in ${shown} ms, level recoloured in ${recolour} ms`);
+    console.log(`  1M points: read, fetched and shown in ${shown} ms, level recoloured in ${recolour} ms, ` +
+      `a point picked in ${pick.ms} ms`);
     assert(shown < 20000, `took ${shown} ms to show`);
+    assert(pick.ms < 500, `took ${pick.ms} ms to pick a point`);
     assert(recolour < 1500, `took ${recolour} ms to recolour`);
     await page.close();
   });
