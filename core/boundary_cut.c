@@ -84,6 +84,7 @@ typedef struct cut_context {
     uint32_t *net_heads;       /* #E+4#P */
     double *net_capacity;      /* #E+4#P */
     unsigned char *side;       /* #P+2 */
+    ps_maxflow_workspace *flow_space;  /* reused by every pair's max flow */
     int *piece;                /* #P piece of each band point of the segment searched */
     uint32_t *piece_start;     /* #P first band index of each piece (its lowest point) */
     size_t *piece_size;        /* #P */
@@ -438,7 +439,8 @@ static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     double flow;
     ps_status st = PS_OK;
     if (build_network(cx, nb, &net)) {
-        st = ps_maxflow(&net, (uint32_t)nb, (uint32_t)nb + 1, &flow, cx->side, err);
+        st = ps_maxflow_with(cx->flow_space, &net, (uint32_t)nb, (uint32_t)nb + 1, &flow,
+                             cx->side, err);
         if (st == PS_OK) apply_cut(cx, nb, a, b);
     }
     if (finish_pair(cx, nb, n_reached) != 0 && st == PS_OK)
@@ -564,6 +566,7 @@ static void context_free(cut_context *cx) {
     free(cx->net_heads);
     free(cx->net_capacity);
     free(cx->side);
+    ps_maxflow_workspace_free(cx->flow_space);
     free(cx->piece);
     free(cx->piece_start);
     free(cx->piece_size);
@@ -628,6 +631,7 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
     cx->net_heads = malloc(net_arcs * sizeof *cx->net_heads);
     cx->net_capacity = malloc(net_arcs * sizeof *cx->net_capacity);
     cx->side = malloc((n + 2) * sizeof *cx->side);
+    cx->flow_space = ps_maxflow_workspace_new();
     cx->piece = malloc(n * sizeof *cx->piece);
     cx->piece_start = malloc(n * sizeof *cx->piece_start);
     cx->piece_size = malloc(n * sizeof *cx->piece_size);
@@ -637,8 +641,8 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
         !cx->is_sink || !cx->dijkstra || !cx->region_mark || !cx->seen || !cx->visited ||
         !cx->dist || !cx->reached || !cx->moves.head || !cx->band_of || !cx->band ||
         !cx->old_group || !cx->tie_source || !cx->tie_sink || !cx->net_offsets ||
-        !cx->net_heads || !cx->net_capacity || !cx->side || !cx->piece || !cx->piece_start ||
-        !cx->piece_size || !cx->anchored || !cx->queue)
+        !cx->net_heads || !cx->net_capacity || !cx->side || !cx->flow_space || !cx->piece ||
+        !cx->piece_start || !cx->piece_size || !cx->anchored || !cx->queue)
         return -1;
     context_fill(cx);
     return initial_boundaries(cx);

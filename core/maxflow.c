@@ -9,32 +9,43 @@
  */
 #include "maxflow.h"
 
-#include "sort_util.h"
-
 #include <stdlib.h>
+
+struct ps_maxflow_workspace {
+    size_t nodes, arcs;  /* sizes the arrays below hold */
+    size_t *reverse;     /* arcs: index of the reverse arc */
+    double *residual;    /* arcs */
+    int *level;          /* nodes: BFS depth from the source, -1 unreached or dead */
+    size_t *next_arc;    /* nodes: current arc of each node in the blocking flow */
+    uint32_t *queue;     /* nodes */
+    size_t *path;        /* nodes: arcs of the current path from the source */
+};
 
 typedef struct flow_state {
     const ps_flow_graph *g;
-    size_t *reverse;   /* #E index of the reverse arc */
+    size_t *reverse;   /* #E */
     double *residual;  /* #E */
-    int *level;        /* #V BFS depth from the source, -1 unreached or dead */
-    size_t *next_arc;  /* #V current arc of each node in the blocking flow */
+    int *level;        /* #V */
+    size_t *next_arc;  /* #V */
     uint32_t *queue;   /* #V */
-    size_t *path;      /* #V arcs of the current path from the source */
+    size_t *path;      /* #V */
     double tolerance;
 } flow_state;
 
-/* Reverse arcs by binary search in the sorted rows; -1 if one is missing. */
+/* Reverse arcs in one pass over the rows in order: as the rows are sorted,
+ * the arcs into q met for increasing p are row q's entries in order, so a
+ * cursor per row (next_arc, reset by each phase) finds each one.  -1 if
+ * the graph is not symmetric. */
 static int find_reverse_arcs(flow_state *st) {
     const ps_flow_graph *g = st->g;
+    size_t *cursor = st->next_arc;
+    for (size_t v = 0; v < g->n; v++) cursor[v] = g->offsets[v];
     for (uint32_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->heads[e];
-            const uint32_t *row = g->heads + g->offsets[q];
-            const uint32_t *hit = bsearch(&p, row, g->offsets[q + 1] - g->offsets[q],
-                                          sizeof *row, ps_compare_u32);
-            if (!hit) return -1;
-            st->reverse[e] = (size_t)(hit - g->heads);
+            if (q >= g->n || cursor[q] == g->offsets[q + 1] || g->heads[cursor[q]] != p)
+                return -1;
+            st->reverse[e] = cursor[q]++;
         }
     return 0;
 }
@@ -124,49 +135,79 @@ static double largest_capacity(const ps_flow_graph *g) {
     return largest;
 }
 
-static void state_free(flow_state *st) {
-    free(st->reverse);
-    free(st->residual);
-    free(st->level);
-    free(st->next_arc);
-    free(st->queue);
-    free(st->path);
+static void *fresh_array(void *old, size_t count, size_t size) {
+    free(old);
+    return malloc(count * size);
 }
 
-static int state_init(flow_state *st, const ps_flow_graph *g) {
-    size_t arcs = g->offsets[g->n] ? g->offsets[g->n] : 1, nodes = g->n;
-    *st = (flow_state){.g = g, .tolerance = 1e-12 * largest_capacity(g)};
-    st->reverse = malloc(arcs * sizeof *st->reverse);
-    st->residual = malloc(arcs * sizeof *st->residual);
-    st->level = malloc(nodes * sizeof *st->level);
-    st->next_arc = malloc(nodes * sizeof *st->next_arc);
-    st->queue = malloc(nodes * sizeof *st->queue);
-    st->path = malloc(nodes * sizeof *st->path);
-    if (!st->reverse || !st->residual || !st->level || !st->next_arc || !st->queue || !st->path)
-        return -1;
+/* Room for g in ws; -1 when out of memory (ws is then empty). */
+static int workspace_reserve(ps_maxflow_workspace *ws, const ps_flow_graph *g) {
+    size_t nodes = g->n, arcs = g->offsets[g->n] ? g->offsets[g->n] : 1;
+    if (nodes > ws->nodes) {
+        ws->nodes = nodes;
+        ws->level = fresh_array(ws->level, nodes, sizeof *ws->level);
+        ws->next_arc = fresh_array(ws->next_arc, nodes, sizeof *ws->next_arc);
+        ws->queue = fresh_array(ws->queue, nodes, sizeof *ws->queue);
+        ws->path = fresh_array(ws->path, nodes, sizeof *ws->path);
+    }
+    if (arcs > ws->arcs) {
+        ws->arcs = arcs;
+        ws->reverse = fresh_array(ws->reverse, arcs, sizeof *ws->reverse);
+        ws->residual = fresh_array(ws->residual, arcs, sizeof *ws->residual);
+    }
+    if (ws->level && ws->next_arc && ws->queue && ws->path && ws->reverse && ws->residual)
+        return 0;
+    ws->nodes = ws->arcs = 0;
+    return -1;
+}
+
+ps_maxflow_workspace *ps_maxflow_workspace_new(void) {
+    return calloc(1, sizeof(ps_maxflow_workspace));
+}
+
+void ps_maxflow_workspace_free(ps_maxflow_workspace *ws) {
+    if (!ws) return;
+    free(ws->reverse);
+    free(ws->residual);
+    free(ws->level);
+    free(ws->next_arc);
+    free(ws->queue);
+    free(ws->path);
+    free(ws);
+}
+
+static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_graph *g) {
+    *st = (flow_state){.g = g, .reverse = ws->reverse, .residual = ws->residual,
+                       .level = ws->level, .next_arc = ws->next_arc, .queue = ws->queue,
+                       .path = ws->path, .tolerance = 1e-12 * largest_capacity(g)};
     for (size_t e = 0; e < g->offsets[g->n]; e++) st->residual[e] = g->capacity[e];
-    return 0;
 }
 
-ps_status ps_maxflow(const ps_flow_graph *g, uint32_t source, uint32_t sink, double *flow,
-                     unsigned char *source_side, ps_error *err) {
+ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_flow_graph *g, uint32_t source,
+                          uint32_t sink, double *flow, unsigned char *source_side,
+                          ps_error *err) {
     if (source >= g->n || sink >= g->n || source == sink)
         return ps_fail(err, PS_ERR_INVALID, "max flow: bad source %u or sink %u of %zu nodes",
                        source, sink, g->n);
-    flow_state st;
-    if (state_init(&st, g) != 0) {
-        state_free(&st);
+    if (workspace_reserve(ws, g) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (max flow)");
-    }
-    if (find_reverse_arcs(&st) != 0) {
-        state_free(&st);
+    flow_state st;
+    state_init(&st, ws, g);
+    if (find_reverse_arcs(&st) != 0)
         return ps_fail(err, PS_ERR_INVALID, "max flow: the graph is not symmetric");
-    }
     double total = 0;
     while (build_levels(&st, source, sink)) total += blocking_flow(&st, source, sink);
     if (source_side)
         for (size_t v = 0; v < g->n; v++) source_side[v] = st.level[v] >= 0;
     *flow = total;
-    state_free(&st);
     return PS_OK;
+}
+
+ps_status ps_maxflow(const ps_flow_graph *g, uint32_t source, uint32_t sink, double *flow,
+                     unsigned char *source_side, ps_error *err) {
+    ps_maxflow_workspace *ws = ps_maxflow_workspace_new();
+    if (!ws) return ps_fail(err, PS_ERR_NOMEM, "out of memory (max flow)");
+    ps_status st = ps_maxflow_with(ws, g, source, sink, flow, source_side, err);
+    ps_maxflow_workspace_free(ws);
+    return st;
 }

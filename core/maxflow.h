@@ -22,6 +22,14 @@ typedef struct ps_flow_graph {
     const double *capacity;  /* #E >= 0, equal on an arc and its reverse */
 } ps_flow_graph;
 
+/* Scratch space of ps_maxflow_with, grown to the largest graph it has
+ * solved; reusing one across many graphs saves an allocation per call. */
+typedef struct ps_maxflow_workspace ps_maxflow_workspace;
+
+/* An empty workspace; NULL when out of memory. */
+ps_maxflow_workspace *ps_maxflow_workspace_new(void);
+void ps_maxflow_workspace_free(ps_maxflow_workspace *ws);
+
 /* Maximum flow from source to sink (source != sink).  source_side, if not
  * NULL, #V out: 1 for the nodes on the source side of the minimum cut (those
  * reachable from source in the residual graph), 0 otherwise.  *flow out:
@@ -29,5 +37,12 @@ typedef struct ps_flow_graph {
  * out of memory. */
 ps_status ps_maxflow(const ps_flow_graph *g, uint32_t source, uint32_t sink, double *flow,
                      unsigned char *source_side, ps_error *err);
+
+/* ps_maxflow in the scratch space of ws (same results, bit for bit); ws
+ * grows when g is larger than any graph it has held.  One thread at a time
+ * per workspace. */
+ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_flow_graph *g, uint32_t source,
+                          uint32_t sink, double *flow, unsigned char *source_side,
+                          ps_error *err);
 
 #endif

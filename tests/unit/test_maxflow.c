@@ -2,7 +2,10 @@
  * test_maxflow.c: Dinic's max flow (maxflow.h) on small undirected graphs
  * whose maximum flow and minimum cut are known by hand: a chain, a diamond,
  * a grid with a weak column, a graph the sink cannot be reached in; the same
- * answer on every run; a graph that is not symmetric is refused.
+ * answer on every run; a graph that is not symmetric is refused.  One
+ * workspace reused over graphs of growing and shrinking sizes gives the
+ * same flow and cut, bit for bit, as fresh calls; a path of 200k nodes (a
+ * deep search) does not overflow the stack.
  */
 #include "maxflow.h"
 #include "testlib.h"
@@ -121,5 +124,91 @@ static void test_rejects_asymmetric_and_bad_terminals(void) {
     CHECK(ps_maxflow(&g, 0, 2, &flow, NULL, &err) == PS_ERR_INVALID);
 }
 
+/* A directed 3-cycle: every row holds one arc, yet no arc has a reverse. */
+static void test_rejects_cycle_without_reverse_arcs(void) {
+    static const size_t offsets[] = {0, 1, 2, 3};
+    static const uint32_t heads[] = {1, 2, 0};
+    static const double capacity[] = {1, 1, 1};
+    ps_flow_graph g = {.n = 3, .offsets = offsets, .heads = heads, .capacity = capacity};
+    double flow;
+    ps_error err = {0};
+    CHECK(ps_maxflow(&g, 0, 2, &flow, NULL, &err) == PS_ERR_INVALID);
+    CHECK(strstr(err.message, "symmetric") != NULL);
+}
+
+/* rows x cols grid, capacities from a fixed pseudo-random sequence, the
+ * source tied to column 0 and the sink to the last column. */
+static void build_random_grid(csr *c, uint32_t rows, uint32_t cols, uint32_t seed) {
+    edge edges[MAX_EDGES];
+    size_t m = 0;
+    uint32_t s = rows * cols, t = s + 1;
+    for (uint32_t r = 0; r < rows; r++)
+        for (uint32_t col = 0; col < cols; col++) {
+            uint32_t v = r * cols + col;
+            seed = seed * 1103515245u + 12345u;
+            double w = 0.05 + (double)(seed >> 16 & 0x3ff) / 1024.0;
+            if (col + 1 < cols) edges[m++] = (edge){v, v + 1, w};
+            if (r + 1 < rows) edges[m++] = (edge){v, v + cols, 1.3 - w};
+            if (col == 0) edges[m++] = (edge){s, v, 50.0};
+            if (col == cols - 1) edges[m++] = (edge){v, t, 50.0};
+        }
+    build_csr(c, t + 1, edges, m);
+}
+
+/* Sizes that grow, shrink and grow again, so the workspace both reallocates
+ * and reuses larger arrays; each answer equals a fresh call's, bit for bit. */
+static void test_workspace_reuse_matches_fresh_calls(void) {
+    static const uint32_t shapes[][2] = {{2, 3}, {5, 8}, {3, 4}, {6, 9}, {1, 2}, {4, 7}};
+    ps_maxflow_workspace *ws = ps_maxflow_workspace_new();
+    REQUIRE(ws != NULL);
+    for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
+        csr c;
+        build_random_grid(&c, shapes[k][0], shapes[k][1], (uint32_t)k + 7);
+        uint32_t s = shapes[k][0] * shapes[k][1], t = s + 1;
+        unsigned char fresh_side[MAX_NODES], reused_side[MAX_NODES];
+        double fresh = solve(&c, s, t, fresh_side), reused = -1;
+        ps_error err = {0};
+        CHECK(ps_maxflow_with(ws, &c.g, s, t, &reused, reused_side, &err) == PS_OK);
+        CHECK_MSG(memcmp(&fresh, &reused, sizeof fresh) == 0, "graph %zu: flow %.17g vs %.17g",
+                  k, fresh, reused);
+        CHECK_MSG(memcmp(fresh_side, reused_side, c.g.n) == 0, "graph %zu: cut differs", k);
+        CHECK(fresh > 0 && fresh_side[s] == 1 && fresh_side[t] == 0);
+    }
+    ps_maxflow_workspace_free(ws);
+    ps_maxflow_workspace_free(NULL);
+}
+
+/* 0 - 1 - ... - n-1 with one weak edge in the middle: the only augmenting
+ * path is n nodes deep. */
+static void test_long_path_no_stack_overflow(void) {
+    enum { N = 200000, WEAK = N / 2 };
+    size_t *offsets = malloc((N + 1) * sizeof *offsets);
+    uint32_t *heads = malloc(2 * (N - 1) * sizeof *heads);
+    double *capacity = malloc(2 * (N - 1) * sizeof *capacity);
+    unsigned char *side = malloc(N);
+    REQUIRE(offsets && heads && capacity && side);
+    size_t arcs = 0;
+    for (uint32_t v = 0; v < N; v++) {
+        offsets[v] = arcs;
+        if (v > 0) heads[arcs] = v - 1, capacity[arcs++] = v - 1 == WEAK ? 0.25 : 2.0;
+        if (v + 1 < N) heads[arcs] = v + 1, capacity[arcs++] = v == WEAK ? 0.25 : 2.0;
+    }
+    offsets[N] = arcs;
+    ps_flow_graph g = {.n = N, .offsets = offsets, .heads = heads, .capacity = capacity};
+    double flow = -1;
+    ps_error err = {0};
+    CHECK(ps_maxflow(&g, 0, N - 1, &flow, side, &err) == PS_OK);
+    CHECK_NEAR(flow, 0.25, 0);
+    size_t wrong = 0;
+    for (uint32_t v = 0; v < N; v++) wrong += side[v] != (v <= WEAK);
+    CHECK_MSG(wrong == 0, "%zu nodes on the wrong side", wrong);
+    free(offsets);
+    free(heads);
+    free(capacity);
+    free(side);
+}
+
 PS_TEST_MAIN(TEST(test_chain_bottleneck), TEST(test_diamond), TEST(test_grid_weak_column),
-             TEST(test_unreachable_sink), TEST(test_rejects_asymmetric_and_bad_terminals))
+             TEST(test_unreachable_sink), TEST(test_rejects_asymmetric_and_bad_terminals),
+             TEST(test_rejects_cycle_without_reverse_arcs),
+             TEST(test_workspace_reuse_matches_fresh_calls), TEST(test_long_path_no_stack_overflow))
