@@ -50,7 +50,12 @@ static int find_reverse_arcs(flow_state *st) {
     return 0;
 }
 
-/* Levels from the source over unsaturated arcs; 1 if the sink is reached. */
+/* Levels from the source over unsaturated arcs; 1 if the sink is reached.
+ * The search stops as soon as the sink has its level d: every node nearer
+ * than d has its level by then, and the nodes left unreached (at d or
+ * beyond) could never lead to the sink in this phase, so the blocking flow
+ * finds the same paths as after a full search.  When the sink is not
+ * reached the levels are complete: the source side of the cut. */
 static int build_levels(flow_state *st, uint32_t source, uint32_t sink) {
     const ps_flow_graph *g = st->g;
     for (size_t v = 0; v < g->n; v++) st->level[v] = -1;
@@ -63,10 +68,11 @@ static int build_levels(flow_state *st, uint32_t source, uint32_t sink) {
             uint32_t u = g->heads[e];
             if (st->level[u] >= 0 || st->residual[e] <= st->tolerance) continue;
             st->level[u] = st->level[v] + 1;
+            if (u == sink) return 1;
             st->queue[tail++] = u;
         }
     }
-    return st->level[sink] >= 0;
+    return 0;
 }
 
 /* Node at depth k of the current path. */
