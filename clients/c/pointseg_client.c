@@ -149,7 +149,7 @@ int ps_client_cancel(const ps_client *c, const char *id, ps_client_response *out
     return job_request(c, "DELETE", id, "", out);
 }
 
-static int is_final(const char *state) {
+int ps_client_job_is_final(const char *state) {
     return !strcmp(state, "done") || !strcmp(state, "failed") || !strcmp(state, "cancelled");
 }
 
@@ -160,7 +160,7 @@ int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *st
         int rc = ps_client_poll(c, id, &r);
         int got = rc == 0 && r.status == 200 && json_string(r.body, "status", state, cap) == 0;
         ps_client_response_free(&r);
-        if (got && is_final(state)) return 0;
+        if (got && ps_client_job_is_final(state)) return 0;
         if (waited >= timeout_ms) return -1;
         nanosleep(&pause, NULL);
     }

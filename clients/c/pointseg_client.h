@@ -57,6 +57,10 @@ int ps_client_cancel(const ps_client *c, const char *id, ps_client_response *out
  * copies its final status ("done", ...) into state.  Returns 0 when final. */
 int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *state, size_t cap);
 
+/* 1 when a job status ("queued", "running", "done", ...) will not change
+ * any more: done, failed or cancelled. */
+int ps_client_job_is_final(const char *state);
+
 void ps_client_response_free(ps_client_response *r);
 
 #endif

@@ -101,8 +101,7 @@ static int wait_for_job(const ps_client *c, const char *id, const char *what) {
         }
         json_text(res.body, "status", state, sizeof state);
         ps_client_response_free(&res);
-        if (!strcmp(state, "done") || !strcmp(state, "failed") || !strcmp(state, "cancelled"))
-            return 0;
+        if (ps_client_job_is_final(state)) return 0;
         nanosleep(&pause, NULL);
     }
 }
