@@ -5,8 +5,13 @@
  * model's human segmentations: one row per model, the category means, the
  * overall means and the published references.  Unless --single, every
  * model is segmented twice, with the given parameters and with the paper's
- * method (method=paper), printed side by side.  See tests/bench/README.md.
+ * method (method=paper), printed side by side.  --noise F first moves every
+ * vertex by Gaussian noise of F mean mesh edge lengths per axis (the same
+ * noise for both methods, seeded by the model id): how the segmentation
+ * holds up on noisy scans.  See tests/bench/README.md.
  */
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +30,7 @@ typedef struct quality_options {
     const char *out_dir;       /* --out: write ID.lab predictions here */
     int baseline_none;         /* --baseline none: every vertex labelled 0 */
     int runs;                  /* 1 with --single (or a baseline), else 2 */
+    double noise;              /* --noise: sigma in mean mesh edge lengths */
     ps_request_params params;  /* defaults + --param + --threads */
 } quality_options;
 
@@ -45,8 +51,10 @@ typedef struct category_sums {
 static const char usage[] =
     "usage: bench_quality [PSB_DIR] [--ids 1,2,21] [--param name=value]...\n"
     "                     [--threads N] [--out DIR] [--baseline none] [--single]\n"
+    "                     [--noise F]\n"
     "Prints the given parameters (default: method auto) next to method=paper;\n"
-    "--single runs the given parameters only.\n"
+    "--single runs the given parameters only; --noise F moves the vertices by\n"
+    "Gaussian noise of F mean edge lengths first.\n"
     "PSB_DIR defaults to $POINTSEG_SHARED/psb-dev, else ../shared/data/psb-dev.\n";
 
 static double now_ms(void) {
@@ -102,6 +110,7 @@ static int parse_options(int argc, char **argv, quality_options *o) {
         else if (!strcmp(a, "--param")) { if (apply_assignment(&o->params, v)) return -1; }
         else if (!strcmp(a, "--threads")) { if (set_param(&o->params, "threads", v)) return -1; }
         else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1, o->runs = 1;
+        else if (!strcmp(a, "--noise") && (o->noise = atof(v)) >= 0 && o->noise <= 100) continue;
         else { fprintf(stderr, "bench_quality: unknown option %s %s\n%s", a, v, usage); return -1; }
     }
     return 0;
@@ -167,11 +176,41 @@ static int *label_vertices(const ps_pointset *mesh, const quality_options *o, in
     return labels;
 }
 
+/* Mean length of the mesh's face edges (each edge counted once per face). */
+static double mean_edge(const ps_pointset *mesh) {
+    double sum = 0;
+    for (size_t t = 0; t < mesh->n_faces; t++)
+        for (int k = 0; k < 3; k++) {
+            const double *a = mesh->points + 3 * (size_t)mesh->faces[3 * t + (size_t)k];
+            const double *b = mesh->points + 3 * (size_t)mesh->faces[3 * t + (size_t)(k + 1) % 3];
+            sum += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                        (a[2] - b[2]) * (a[2] - b[2]));
+        }
+    return mesh->n_faces ? sum / (3.0 * (double)mesh->n_faces) : 0;
+}
+
+/* A uniform number in (0, 1) from a xorshift64 state. */
+static double uniform(uint64_t *state) {
+    *state ^= *state << 13, *state ^= *state >> 7, *state ^= *state << 17;
+    return ((double)(*state >> 11) + 0.5) / 9007199254740992.0;
+}
+
+/* Gaussian noise of sigma = noise x mean edge on every coordinate
+ * (Box-Muller), the same for a given model id on every run. */
+static void add_noise(ps_pointset *mesh, double noise, int id) {
+    double sigma = noise * mean_edge(mesh);
+    uint64_t state = 0x9E3779B97F4A7C15ull ^ (uint64_t)id;
+    for (size_t i = 0; i < 3 * mesh->n; i++)
+        mesh->points[i] += sigma * sqrt(-2 * log(uniform(&state))) *
+                           cos(2 * 3.14159265358979323846 * uniform(&state));
+}
+
 /* Segments and scores one model; 0 or -1. */
 static int run_model(const char *dir, const quality_options *o, model_row *row) {
     ps_pointset mesh;
     ps_psb_humans humans;
     if (ps_psb_load_mesh(dir, row->id, &mesh) != 0) return -1;
+    if (o->noise > 0) add_noise(&mesh, o->noise, row->id);
     int rc = -1;
     row->points = mesh.n;
     if (ps_psb_load_humans(dir, row->id, mesh.n_faces, &humans) == 0) {
@@ -204,6 +243,7 @@ static void print_params(const char *dir, const quality_options *o) {
            ps_method_name(p->method), p->k, ps_centrality_name(p->centrality), p->samples,
            p->persistence, p->ncut_threshold, p->feature_threshold, p->use_minima, p->use_f2,
            p->threads);
+    if (o->noise > 0) printf("noise: sigma %g mean edge lengths per coordinate\n", o->noise);
     if (o->runs > 1) printf("compared with: the same, method=paper\n");
     printf("\n");
 }
