@@ -1,14 +1,18 @@
 /*
- * normals.c: PCA normals and their MST orientation (normals.h).
+ * normals.c: PCA normals, their MST orientation, and on noisy scans their
+ * smoothing (normals.h, normals_smooth.h).
  */
 #include "normals.h"
+
+#include "normals_smooth.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Smallest-eigenvalue eigenvector of the symmetric 3x3 matrix a (Jacobi). */
-static void smallest_eigenvector(double a[3][3], double v[3]) {
+/* Smallest-eigenvalue eigenvector of the symmetric 3x3 matrix a (Jacobi);
+ * returns that eigenvalue. */
+static double smallest_eigenvector(double a[3][3], double v[3]) {
     double e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     for (int sweep = 0; sweep < 32; sweep++) {
         double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
@@ -37,9 +41,13 @@ static void smallest_eigenvector(double a[3][3], double v[3]) {
     for (int i = 1; i < 3; i++)
         if (a[i][i] < a[best][best]) best = i;
     for (int k = 0; k < 3; k++) v[k] = e[k][best];
+    return a[best][best];
 }
 
-static void pca_normal(const ps_graph *g, const double *points, size_t p, double n[3]) {
+/* n: the PCA normal of p and its neighbours.  Returns the noise ratio of
+ * normals_smooth.h: their RMS distance to the PCA plane over p's mean edge
+ * length (0 for an isolated point). */
+static double pca_normal(const ps_graph *g, const double *points, size_t p, double n[3]) {
     double mean[3] = {0, 0, 0}, cov[3][3] = {{0}};
     size_t count = g->offsets[p + 1] - g->offsets[p] + 1;
     for (size_t e = g->offsets[p]; e <= g->offsets[p + 1]; e++) {
@@ -51,7 +59,9 @@ static void pca_normal(const ps_graph *g, const double *points, size_t p, double
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) cov[i][j] += (x[i] - mean[i]) * (x[j] - mean[j]);
     }
-    smallest_eigenvector(cov, n);
+    double residual = sqrt(fmax(smallest_eigenvector(cov, n), 0) / (double)count), edges = 0;
+    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) edges += g->weights[e];
+    return edges > 0 ? residual * (double)(count - 1) / edges : 0;
 }
 
 static void normalize(double n[3]) {
@@ -139,9 +149,10 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
                            const int *component, int n_components, double *normals,
                            ps_error *err) {
     size_t n = g->n;
+    ps_noise_estimate noise = {{0}, 0};
     for (size_t p = 0; p < n; p++) {
         if (given) memcpy(normals + 3 * p, given + 3 * p, 3 * sizeof *normals);
-        else pca_normal(g, points, p, normals + 3 * p);
+        else ps_noise_add(&noise, pca_normal(g, points, p, normals + 3 * p));
         normalize(normals + 3 * p);
     }
     uint32_t *extreme = malloc((size_t)n_components * sizeof *extreme);
@@ -153,6 +164,8 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
     }
     ps_status st = PS_OK;
     if (!given) st = orient_components(g, extreme, n_components, normals, err);
+    if (!given && st == PS_OK)
+        st = ps_normals_smooth(g, normals, ps_noise_iterations(ps_noise_median(&noise)), err);
     for (size_t p = 0; given && p < n; p++) /* given: consistent, maybe inward */
         if (given[3 * extreme[component[p]]] < 0)
             for (int i = 0; i < 3; i++) normals[3 * p + i] = -normals[3 * p + i];
