@@ -68,7 +68,10 @@ static void test_tracked_runs_all_and_reports(void) {
         ps_progress_span span = {&ctl, PS_PHASE_REFINE, 0.25, 0.75};
         CHECK(ps_parallel_for_tracked(threads, ITEMS, 1, run_item, &log, &span) == PS_OK);
         for (int i = 0; i < ITEMS; i++) CHECK(atomic_load(&log.runs[i]) == 1);
-        CHECK(r.count >= 2 && r.monotone && r.wrong_phase == 0);
+        /* only the calling thread reports along the way, and with 4 threads
+         * the others may take every item before it starts: then only the
+         * final report comes */
+        CHECK(r.count >= (threads == 1 ? 2 : 1) && r.monotone && r.wrong_phase == 0);
         CHECK(r.first > 0.25 && r.first <= 0.75);
         CHECK(r.last == 0.75);
     }
