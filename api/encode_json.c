@@ -156,6 +156,7 @@ static int add_params(cJSON *doc, const ps_params *p) {
                    add_number(o, "feature_threshold", p->feature_threshold) ||
                    !cJSON_AddBoolToObject(o, "minima", p->use_minima != 0) ||
                    !cJSON_AddBoolToObject(o, "f2", p->use_f2 != 0) ||
+                   !cJSON_AddBoolToObject(o, "smooth_normals", p->smooth_normals != 0) ||
                    add_number(o, "threads", p->threads)
                ? -1
                : 0;
@@ -184,6 +185,7 @@ static int fill_document(cJSON *doc, const ps_result *r, unsigned include) {
     size_t n_labels = r->labels ? r->n_points : 0;
     if (add_number(doc, "n_points", (double)r->n_points) || add_number(doc, "dimension", r->dim) ||
         add_number(doc, "n_components", r->n_components) ||
+        add_number(doc, "normal_smoothing", r->normal_smoothing) ||
         add_raw(doc, "labels", int_array_text(r->labels, n_labels)) ||
         add_number(doc, "n_segments", r->n_segments))
         return -1;

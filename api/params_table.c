@@ -24,6 +24,7 @@ typedef enum param_id {
     P_FEATURE_THRESHOLD,
     P_MINIMA,
     P_F2,
+    P_SMOOTH_NORMALS,
     P_THREADS,
     P_OUTPUT,
     P_INCLUDE,
@@ -58,6 +59,8 @@ static const ps_param_spec table[P_COUNT] = {
                   "central regions below the limbs' saddles go to the minima of f"},
     [P_F2] = {"f2", PS_PT_BOOL, "false", 0, 1, NULL,
               "split supernodes at the maxima of f2, the distance to their own sink"},
+    [P_SMOOTH_NORMALS] = {"smooth_normals", PS_PT_BOOL, "false", 0, 1, NULL,
+                          "smooth estimated normals as much as the scan's measured noise asks"},
     [P_THREADS] = {"threads", PS_PT_INT, "0", 0, 256, NULL,
                    "worker threads; 0 = all cores"},
     [P_OUTPUT] = {"output", PS_PT_ENUM, "json", 0, 0, output_choices,
@@ -222,6 +225,7 @@ static void store_number(ps_request_params *rp, param_id id, double v) {
     case P_FEATURE_THRESHOLD: rp->core.feature_threshold = v; break;
     case P_MINIMA: rp->core.use_minima = v != 0; break;
     case P_F2: rp->core.use_f2 = v != 0; break;
+    case P_SMOOTH_NORMALS: rp->core.smooth_normals = v != 0; break;
     default: break;
     }
 }

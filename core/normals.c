@@ -146,8 +146,8 @@ static ps_status orient_components(const ps_graph *g, const uint32_t *extreme,
 }
 
 ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
-                           const int *component, int n_components, double *normals,
-                           ps_error *err) {
+                           const int *component, int n_components, int smooth,
+                           double *normals, int *smoothing, ps_error *err) {
     size_t n = g->n;
     ps_noise_estimate noise = {{0}, 0};
     for (size_t p = 0; p < n; p++) {
@@ -164,8 +164,9 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
     }
     ps_status st = PS_OK;
     if (!given) st = orient_components(g, extreme, n_components, normals, err);
-    if (!given && st == PS_OK)
-        st = ps_normals_smooth(g, normals, ps_noise_iterations(ps_noise_median(&noise)), err);
+    int iterations = given || !smooth ? 0 : ps_noise_iterations(ps_noise_median(&noise));
+    if (smoothing) *smoothing = iterations;
+    if (st == PS_OK) st = ps_normals_smooth(g, normals, iterations, err);
     for (size_t p = 0; given && p < n; p++) /* given: consistent, maybe inward */
         if (given[3 * extreme[component[p]]] < 0)
             for (int i = 0; i < 3; i++) normals[3 * p + i] = -normals[3 * p + i];

@@ -8,8 +8,8 @@
  * (Hoppe et al. 1992), and made outward per component: the point with the
  * largest x must have a normal with positive x (true of any closed surface;
  * input normals that point inward, as some meshes' do, are flipped).
- * Estimated normals of a noisy scan are then smoothed over the kNN graph,
- * as much as the measured noise asks and not at all on clean input
+ * When asked, estimated normals are then smoothed over the kNN graph, as
+ * much as the scan's measured noise asks and not at all on clean input
  * (normals_smooth.h).
  */
 #ifndef PS_NORMALS_H
@@ -18,10 +18,12 @@
 #include "knn_graph.h"
 
 /* points #P by 3; given #P by 3 or NULL; component #P; g's weights are the
- * Euclidean edge lengths (the noise is measured against them).  normals
- * #P by 3 out. */
+ * Euclidean edge lengths (the noise is measured against them).  smooth:
+ * smooth estimated normals by the measured noise.  normals #P by 3 out.
+ * smoothing out (may be NULL): the iterations applied (0 unless smooth and
+ * estimated normals on a noisy scan). */
 ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
-                           const int *component, int n_components, double *normals,
-                           ps_error *err);
+                           const int *component, int n_components, int smooth,
+                           double *normals, int *smoothing, ps_error *err);
 
 #endif

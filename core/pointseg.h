@@ -84,6 +84,9 @@ typedef struct ps_params {
                                  highest saddle (supernodes.h) */
     int use_f2;               /* split supernodes along the maxima of f2, the
                                  distance to their own sink (f2_split.h) */
+    int smooth_normals;       /* method auto, normals estimated: smooth them as
+                                 much as the scan's measured noise asks
+                                 (normals_smooth.h); off by default */
     int threads;              /* worker threads; 0 = all cores */
 } ps_params;
 
@@ -176,6 +179,8 @@ typedef struct ps_result {
     int *point_supernode;  /* #P supernode per point */
     double *centrality;    /* #P f per point (input units) */
     int n_components;      /* connected components of the kNN graph */
+    int normal_smoothing;  /* iterations the estimated normals were smoothed
+                              (params.smooth_normals on a noisy scan; else 0) */
 
     int n_supernodes;
     ps_supernode *supernodes;  /* #n_supernodes */

@@ -17,6 +17,7 @@ typedef struct ps_result_parts {
     const size_t *first_of;      /* #U lowest input index of each distinct point */
     const double *f;             /* #U centrality */
     int n_components;
+    int normal_smoothing;        /* normals.h */
     int n_supernodes;            /* #S */
     const uint32_t *sinks;       /* #S distinct index of each sink */
     const int *is_minimum;       /* #S */

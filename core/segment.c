@@ -44,6 +44,7 @@ typedef struct pipeline {
     int *component;        /* #U */
     int n_components;
     double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
+    int normal_smoothing;  /* iterations the normals were smoothed (normals.h) */
     ps_crease_points creases; /* with normals: crease strengths of the #U points */
     double *f;             /* #U centrality */
     ps_supernodes sn;
@@ -122,7 +123,8 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
             memcpy(given + 3 * i, pl->in->normals + 3 * pl->dedup.first[i], 3 * sizeof *given);
     }
     ps_status st = ps_normals_build(&pl->graph, pl->points, given, pl->component,
-                                    pl->n_components, pl->normals, err);
+                                    pl->n_components, pl->params.smooth_normals, pl->normals,
+                                    &pl->normal_smoothing, err);
     if (st == PS_OK) {
         ps_crease_strengths(&pl->graph, pl->points, pl->normals, &pl->creases);
         ps_crease_weights(&pl->graph, pl->points, pl->normals);
@@ -283,6 +285,7 @@ static ps_result_parts parts_of(const pipeline *pl) {
         .first_of = pl->dedup.first,
         .f = pl->f,
         .n_components = pl->n_components,
+        .normal_smoothing = pl->normal_smoothing,
         .n_supernodes = pl->sn.m,
         .sinks = pl->sn.sinks,
         .is_minimum = pl->sn.is_minimum,

@@ -22,7 +22,7 @@ int ps_star_build(ps_star *s) {
     ps_error err = {0};
     int ok = component && ps_knn_graph_build(s->points, s->n, 3, 7, 1, &s->graph, &err) == PS_OK;
     int nc = ok ? ps_graph_components(&s->graph, component) : 0;
-    ok = ok && ps_normals_build(&s->graph, s->points, NULL, component, nc, s->normals, &err) ==
+    ok = ok && ps_normals_build(&s->graph, s->points, NULL, component, nc, 0, s->normals, NULL, &err) ==
                    PS_OK;
     free(component);
     return ok;

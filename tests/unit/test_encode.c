@@ -44,6 +44,7 @@ static ps_result small_result(void) {
     r.point_supernode = point_supernode;
     r.centrality = centrality;
     r.n_components = 1;
+    r.normal_smoothing = 3;
     r.n_supernodes = 3;
     r.supernodes = supernodes;
     r.n_tree_nodes = 5;
@@ -101,11 +102,12 @@ static void test_json_top_level(void) {
     CHECK(num(doc, "n_points") == N);
     CHECK(num(doc, "dimension") == 3);
     CHECK(num(doc, "n_components") == 1);
+    CHECK(num(doc, "normal_smoothing") == 3);
     CHECK(int_array_is(doc, "labels", labels, N));
     CHECK(num(doc, "n_segments") == 2);
     CHECK(cJSON_GetObjectItemCaseSensitive(doc, "point_supernode") == NULL);
     CHECK(cJSON_GetObjectItemCaseSensitive(doc, "centrality") == NULL);
-    CHECK(cJSON_GetArraySize(doc) == 11);
+    CHECK(cJSON_GetArraySize(doc) == 12);
     cJSON_Delete(doc);
 }
 
@@ -168,7 +170,8 @@ static void test_json_params_and_timings(void) {
     CHECK(num(p, "persistence") == r.params.persistence);
     CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(p, "minima")));
     CHECK(is_true(p, "f2"));
-    CHECK(cJSON_GetArraySize(p) == 10);
+    CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(p, "smooth_normals")));
+    CHECK(cJSON_GetArraySize(p) == 11);
     const cJSON *method = cJSON_GetObjectItemCaseSensitive(p, "method");
     CHECK(cJSON_IsString(method) && strcmp(method->valuestring, "auto") == 0);
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(doc, "timings_ms");

@@ -10,7 +10,7 @@
 
 static const char *const all_names[] = {"method", "k", "centrality", "samples", "persistence",
                                         "ncut_threshold",
-                                        "feature_threshold", "minima", "f2", "threads",
+                                        "feature_threshold", "minima", "f2", "smooth_normals", "threads",
                                         "output", "include"};
 
 static void test_table_lists_every_parameter(void) {
@@ -48,6 +48,7 @@ static int same_request_params(const ps_request_params *a, const ps_request_para
            a->core.ncut_threshold == b->core.ncut_threshold &&
            a->core.feature_threshold == b->core.feature_threshold &&
            a->core.use_minima == b->core.use_minima && a->core.use_f2 == b->core.use_f2 &&
+           a->core.smooth_normals == b->core.smooth_normals &&
            a->core.threads == b->core.threads && a->output == b->output &&
            a->include == b->include;
 }
@@ -59,7 +60,7 @@ static void test_defaults_agree_with_core(void) {
     size_t count;
     const ps_param_spec *t = ps_param_table(&count);
     ps_request_params_default(&def);
-    from_text = (ps_request_params){{PS_METHOD_PAPER, 64, PS_CENTRALITY_EXACT, 9, 0.7, 1.5, 0.9, 0, 1, 3},
+    from_text = (ps_request_params){{PS_METHOD_PAPER, 64, PS_CENTRALITY_EXACT, 9, 0.7, 1.5, 0.9, 0, 1, 1, 3},
                                     PS_OUTPUT_PLY, 3};
     for (size_t i = 0; i < count; i++)
         CHECK_MSG(ps_request_param_set(&from_text, t[i].name, t[i].default_text, &err) == 0,

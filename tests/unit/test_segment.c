@@ -82,18 +82,34 @@ static void check_consistent(const ps_result *r) {
     }
 }
 
-/* Segments a synthetic shape with the defaults and checks that its parts
- * first..last come out apart; frees pts and part. */
-static void check_shape_parts(double *pts, size_t n, int *part, int first, int last,
-                              double min_purity) {
-    REQUIRE(pts && part);
-    ps_result *r = segment_default(pts, n);
-    REQUIRE(r);
-    check_consistent(r);
-    check_parts_separate(r, part, first, last, min_purity);
+/* Segments a synthetic shape with params p and checks that its parts
+ * first..last come out apart; frees pts and part.  Returns the result's
+ * normal_smoothing. */
+static int check_parts_with(double *pts, size_t n, int *part, int first, int last,
+                            double min_purity, const ps_params *p) {
+    if (!pts || !part) {
+        CHECK(pts && part);
+        return -1;
+    }
+    ps_result *r = segment_with(pts, n, p);
+    int smoothing = r ? r->normal_smoothing : -1;
+    CHECK(r != NULL);
+    if (r) {
+        check_consistent(r);
+        check_parts_separate(r, part, first, last, min_purity);
+    }
     ps_result_free(r);
     free(pts);
     free(part);
+    return smoothing;
+}
+
+/* The same with the defaults. */
+static int check_shape_parts(double *pts, size_t n, int *part, int first, int last,
+                             double min_purity) {
+    ps_params p;
+    ps_params_default(&p);
+    return check_parts_with(pts, n, part, first, last, min_purity, &p);
 }
 
 static void test_dumbbell_two_spheres(void) {
@@ -126,8 +142,9 @@ static void test_hand_five_fingers(void) {
 
 /* The star's six arms come out apart, each with at least `purity` of it in
  * one segment; every coordinate is first jittered by up to `jitter` (a
- * deterministic pseudo-random sequence). */
-static void check_star_arms(double jitter, double purity) {
+ * deterministic pseudo-random sequence); smooth_normals as given.  Returns
+ * the normal smoothing applied. */
+static int check_star_arms(double jitter, double purity, int smooth_normals) {
     size_t n;
     int *part;
     double *pts = ps_shape_star(0, &n, &part);
@@ -136,18 +153,21 @@ static void check_star_arms(double jitter, double purity) {
         state ^= state << 13, state ^= state >> 7, state ^= state << 17;
         pts[i] += jitter * (2.0 * (double)(state >> 11) / 9007199254740992.0 - 1.0);
     }
-    check_shape_parts(pts, n, part, 1, 6, purity);
+    ps_params p;
+    ps_params_default(&p);
+    p.smooth_normals = smooth_normals;
+    return check_parts_with(pts, n, part, 1, 6, purity, &p);
 }
 
-static void test_star_six_arms(void) { check_star_arms(0, 0.8); }
+static void test_star_six_arms(void) { CHECK(check_star_arms(0, 0.8, 1) == 0); }
 
 /* A scan is never clean: jitter of 10% of an arm's radius (0.35), no
  * normals given. */
-static void test_star_with_noise(void) { check_star_arms(0.035, 0.8); }
+static void test_star_with_noise(void) { CHECK(check_star_arms(0.035, 0.8, 0) == 0); }
 
-/* 20%: the normals are smoothed (normals_smooth.h; without, an arm is cut
- * in half: 0.47 of it in one segment). */
-static void test_star_with_heavy_noise(void) { check_star_arms(0.07, 0.7); }
+/* 20%, with smooth_normals (normals_smooth.h; without, an arm is cut in
+ * half: 0.47 of it in one segment). */
+static void test_star_with_heavy_noise(void) { CHECK(check_star_arms(0.07, 0.7, 1) > 0); }
 
 /* A flat hand in the plane z = 0: a unit disc (part 0) and five strips
  * (parts 1..5) fanning out from it, sampled uniformly. */
