@@ -144,18 +144,12 @@ void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
     settle(w, g, dist, owner, NULL);
 }
 
-void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
-                            size_t n_sources, double *dist) {
-    for (size_t i = 0; i < n_sources; i++)
-        if (dist[sources[i]] > 0.0) {
-            dist[sources[i]] = 0.0;
-            heap_set(w, sources[i], 0.0);
-        }
-    settle(w, g, dist, NULL, NULL);
-}
-
 void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, double *dist) {
-    ps_dijkstra_lower_many(w, g, &source, 1, dist);
+    if (dist[source] > 0.0) {
+        dist[source] = 0.0;
+        heap_set(w, source, 0.0);
+    }
+    settle(w, g, dist, NULL, NULL);
 }
 
 size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,

@@ -28,12 +28,6 @@ void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
 void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source,
                        double *dist);
 
-/* The same from several sources (#S vertex ids) at once: dist (#P) becomes
- * min(dist, distance from the nearest source).  Initialize dist to a cap R
- * to explore only the vertices closer than R. */
-void ps_dijkstra_lower_many(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
-                            size_t n_sources, double *dist);
-
 /* Where a ball run may go: vertices at distance <= radius (inclusive;
  * INFINITY for no bound) and, when label is not NULL, only the vertices v
  * with mark[label[v]] == stamp (label #P, e.g. the cell of each vertex;

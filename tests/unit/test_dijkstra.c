@@ -1,7 +1,6 @@
 /* test_dijkstra.c: distances and owners equal Bellman-Ford on random graphs
  * (integer weights make ties exact), unreachable vertices get INFINITY, and
- * ps_dijkstra_lower equals the minimum of full runs; ps_dijkstra_lower_many
- * from a cap equals a multi-source run clipped at the cap.  Ball runs on a
+ * ps_dijkstra_lower equals the minimum of full runs.  Ball runs on a
  * hand-built graph: the radius is inclusive, a region detours around the
  * vertices outside it, the reached list is in settling order and resets
  * dist; on a random graph a ball equals Bellman-Ford within the radius. */
@@ -161,29 +160,6 @@ static void test_lower_is_min_of_runs(void) {
     ps_graph_free(&g);
 }
 
-static void test_lower_many_is_capped_run(void) {
-    size_t n = 300;
-    ps_graph g;
-    random_graph(n, 4, 11, &g);
-    ps_dijkstra *w = ps_dijkstra_new(n);
-    double *capped = malloc(n * sizeof *capped), *full = malloc(n * sizeof *full);
-    REQUIRE(w && capped && full);
-    const uint32_t src[] = {3, 120, 77};
-    const double cap = 6;
-    for (size_t v = 0; v < n; v++) capped[v] = cap;
-    ps_dijkstra_lower_many(w, &g, src, 3, capped);
-    ps_dijkstra_run(w, &g, src, 3, full, NULL);
-    size_t below = 0;
-    for (size_t v = 0; v < n; v++) {
-        CHECK(capped[v] == fmin(full[v], cap));
-        below += full[v] < cap;
-    }
-    CHECK(below > 10 && below < n - 10); /* the cap really cuts the search */
-    free(capped), free(full);
-    ps_dijkstra_free(w);
-    ps_graph_free(&g);
-}
-
 /* Hand-built: a path 0-1-2-3-4 of unit edges and a detour 0-5-2 of two
  * edges of length 2.  From 0: d = 0 1 2 3 4 2. */
 static const size_t hand_offsets[] = {0, 2, 4, 7, 9, 10, 12};
@@ -274,6 +250,6 @@ static void test_ball_reached_list(void) {
 }
 
 PS_TEST_MAIN(TEST(test_single_source_and_ball), TEST(test_multi_source_owner),
-             TEST(test_lower_is_min_of_runs), TEST(test_lower_many_is_capped_run),
+             TEST(test_lower_is_min_of_runs),
              TEST(test_ball_radius_is_inclusive), TEST(test_ball_region),
              TEST(test_ball_reached_list))
