@@ -456,29 +456,20 @@ static int by_size_then_ids(const void *x, const void *y) {
     return (p->b > q->b) - (p->b < q->b);
 }
 
-/* Adjacent segment pairs, in processing order; NULL when out of memory. */
+/* Adjacent segment pairs (those with initial boundary points), in
+ * processing order; NULL when out of memory. */
 static pair *adjacent_pairs(const cut_context *cx, size_t *count) {
-    const ps_graph *g = cx->in->graph;
-    size_t crossing = 0, n_pairs = 0;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            crossing += g->neighbors[e] > p && cx->group[g->neighbors[e]] != cx->group[p];
-    pair *pairs = malloc((crossing ? crossing : 1) * sizeof *pairs);
+    pair *pairs = malloc((cx->n_initial ? cx->n_initial : 1) * sizeof *pairs);
     if (!pairs) return NULL;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            int x = cx->group[p], y = cx->group[g->neighbors[e]];
-            if (g->neighbors[e] <= p || x == y) continue;
-            int a = x < y ? x : y, b = x < y ? y : x;
-            size_t sa = cx->size[a], sb = cx->size[b];
-            pairs[n_pairs++] = (pair){a, b, sa < sb ? sa : sb, sa < sb ? sb : sa};
-        }
+    size_t n_pairs = 0;
+    for (size_t i = 0; i < cx->n_initial; i++) {
+        int a = cx->initial[i].a, b = cx->initial[i].b;
+        if (n_pairs > 0 && pairs[n_pairs - 1].a == a && pairs[n_pairs - 1].b == b) continue;
+        size_t sa = cx->size[a], sb = cx->size[b];
+        pairs[n_pairs++] = (pair){a, b, sa < sb ? sa : sb, sa < sb ? sb : sa};
+    }
     qsort(pairs, n_pairs, sizeof *pairs, by_size_then_ids);
-    size_t kept = 0;
-    for (size_t i = 0; i < n_pairs; i++)
-        if (kept == 0 || pairs[kept - 1].a != pairs[i].a || pairs[kept - 1].b != pairs[i].b)
-            pairs[kept++] = pairs[i];
-    *count = kept;
+    *count = n_pairs;
     return pairs;
 }
 
