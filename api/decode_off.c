@@ -29,18 +29,15 @@ typedef struct off_reader {
 
 static const char counts_syntax[] = "\"vertex_count face_count edge_count\"";
 
-static int is_line_end(char ch) { return ch == '\n' || ch == '\r'; }
-
 /* White space within a line (ps_is_blank without CR, which ends a line). */
 static int is_inline_blank(char ch) { return ch != '\r' && ps_is_blank(ch); }
 
 /* Moves past the rest of the line and its LF, CR or CRLF.  Returns 0 when
  * the data ends first. */
 static int skip_line(off_reader *r) {
-    while (r->p < r->end && !is_line_end(*r->p)) r->p++;
+    r->p = ps_line_end(r->p, r->end);
     if (r->p == r->end) return 0;
-    if (*r->p == '\r' && r->p + 1 < r->end && r->p[1] == '\n') r->p++;
-    r->p++;
+    r->p = ps_past_line_end(r->p, r->end);
     r->line++;
     return 1;
 }
@@ -49,10 +46,9 @@ static int skip_line(off_reader *r) {
  * line has no more (its end or a '#' comment). */
 static int line_token(off_reader *r, const char **s, const char **t) {
     while (r->p < r->end && is_inline_blank(*r->p)) r->p++;
-    if (r->p == r->end || is_line_end(*r->p) || *r->p == '#') return 0;
+    if (r->p == r->end || ps_is_line_end(*r->p) || *r->p == '#') return 0;
     *s = r->p;
-    while (r->p < r->end && !is_inline_blank(*r->p) && !is_line_end(*r->p)) r->p++;
-    *t = r->p;
+    *t = r->p = ps_token_end(r->p, r->end, NULL);
     return 1;
 }
 

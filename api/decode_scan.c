@@ -30,21 +30,26 @@ const char *ps_skip_space(const char *p, const char *end) {
     return p;
 }
 
-/* The first '\n' or '\r' in [p, end), or end. */
-static const char *line_break(const char *p, const char *end) {
-    while (p < end && *p != '\n' && *p != '\r') p++;
+int ps_is_line_end(char ch) { return ch == '\n' || ch == '\r'; }
+
+const char *ps_line_end(const char *p, const char *end) {
+    while (p < end && !ps_is_line_end(*p)) p++;
+    return p;
+}
+
+const char *ps_past_line_end(const char *p, const char *end) {
+    if (p < end && *p == '\r') p++;
+    if (p < end && *p == '\n') p++;
     return p;
 }
 
 int ps_lines_next(ps_lines *c, const char **start, const char **stop) {
     if (c->pos >= c->end) return 0;
-    const char *line_end = line_break(c->pos, c->end);
+    const char *line_end = ps_line_end(c->pos, c->end);
     const char *s = ps_skip_blanks(c->pos, line_end);
     const char *e = line_end;
     while (e > s && ps_is_blank(e[-1])) e--;
-    c->pos = line_end;
-    if (c->pos < c->end && *c->pos == '\r') c->pos++;
-    if (c->pos < c->end && *c->pos == '\n') c->pos++;
+    c->pos = ps_past_line_end(line_end, c->end);
     c->line++;
     *start = s;
     *stop = e;

@@ -26,6 +26,15 @@ int ps_lines_next(ps_lines *c, const char **start, const char **stop);
 /* The next line that is neither empty nor a '#' comment (same contract). */
 int ps_lines_next_data(ps_lines *c, const char **start, const char **stop);
 
+/* 1 for '\n' and '\r', which end a line ("\n", "\r\n" or a lone "\r"). */
+int ps_is_line_end(char ch);
+
+/* The first line end at or after p, or end. */
+const char *ps_line_end(const char *p, const char *end);
+
+/* Past the line end at p (one "\n", "\r\n" or "\r"); p when none is there. */
+const char *ps_past_line_end(const char *p, const char *end);
+
 /* 1 for space, tab, \r, \v, \f. */
 int ps_is_blank(char ch);
 
