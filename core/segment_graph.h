@@ -1,0 +1,60 @@
+/*
+ * segment_graph.h: segments as the nodes of a small graph whose edges are
+ * their shared boundaries, for the merges that run after the boundary cut
+ * (crease_merge.h, patch_merge.h).
+ *
+ * The boundaries are gathered once, in O(E): one record per kNN edge
+ * joining two segments, with whether the caller marks it (the crease
+ * merge marks the creased ones), sorted and summed into one record per
+ * adjacent pair.  A merge renames the loser in every record and sums the
+ * records again; there are only as many records as adjacent pairs, so the
+ * merges are cheap.  Each segment keeps its point count and f range, so
+ * a merge can be recorded with its feature size (ps_merge).
+ */
+#ifndef PS_SEGMENT_GRAPH_H
+#define PS_SEGMENT_GRAPH_H
+
+#include "knn_graph.h"
+
+typedef struct ps_boundary {
+    int a, b;     /* segment ids, a < b */
+    long marked;  /* edges the caller's mark accepted */
+    long edges;   /* kNN edges joining a and b */
+} ps_boundary;
+
+typedef struct ps_segment_graph {
+    int n_groups;          /* segment ids are in [0, n_groups) */
+    size_t *size;          /* #n_groups points */
+    double *f_min, *f_max; /* #n_groups */
+    int *alias;            /* #n_groups the segment it merged into, or itself */
+    ps_boundary *list;     /* #count, sorted by (a, b) */
+    size_t count;
+} ps_segment_graph;
+
+/* Whether the kNN edge p-q, joining segments group[p] != group[q], is
+ * marked. */
+typedef int (*ps_boundary_mark_fn)(void *context, const int *group, size_t p, size_t q);
+
+/* g: kNN graph on #P points; f #P; group #P segment ids in [0, n_groups).
+ * mark may be NULL (nothing marked).  On failure sg is freed. */
+ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_graph *g, const double *f,
+                                 const int *group, int n_groups, ps_boundary_mark_fn mark,
+                                 void *context, ps_error *err);
+
+/* Merges segment loser into winner (both surviving, adjacent or not) and
+ * appends {loser, winner, loser's feature size} to the malloc'ed list
+ * merges / n_merges.  Returns 0 when out of memory (nothing changed). */
+int ps_segment_graph_merge(ps_segment_graph *sg, int loser, int winner, ps_merge **merges,
+                           int *n_merges);
+
+/* The segment that id has merged into (id itself if it survives). */
+int ps_segment_graph_survivor(const ps_segment_graph *sg, int id);
+
+/* group_of_point #P and group_of_leaf #n_groups (entries may be -1)
+ * rewritten to their survivors. */
+void ps_segment_graph_apply(const ps_segment_graph *sg, int *group_of_point, size_t n,
+                            int *group_of_leaf);
+
+void ps_segment_graph_free(ps_segment_graph *sg);
+
+#endif
