@@ -4,8 +4,9 @@
  * Validates the input, removes duplicate points, then runs features (kNN
  * graph, centrality, flow to sinks), hierarchy (normalized cuts over the
  * supernodes) and refinement (small features merge; with method auto in
- * 3-D, boundaries then move onto concave creases, boundary_cut.h, and
- * segments whose boundary is no crease merge, crease_merge.h), timing
+ * 3-D, boundaries then move onto concave creases, boundary_cut.h,
+ * segments whose boundary is no crease merge, crease_merge.h, and nearly
+ * flat segments merge into a neighbour, patch_merge.h), timing
  * each phase, reporting progress and honouring the cancel flag between
  * steps.  The result is assembled by result.c; duplicates get their
  * representative's answers.
@@ -15,6 +16,7 @@
 #include "control.h"
 #include "crease.h"
 #include "crease_merge.h"
+#include "patch_merge.h"
 #include "crease_split.h"
 #include "dedup.h"
 #include "f2_split.h"
@@ -231,6 +233,18 @@ static ps_status crease_merge(pipeline *pl, ps_error *err) {
                            &pl->n_merges, err);
 }
 
+static ps_status patch_merge(pipeline *pl, ps_error *err) {
+    ps_patch_merge_input pm = {
+        .graph = &pl->graph,
+        .normals = pl->normals,
+        .f = pl->f,
+        .mean_angular = pl->creases.mean,
+        .n_groups = pl->n_tree,
+    };
+    return ps_patch_merge(&pm, pl->group_of_point, pl->group_of_leaf, &pl->merges,
+                          &pl->n_merges, err);
+}
+
 static ps_status phase_refine(pipeline *pl, ps_error *err) {
     pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
     if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
@@ -240,6 +254,7 @@ static ps_status phase_refine(pipeline *pl, ps_error *err) {
     if (st == PS_OK) st = point_groups(pl, err);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
     if (st == PS_OK && pl->normals) st = crease_merge(pl, err);
+    if (st == PS_OK && pl->normals) st = patch_merge(pl, err);
     return st;
 }
 
