@@ -198,6 +198,34 @@ static double *flat_hand(size_t *n, int **part) {
     return pts;
 }
 
+/* A scan from one side: only the hand's upper half (z > 0), every part
+ * open underneath.  The palm stays a segment of its own, apart from every
+ * finger: its normals all point up-ish (flatness 0.86, near the patch
+ * merge's 0.9, patch_merge.h), and a patch larger than its neighbours
+ * would stay anyway. */
+static void test_hand_scanned_from_one_side(void) {
+    size_t n, kept = 0;
+    int *part;
+    double *pts = ps_shape_hand(0, &n, &part);
+    REQUIRE(pts && part);
+    for (size_t i = 0; i < n; i++) {
+        if (pts[3 * i + 2] <= 0) continue;
+        memmove(pts + 3 * kept, pts + 3 * i, 3 * sizeof *pts);
+        part[kept++] = part[i];
+    }
+    ps_result *r = segment_default(pts, kept);
+    REQUIRE(r);
+    check_consistent(r);
+    double palm_purity, finger_purity;
+    int palm = majority_label(r, part, 0, &palm_purity);
+    CHECK_MSG(palm_purity >= 0.9, "palm: only %.2f of it in one segment", palm_purity);
+    for (int finger = 1; finger <= 5; finger++)
+        CHECK(majority_label(r, part, finger, &finger_purity) != palm);
+    ps_result_free(r);
+    free(pts);
+    free(part);
+}
+
 /* A flat surface has no creases: the crease steps leave it alone and the
  * fingers still come out apart (they used to merge into one segment). */
 static void test_flat_hand_in_3d(void) {
@@ -439,7 +467,7 @@ static void test_progress_and_cancel(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
+             TEST(test_hand_scanned_from_one_side), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
              TEST(test_threads_exact),
