@@ -15,6 +15,7 @@
 #include "control.h"
 #include "dijkstra.h"
 #include "parallel.h"
+#include "sort_util.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -66,27 +67,6 @@ static void ball_clear(ball *b) {
 
 /* ---- cells --------------------------------------------------------------- */
 
-/* The k-th smallest of x[0..n) (reorders x); Hoare partition, middle pivot. */
-static double select_kth(double *x, size_t n, size_t k) {
-    ptrdiff_t lo = 0, hi = (ptrdiff_t)n - 1, target = (ptrdiff_t)k;
-    while (lo < hi) {
-        double pivot = x[lo + (hi - lo) / 2];
-        ptrdiff_t i = lo, j = hi;
-        while (i <= j) {
-            while (x[i] < pivot) i++;
-            while (x[j] > pivot) j--;
-            if (i > j) break;
-            double t = x[i];
-            x[i++] = x[j];
-            x[j--] = t;
-        }
-        if (target <= j) hi = j;
-        else if (target >= i) lo = i;
-        else break;
-    }
-    return x[k];
-}
-
 /* radius #components: PS_CELL_RADIUS_EDGES x median edge length (0 when
  * the component has no edge). */
 static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
@@ -97,7 +77,7 @@ static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
         size_t first = g->offsets[o->start[k]], end = g->offsets[o->start[k + 1]];
         size_t count = end - first;
         memcpy(copy, g->weights + first, count * sizeof *copy);
-        radius[k] = count ? PS_CELL_RADIUS_EDGES * select_kth(copy, count, count / 2) : 0.0;
+        radius[k] = count ? PS_CELL_RADIUS_EDGES * ps_select_kth(copy, count, count / 2) : 0.0;
     }
     free(copy);
     return PS_OK;

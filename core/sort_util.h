@@ -1,12 +1,18 @@
 /*
- * sort_util.h: comparison functions for qsort and bsearch shared by the
- * core modules.
+ * sort_util.h: comparison functions for qsort and bsearch, and selection
+ * of the k-th smallest value, shared by the core modules.
  */
 #ifndef PS_SORT_UTIL_H
 #define PS_SORT_UTIL_H
 
+#include <stddef.h>
+
 /* a, b: each points at one uint32_t.  Returns -1, 0 or 1 as *a is below,
  * equal to or above *b (ascending order). */
 int ps_compare_u32(const void *a, const void *b);
+
+/* The k-th smallest (0-based, k < n) of x #n, in expected O(n): Hoare
+ * partition around the middle element.  Reorders x. */
+double ps_select_kth(double *x, size_t n, size_t k);
 
 #endif

@@ -1,10 +1,12 @@
 /* test_sort_util.c: the shared qsort / bsearch comparison (sort_util.h),
- * including values whose difference overflows an int. */
+ * including values whose difference overflows an int, and the selection
+ * of the k-th smallest value against a sort, with ties. */
 #include "sort_util.h"
 #include "testlib.h"
 
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 static void test_compare_u32_orders_full_range(void) {
     uint32_t v[6] = {UINT32_MAX, 0, 7, 0x80000000u, 7, 1};
@@ -20,4 +22,27 @@ static void test_compare_u32_orders_full_range(void) {
     CHECK(bsearch(&missing, v, 6, sizeof *v, ps_compare_u32) == NULL);
 }
 
-PS_TEST_MAIN(TEST(test_compare_u32_orders_full_range))
+static int compare_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void test_select_kth_matches_sort(void) {
+    enum { N = 101 };
+    double values[N], sorted[N], work[N];
+    unsigned state = 12345;
+    for (int i = 0; i < N; i++) {
+        state = state * 1103515245u + 12345u;
+        values[i] = (double)((state >> 16) % 40); /* many ties */
+    }
+    memcpy(sorted, values, sizeof values);
+    qsort(sorted, N, sizeof *sorted, compare_double);
+    for (size_t k = 0; k < N; k++) {
+        memcpy(work, values, sizeof values);
+        CHECK_MSG(ps_select_kth(work, N, k) == sorted[k], "k = %zu", k);
+    }
+    double one = 3.5;
+    CHECK(ps_select_kth(&one, 1, 0) == 3.5);
+}
+
+PS_TEST_MAIN(TEST(test_compare_u32_orders_full_range), TEST(test_select_kth_matches_sort))
