@@ -1,14 +1,17 @@
 /*
  * crease_split.c: supernodes cut along closed concave creases
- * (crease_split.h).  Three breadth-first passes over the kNN graph: the
- * pieces off creases, then the points left over joining the nearest kept
- * piece; then the supernodes are rebuilt.  O(E), deterministic.
+ * (crease_split.h).  One selection for the crease threshold, then
+ * breadth-first passes over the kNN graph: the pieces off creases, then
+ * the points left over joining the nearest kept piece; then the
+ * supernodes are rebuilt.  O(E), deterministic.
  */
 #include "crease_split.h"
 
 #include "crease.h"
 #include "persistence.h"
+#include "sort_util.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -127,6 +130,21 @@ static int work_alloc(split_work *w, size_t n, int m) {
            w->whole && w->queue;
 }
 
+/* The strength that puts a point on a crease: PS_CREASE_SPLIT_STRENGTH x
+ * the mean angular term, raised to the strength of the point at the
+ * PS_CREASE_SPLIT_MAX_POINTS quantile from the top when more points than
+ * that pass it (noise).  0 when out of memory. */
+static int crease_threshold(const ps_crease_points *creases, size_t n, double *threshold) {
+    double *copy = malloc(n * sizeof *copy);
+    if (!copy) return 0;
+    memcpy(copy, creases->strength, n * sizeof *copy);
+    size_t rank = (size_t)((1.0 - PS_CREASE_SPLIT_MAX_POINTS) * (double)(n - 1));
+    double top = ps_select_kth(copy, n, rank);
+    free(copy);
+    *threshold = fmax(PS_CREASE_SPLIT_STRENGTH * creases->mean, top);
+    return 1;
+}
+
 ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points *creases,
                                       const double *f, ps_supernodes *sn, ps_error *err) {
     if (g->n == 0) return PS_OK;
@@ -136,7 +154,11 @@ ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points 
         work_free(&w);
         return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
     }
-    double crease = PS_CREASE_SPLIT_STRENGTH * creases->mean;
+    double crease = 0;
+    if (creases->mean >= PS_CREASE_FLAT && !crease_threshold(creases, g->n, &crease)) {
+        work_free(&w);
+        return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
+    }
     for (size_t p = 0; p < g->n; p++)
         w.on_crease[p] = creases->mean >= PS_CREASE_FLAT && creases->strength[p] >= crease;
     label_pieces(&w);

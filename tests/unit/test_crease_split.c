@@ -3,7 +3,9 @@
  * covering the star of star_fixture.h splits along the six closed creases
  * where the arms meet the sphere into the seven true parts, each new
  * supernode represented by its largest f and keeping is_minimum; a sphere,
- * with no crease, stays one supernode; the answer is the same on every run.
+ * with no crease, stays one supernode; the answer is the same on every run;
+ * noise that puts most points over the mean angular term does not shatter
+ * the star (only the strongest points count as crease points).
  */
 #include "crease_split.h"
 #include "normals.h"
@@ -124,5 +126,35 @@ static void test_deterministic(void) {
     ps_star_free(&s);
 }
 
+/* Noise as the crease split sees it: the star's crease points keep their
+ * strength, and every point off its creases but one in four is raised to
+ * between 1 and 1.5 times the mean angular term (75% of the surface would
+ * pass the mean test).  Only the strongest PS_CREASE_SPLIT_MAX_POINTS
+ * count, and the star still splits into its seven parts. */
+static void test_noise_does_not_shatter(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    ps_supernodes sn = {0};
+    double *f = NULL;
+    ps_crease_points creases = {malloc(s.n * sizeof(double)), 0};
+    REQUIRE(creases.strength && whole_supernode(s.n, s.points, &sn, &f));
+    ps_crease_strengths(&s.graph, s.points, s.normals, &creases);
+    size_t raised = 0;
+    for (size_t p = 0; p < s.n; p++) {
+        if (creases.strength[p] >= creases.mean || p % 4 == 0) continue;
+        creases.strength[p] = creases.mean * (1.0 + 0.5 * (double)(p % 97) / 97.0);
+        raised++;
+    }
+    CHECK(raised > s.n / 2);
+    ps_error err = {0};
+    CHECK(ps_supernodes_split_creases(&s.graph, &creases, f, &sn, &err) == PS_OK);
+    CHECK_MSG(sn.m == PS_STAR_PARTS, "%d supernodes", sn.m);
+    double pure = purity(&s, &sn);
+    CHECK_MSG(pure > 0.95, "purity %.3f", pure);
+    ps_supernodes_free(&sn);
+    free(creases.strength), free(f);
+    ps_star_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_star_splits_into_its_parts), TEST(test_sphere_stays_whole),
-             TEST(test_deterministic))
+             TEST(test_deterministic), TEST(test_noise_does_not_shatter))
