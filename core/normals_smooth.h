@@ -21,7 +21,9 @@
 
 /* PSB dev mean 1 - RI of method auto by the noise added (bench_quality
  * --noise F, F in mean mesh edge lengths), without -> with smoothing,
- * before the patch merge (patch_merge.h; with it 0.25: 0.236 -> 0.138):
+ * before the patch merge and the crease split's cap on crease points
+ * (patch_merge.h, crease_split.h; with both 0.1: 0.150 -> 0.149, 0.25:
+ * 0.173 -> 0.140, 0.5: 0.217 -> 0.166, 1: 0.259 -> 0.260):
  * F 0: 0.1158 -> 0.1158, 0.1: 0.167 -> 0.167, 0.25: 0.236 -> 0.142,
  * 0.5: 0.256 -> 0.176, 1: 0.264 -> 0.286 (the surface is lost at that
  * noise: method paper 0.314).  A floor of 0.10 instead: 0.1 0.181, 0.25
