@@ -19,32 +19,35 @@ static double *normal_sums(const ps_patch_merge_input *in, const int *group) {
     return sum;
 }
 
-/* The neighbour of segment a with the most boundary edges (ties: the
- * lowest id), or -1. */
-static int widest_neighbour(const ps_segment_graph *sg, int a) {
-    int best = -1;
-    long best_edges = 0;
+/* widest #n_groups out: each segment's neighbour with the most boundary
+ * edges (ties: the lowest id), or -1; edges #n_groups scratch.  One pass
+ * over the records. */
+static void widest_neighbours(const ps_segment_graph *sg, int *widest, long *edges) {
+    for (int a = 0; a < sg->n_groups; a++) widest[a] = -1, edges[a] = 0;
     for (size_t i = 0; i < sg->count; i++) {
         const ps_boundary *r = &sg->list[i];
-        int other = r->a == a ? r->b : r->b == a ? r->a : -1;
-        if (other >= 0 && (r->edges > best_edges || (r->edges == best_edges && other < best)))
-            best = other, best_edges = r->edges;
+        int ends[2] = {r->a, r->b};
+        for (int k = 0; k < 2; k++) {
+            int a = ends[k], other = ends[1 - k];
+            if (r->edges > edges[a] || (r->edges == edges[a] && other < widest[a]))
+                widest[a] = other, edges[a] = r->edges;
+        }
     }
-    return best;
 }
 
-/* The flattest surviving segment over the threshold that has a neighbour
- * to merge into (*into), or -1. */
-static int flattest_patch(const ps_segment_graph *sg, const double *sum, int *into) {
+/* The flattest surviving segment over the threshold whose widest
+ * neighbour (*into) is no smaller, or -1. */
+static int flattest_patch(const ps_segment_graph *sg, const double *sum, int *widest,
+                          long *edges, int *into) {
+    widest_neighbours(sg, widest, edges);
     int best = -1;
     double best_flatness = PS_PATCH_MERGE_FLATNESS;
     for (int a = 0; a < sg->n_groups; a++) {
         if (sg->alias[a] != a || sg->size[a] == 0) continue;
         const double *s = sum + 3 * a;
         double flatness = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / (double)sg->size[a];
-        if (flatness <= best_flatness) continue;
-        int b = widest_neighbour(sg, a);
-        if (b < 0 || sg->size[b] < sg->size[a]) continue;
+        int b = widest[a];
+        if (flatness <= best_flatness || b < 0 || sg->size[b] < sg->size[a]) continue;
         best = a, best_flatness = flatness, *into = b;
     }
     return best;
@@ -57,15 +60,19 @@ ps_status ps_patch_merge(const ps_patch_merge_input *in, int *group_of_point,
     ps_segment_graph sg;
     ps_status st = ps_segment_graph_build(&sg, in->graph, in->f, group_of_point, in->n_groups,
                                           NULL, NULL, err);
+    size_t m = (size_t)(in->n_groups > 0 ? in->n_groups : 1);
     double *sum = st == PS_OK ? normal_sums(in, group_of_point) : NULL;
-    if (st == PS_OK && !sum) st = ps_fail(err, PS_ERR_NOMEM, "out of memory (patch merge)");
-    for (int a, b; st == PS_OK && (a = flattest_patch(&sg, sum, &b)) >= 0;) {
+    int *widest = malloc(m * sizeof *widest);
+    long *edges = malloc(m * sizeof *edges);
+    if (st == PS_OK && (!sum || !widest || !edges))
+        st = ps_fail(err, PS_ERR_NOMEM, "out of memory (patch merge)");
+    for (int a, b; st == PS_OK && (a = flattest_patch(&sg, sum, widest, edges, &b)) >= 0;) {
         if (!ps_segment_graph_merge(&sg, a, b, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (patch merge)");
         for (int i = 0; i < 3; i++) sum[3 * b + i] += sum[3 * a + i];
     }
     if (st == PS_OK) ps_segment_graph_apply(&sg, group_of_point, in->graph->n, group_of_leaf);
     ps_segment_graph_free(&sg);
-    free(sum);
+    free(sum), free(widest), free(edges);
     return st;
 }
