@@ -1,6 +1,12 @@
 /*
  * boundary_cut.c: boundaries between adjacent segments moved onto minimum
- * cuts along concave creases (boundary_cut.h).
+ * cuts along concave creases (boundary_cut.h).  This file is the driver:
+ * the state's set-up, the edge capacities, the adjacent pairs and their
+ * order, each pair's cut (undone if a segment lost its last sink point),
+ * and the supernodes reassigned at the end.  A pair's boundary, band and
+ * flow network are in boundary_cut_band.c, the keep-largest-piece search
+ * in boundary_cut_pieces.c, the state they share in boundary_cut_context.h
+ * (private to these three files).
  *
  * Per pair (A, B) the work follows the band, not the segments:
  *   - the shared boundary comes from the pair's boundary points found once
@@ -22,75 +28,19 @@
  * when a sink point lies in the band.  Every scratch array is sized once.
  */
 #include "boundary_cut.h"
+#include "boundary_cut_context.h"
 
 #include "crease.h"
 #include "dijkstra.h"
 #include "maxflow.h"
-#include "sort_util.h"
 
 #include <math.h>
 #include <stdlib.h>
-
-#define NOT_IN_BAND UINT32_MAX
-#define NO_MOVE SIZE_MAX
 
 typedef struct pair {
     int a, b;             /* a < b */
     size_t small, large;  /* sizes of the smaller and larger segment */
 } pair;
-
-/* A point on the boundary between segments a < b at the start. */
-typedef struct boundary_entry {
-    int a, b;
-    uint32_t point;
-} boundary_entry;
-
-/* Points moved into each segment by the cuts so far: one list per segment,
- * linked through next, newest first. */
-typedef struct move_log {
-    uint32_t *point;  /* #count */
-    size_t *next;     /* #count the segment's previous entry, or NO_MOVE */
-    size_t *head;     /* #groups newest entry of each segment, or NO_MOVE */
-    size_t count, capacity;
-} move_log;
-
-typedef struct cut_context {
-    const ps_boundary_cut_input *in;
-    int *group;                /* #P in/out */
-    uint32_t *label;           /* #P+1 group as uint32_t, the ball's region labels */
-    size_t *size;              /* #groups points of each segment, kept current */
-    size_t *sinks_in;          /* #groups sink points of each segment, kept current */
-    double *capacity;          /* #E cut capacity of every graph arc */
-    unsigned char *is_sink;    /* #P */
-    double mean_edge;          /* mean Euclidean kNN edge length */
-    ps_graph geo;              /* #P+1 vertices: the graph, Euclidean lengths, and a
-                                * source vertex whose row is the pair's boundary */
-    ps_dijkstra *dijkstra;     /* for #P+1 vertices */
-    uint32_t stamp;            /* bumped for each ball, boundary and piece search */
-    uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
-    uint32_t *seen;            /* #P stamp of the boundary candidates checked */
-    uint32_t *visited;         /* #P stamp of the points a piece search reached */
-    double *dist;              /* #P+1 INFINITY outside a pair's ball */
-    uint32_t *reached;         /* #P+1 */
-    boundary_entry *initial;   /* #I initial boundary points, sorted by (a, b, point) */
-    size_t n_initial;
-    move_log moves;
-    uint32_t *band_of;         /* #P band index of each point, or NOT_IN_BAND */
-    uint32_t *band;            /* #P band points, increasing */
-    int *old_group;            /* #P group of each band point before the cut */
-    double *tie_source;        /* #P */
-    double *tie_sink;          /* #P */
-    size_t *net_offsets;       /* #P+3 */
-    uint32_t *net_heads;       /* #E+4#P */
-    double *net_capacity;      /* #E+4#P */
-    unsigned char *side;       /* #P+2 */
-    ps_maxflow_workspace *flow_space;  /* reused by every pair's max flow */
-    int *piece;                /* #P piece of each band point of the segment searched */
-    uint32_t *piece_start;     /* #P first band index of each piece (its lowest point) */
-    size_t *piece_size;        /* #P */
-    unsigned char *anchored;   /* #P 1 for a piece with a neighbour outside the band */
-    uint32_t *queue;           /* #P */
-} cut_context;
 
 static double distance3(const double *p, const double *q) {
     double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
@@ -123,7 +73,7 @@ static void edge_capacities(cut_context *cx) {
 }
 
 /* Segment of p becomes g, keeping the per-segment counts. */
-static void set_group(cut_context *cx, uint32_t p, int g) {
+void ps_bc_set_group(cut_context *cx, uint32_t p, int g) {
     int old = cx->group[p];
     if (old == g) return;
     cx->size[old]--;
@@ -150,271 +100,14 @@ static int log_move(move_log *log, uint32_t p, int g) {
     return 0;
 }
 
-static int in_pair(int g, int a, int b) {
-    return g == a || g == b;
-}
-
-/* p joins the boundary row (geo's last) if it lies in a or b next to the
- * other one; each point is checked once per pair. */
-static void consider(cut_context *cx, uint32_t p, int a, int b, size_t *n_sources) {
-    const ps_graph *g = cx->in->graph;
-    if (cx->seen[p] == cx->stamp) return;
-    cx->seen[p] = cx->stamp;
-    if (!in_pair(cx->group[p], a, b)) return;
-    int other = cx->group[p] == a ? b : a;
-    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-        if (cx->group[g->neighbors[e]] == other) {
-            cx->geo.neighbors[g->offsets[g->n] + (*n_sources)++] = p;
-            return;
-        }
-}
-
-/* First initial entry of the pair (a, b). */
-static size_t first_initial(const cut_context *cx, int a, int b) {
-    size_t lo = 0, hi = cx->n_initial;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        const boundary_entry *m = &cx->initial[mid];
-        if (m->a < a || (m->a == a && m->b < b)) lo = mid + 1;
-        else hi = mid;
-    }
-    return lo;
-}
-
-/* The current boundary of (a, b) becomes geo's source row; returns its
- * size.  A point is on it now only if it was at the start or it or a
- * neighbour has moved into a or b since. */
-static size_t boundary_points(cut_context *cx, int a, int b) {
-    const ps_graph *g = cx->in->graph;
-    size_t n_sources = 0;
-    cx->stamp++;
-    for (size_t i = first_initial(cx, a, b);
-         i < cx->n_initial && cx->initial[i].a == a && cx->initial[i].b == b; i++)
-        consider(cx, cx->initial[i].point, a, b, &n_sources);
-    int ends[2] = {a, b};
-    for (int k = 0; k < 2; k++)
-        for (size_t m = cx->moves.head[ends[k]]; m != NO_MOVE; m = cx->moves.next[m]) {
-            uint32_t p = cx->moves.point[m];
-            consider(cx, p, a, b, &n_sources);
-            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-                consider(cx, g->neighbors[e], a, b, &n_sources);
-        }
-    cx->geo.offsets[g->n + 1] = g->offsets[g->n] + n_sources;
-    return n_sources;
-}
-
-/* dist of the points of a and b within reach of the boundary (the extent
- * from which the band's width is capped); returns the reached count, the
- * boundary row's vertex first. */
-static size_t boundary_distances(cut_context *cx, int a, int b, double reach) {
-    cx->region_mark[a] = cx->region_mark[b] = cx->stamp;
-    ps_dijkstra_limits limits = {.radius = reach, .label = cx->label,
-                                 .mark = cx->region_mark, .stamp = cx->stamp};
-    return ps_dijkstra_ball(cx->dijkstra, &cx->geo, (uint32_t)cx->in->graph->n, &limits,
-                            cx->dist, cx->reached);
-}
-
-/* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
- * most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths.  A segment with points
- * beyond reach has the extent reach. */
-static double band_width(const cut_context *cx, size_t n_reached, int a, int b, double reach) {
-    double extent_a = 0, extent_b = 0;
-    size_t reached_a = 0;
-    for (size_t i = 1; i < n_reached; i++) {
-        uint32_t p = cx->reached[i];
-        if (cx->group[p] == a) extent_a = fmax(extent_a, cx->dist[p]), reached_a++;
-        else extent_b = fmax(extent_b, cx->dist[p]);
-    }
-    if (reached_a < cx->size[a]) extent_a = fmax(extent_a, reach);
-    if (n_reached - 1 - reached_a < cx->size[b]) extent_b = fmax(extent_b, reach);
-    return fmin(PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b),
-                PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
-}
-
-/* One plus the capacities of all arcs within a and b, in point order. */
-static double pair_capacity(const cut_context *cx, int a, int b) {
-    const ps_graph *g = cx->in->graph;
-    double total = 1;
-    for (size_t p = 0; p < g->n; p++) {
-        if (!in_pair(cx->group[p], a, b)) continue;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            if (in_pair(cx->group[g->neighbors[e]], a, b)) total += cx->capacity[e];
-    }
-    return total;
-}
-
-/* Ties of band point i to the terminals: its arcs to a and b outside the
- * band, plus infinite for a sink point. */
-static void tie_band_point(cut_context *cx, size_t i, int a, int b, double infinite) {
-    const ps_graph *g = cx->in->graph;
-    uint32_t p = cx->band[i];
-    int own_a = cx->group[p] == a;
-    cx->tie_source[i] = cx->is_sink[p] && own_a ? infinite : 0;
-    cx->tie_sink[i] = cx->is_sink[p] && !own_a ? infinite : 0;
-    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-        uint32_t q = g->neighbors[e];
-        if (!in_pair(cx->group[q], a, b) || cx->band_of[q] != NOT_IN_BAND) continue;
-        if (cx->group[q] == a) cx->tie_source[i] += cx->capacity[e];
-        else cx->tie_sink[i] += cx->capacity[e];
-    }
-}
-
-/* Band points (reached within width) in point order, ties to the
- * terminals; returns the count. */
-static size_t mark_band(cut_context *cx, size_t n_reached, double width, int a, int b) {
-    size_t nb = 0;
-    for (size_t i = 1; i < n_reached; i++)
-        if (cx->dist[cx->reached[i]] <= width) cx->band[nb++] = cx->reached[i];
-    qsort(cx->band, nb, sizeof *cx->band, ps_compare_u32);
-    int has_sink = 0;
-    for (size_t i = 0; i < nb; i++) {
-        cx->band_of[cx->band[i]] = (uint32_t)i;
-        cx->old_group[i] = cx->group[cx->band[i]];
-        has_sink |= cx->is_sink[cx->band[i]];
-    }
-    double infinite = has_sink ? pair_capacity(cx, a, b) : 0;
-    for (size_t i = 0; i < nb; i++) tie_band_point(cx, i, a, b, infinite);
-    return nb;
-}
-
-static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacity) {
-    cx->net_heads[*arcs] = head;
-    cx->net_capacity[(*arcs)++] = capacity;
-}
-
-/* The flow network: band nodes 0..nb-1, source nb, sink nb+1.  Returns 0
- * when a terminal has no tie (nothing to cut). */
-static int build_network(cut_context *cx, size_t nb, ps_flow_graph *net) {
-    const ps_graph *g = cx->in->graph;
-    uint32_t source = (uint32_t)nb, sink = (uint32_t)nb + 1;
-    size_t arcs = 0;
-    for (size_t i = 0; i < nb; i++) {
-        uint32_t p = cx->band[i];
-        cx->net_offsets[i] = arcs;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            uint32_t u = cx->band_of[g->neighbors[e]];
-            if (u != NOT_IN_BAND) add_arc(cx, &arcs, u, cx->capacity[e]);
-        }
-        if (cx->tie_source[i] > 0) add_arc(cx, &arcs, source, cx->tie_source[i]);
-        if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->tie_sink[i]);
-    }
-    cx->net_offsets[nb] = arcs;
-    for (uint32_t i = 0; i < nb; i++)
-        if (cx->tie_source[i] > 0) add_arc(cx, &arcs, i, cx->tie_source[i]);
-    cx->net_offsets[nb + 1] = arcs;
-    if (arcs == cx->net_offsets[nb]) return 0;
-    for (uint32_t i = 0; i < nb; i++)
-        if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, i, cx->tie_sink[i]);
-    cx->net_offsets[nb + 2] = arcs;
-    if (arcs == cx->net_offsets[nb + 1]) return 0;
-    *net = (ps_flow_graph){.n = nb + 2, .offsets = cx->net_offsets, .heads = cx->net_heads,
-                           .capacity = cx->net_capacity};
-    return 1;
-}
-
-/* Pieces of the band points labelled x (connected within the band, in
- * order of their lowest point); a piece with an x neighbour outside the
- * band is anchored.  Returns the count. */
-static int band_pieces(cut_context *cx, size_t nb, int x) {
-    const ps_graph *g = cx->in->graph;
-    int n_pieces = 0;
-    for (size_t i = 0; i < nb; i++) cx->piece[i] = -1;
-    for (uint32_t start = 0; start < nb; start++) {
-        if (cx->piece[start] >= 0 || cx->group[cx->band[start]] != x) continue;
-        size_t head = 0, tail = 0;
-        cx->piece[start] = n_pieces;
-        cx->anchored[n_pieces] = 0;
-        cx->queue[tail++] = start;
-        while (head < tail) {
-            uint32_t p = cx->band[cx->queue[head++]];
-            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-                uint32_t q = g->neighbors[e], u = cx->band_of[q];
-                if (cx->group[q] != x) continue;
-                if (u == NOT_IN_BAND) cx->anchored[n_pieces] = 1;
-                else if (cx->piece[u] < 0) cx->piece[u] = n_pieces, cx->queue[tail++] = u;
-            }
-        }
-        cx->piece_start[n_pieces] = start;
-        cx->piece_size[n_pieces++] = tail;
-    }
-    return n_pieces;
-}
-
-/* Breadth first over the unvisited points labelled x from start, stopped
- * once it holds more than cap points.  1 if that piece comes before the
- * loose piece of cap points whose lowest point is loose_start (larger, or
- * as large with a lower point); else adds its size to *explored. */
-static int comes_first(cut_context *cx, uint32_t start, int x, size_t cap,
-                       uint32_t loose_start, size_t *explored) {
-    const ps_graph *g = cx->in->graph;
-    size_t head = 0, tail = 0;
-    uint32_t lowest = start;
-    cx->visited[start] = cx->stamp;
-    cx->queue[tail++] = start;
-    while (head < tail) {
-        uint32_t p = cx->queue[head++];
-        if (p < lowest) lowest = p;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            uint32_t q = g->neighbors[e];
-            if (cx->group[q] != x || cx->visited[q] == cx->stamp) continue;
-            cx->visited[q] = cx->stamp;
-            cx->queue[tail++] = q;
-            if (tail > cap) return 1;
-        }
-    }
-    *explored += tail;
-    return tail == cap && lowest < loose_start;
-}
-
-/* Whether a piece of x holding points outside the band comes before the
- * loose piece best (x's pieces, whole, ordered by size, then lowest
- * point).  Those joined to the band are searched first; the rest, not
- * joined to it, only if their points could make one as large. */
-static int anchored_piece_first(cut_context *cx, size_t nb, int x, int best, size_t loose) {
-    size_t cap = cx->piece_size[best], explored = 0;
-    uint32_t loose_start = cx->band[cx->piece_start[best]];
-    cx->stamp++;
-    for (size_t i = 0; i < nb; i++)
-        if (cx->piece[i] >= 0 && !cx->anchored[cx->piece[i]]) cx->visited[cx->band[i]] = cx->stamp;
-    for (size_t i = 0; i < nb; i++) {
-        uint32_t p = cx->band[i];
-        if (cx->piece[i] < 0 || !cx->anchored[cx->piece[i]] || cx->visited[p] == cx->stamp)
-            continue;
-        if (comes_first(cx, p, x, cap, loose_start, &explored)) return 1;
-    }
-    if (cx->size[x] - loose - explored < cap) return 0;
-    for (uint32_t p = 0; p < cx->in->graph->n; p++)
-        if (cx->group[p] == x && cx->visited[p] != cx->stamp &&
-            comes_first(cx, p, x, cap, loose_start, &explored))
-            return 1;
-    return 0;
-}
-
-/* Pieces of x the cut made (wholly inside the band), except the largest
- * of all x's pieces (ties: the lowest point), become y. */
-static void keep_largest_piece(cut_context *cx, size_t nb, int x, int y) {
-    int n_pieces = band_pieces(cx, nb, x), best = -1;
-    size_t loose = 0;
-    for (int k = 0; k < n_pieces; k++) {
-        if (cx->anchored[k]) continue;
-        loose += cx->piece_size[k];
-        if (best < 0 || cx->piece_size[k] > cx->piece_size[best]) best = k;
-    }
-    if (best < 0) return;
-    if (anchored_piece_first(cx, nb, x, best, loose)) best = -1;
-    for (size_t i = 0; i < nb; i++)
-        if (cx->piece[i] >= 0 && cx->piece[i] != best && !cx->anchored[cx->piece[i]])
-            set_group(cx, cx->band[i], y);
-}
-
 /* Relabels the band by the cut, keeps both segments whole, undoes it all
  * if a segment lost its last sink point. */
 static void apply_cut(cut_context *cx, size_t nb, int a, int b) {
-    for (size_t i = 0; i < nb; i++) set_group(cx, cx->band[i], cx->side[i] ? a : b);
-    keep_largest_piece(cx, nb, a, b);
-    keep_largest_piece(cx, nb, b, a);
+    for (size_t i = 0; i < nb; i++) ps_bc_set_group(cx, cx->band[i], cx->side[i] ? a : b);
+    ps_bc_keep_largest_piece(cx, nb, a, b);
+    ps_bc_keep_largest_piece(cx, nb, b, a);
     if (cx->sinks_in[a] > 0 && cx->sinks_in[b] > 0) return;
-    for (size_t i = 0; i < nb; i++) set_group(cx, cx->band[i], cx->old_group[i]);
+    for (size_t i = 0; i < nb; i++) ps_bc_set_group(cx, cx->band[i], cx->old_group[i]);
 }
 
 /* Logs the band points that changed segment; clears the band and ball. */
@@ -431,14 +124,14 @@ static int finish_pair(cut_context *cx, size_t nb, size_t n_reached) {
 }
 
 static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
-    if (boundary_points(cx, a, b) == 0) return PS_OK;
+    if (ps_bc_boundary_points(cx, a, b) == 0) return PS_OK;
     double reach = PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge / PS_BOUNDARY_CUT_BAND;
-    size_t n_reached = boundary_distances(cx, a, b, reach);
-    size_t nb = mark_band(cx, n_reached, band_width(cx, n_reached, a, b, reach), a, b);
+    size_t n_reached = ps_bc_boundary_distances(cx, a, b, reach);
+    size_t nb = ps_bc_mark_band(cx, n_reached, ps_bc_band_width(cx, n_reached, a, b, reach), a, b);
     ps_flow_graph net;
     double flow;
     ps_status st = PS_OK;
-    if (build_network(cx, nb, &net)) {
+    if (ps_bc_build_network(cx, nb, &net)) {
         st = ps_maxflow_with(cx->flow_space, &net, (uint32_t)nb, (uint32_t)nb + 1, &flow,
                              cx->side, err);
         if (st == PS_OK) apply_cut(cx, nb, a, b);

@@ -1,0 +1,175 @@
+/*
+ * boundary_cut_band.c: one pair's band for the boundary cut
+ * (boundary_cut.h): its current shared boundary, the distances from it,
+ * the band's width, the band points with their ties to the terminals, and
+ * the flow network the minimum cut runs on.  The state is the driver's
+ * cut_context (boundary_cut_context.h, private).
+ */
+#include "boundary_cut_context.h"
+
+#include "sort_util.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static int in_pair(int g, int a, int b) {
+    return g == a || g == b;
+}
+
+/* p joins the boundary row (geo's last) if it lies in a or b next to the
+ * other one; each point is checked once per pair. */
+static void consider(cut_context *cx, uint32_t p, int a, int b, size_t *n_sources) {
+    const ps_graph *g = cx->in->graph;
+    if (cx->seen[p] == cx->stamp) return;
+    cx->seen[p] = cx->stamp;
+    if (!in_pair(cx->group[p], a, b)) return;
+    int other = cx->group[p] == a ? b : a;
+    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
+        if (cx->group[g->neighbors[e]] == other) {
+            cx->geo.neighbors[g->offsets[g->n] + (*n_sources)++] = p;
+            return;
+        }
+}
+
+/* First initial entry of the pair (a, b). */
+static size_t first_initial(const cut_context *cx, int a, int b) {
+    size_t lo = 0, hi = cx->n_initial;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        const boundary_entry *m = &cx->initial[mid];
+        if (m->a < a || (m->a == a && m->b < b)) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+
+/* The current boundary of (a, b) becomes geo's source row; returns its
+ * size.  A point is on it now only if it was at the start or it or a
+ * neighbour has moved into a or b since. */
+size_t ps_bc_boundary_points(cut_context *cx, int a, int b) {
+    const ps_graph *g = cx->in->graph;
+    size_t n_sources = 0;
+    cx->stamp++;
+    for (size_t i = first_initial(cx, a, b);
+         i < cx->n_initial && cx->initial[i].a == a && cx->initial[i].b == b; i++)
+        consider(cx, cx->initial[i].point, a, b, &n_sources);
+    int ends[2] = {a, b};
+    for (int k = 0; k < 2; k++)
+        for (size_t m = cx->moves.head[ends[k]]; m != NO_MOVE; m = cx->moves.next[m]) {
+            uint32_t p = cx->moves.point[m];
+            consider(cx, p, a, b, &n_sources);
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
+                consider(cx, g->neighbors[e], a, b, &n_sources);
+        }
+    cx->geo.offsets[g->n + 1] = g->offsets[g->n] + n_sources;
+    return n_sources;
+}
+
+/* dist of the points of a and b within reach of the boundary (the extent
+ * from which the band's width is capped); returns the reached count, the
+ * boundary row's vertex first. */
+size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach) {
+    cx->region_mark[a] = cx->region_mark[b] = cx->stamp;
+    ps_dijkstra_limits limits = {.radius = reach, .label = cx->label,
+                                 .mark = cx->region_mark, .stamp = cx->stamp};
+    return ps_dijkstra_ball(cx->dijkstra, &cx->geo, (uint32_t)cx->in->graph->n, &limits,
+                            cx->dist, cx->reached);
+}
+
+/* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
+ * most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths.  A segment with points
+ * beyond reach has the extent reach. */
+double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, double reach) {
+    double extent_a = 0, extent_b = 0;
+    size_t reached_a = 0;
+    for (size_t i = 1; i < n_reached; i++) {
+        uint32_t p = cx->reached[i];
+        if (cx->group[p] == a) extent_a = fmax(extent_a, cx->dist[p]), reached_a++;
+        else extent_b = fmax(extent_b, cx->dist[p]);
+    }
+    if (reached_a < cx->size[a]) extent_a = fmax(extent_a, reach);
+    if (n_reached - 1 - reached_a < cx->size[b]) extent_b = fmax(extent_b, reach);
+    return fmin(PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b),
+                PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
+}
+
+/* One plus the capacities of all arcs within a and b, in point order. */
+static double pair_capacity(const cut_context *cx, int a, int b) {
+    const ps_graph *g = cx->in->graph;
+    double total = 1;
+    for (size_t p = 0; p < g->n; p++) {
+        if (!in_pair(cx->group[p], a, b)) continue;
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
+            if (in_pair(cx->group[g->neighbors[e]], a, b)) total += cx->capacity[e];
+    }
+    return total;
+}
+
+/* Ties of band point i to the terminals: its arcs to a and b outside the
+ * band, plus infinite for a sink point. */
+static void tie_band_point(cut_context *cx, size_t i, int a, int b, double infinite) {
+    const ps_graph *g = cx->in->graph;
+    uint32_t p = cx->band[i];
+    int own_a = cx->group[p] == a;
+    cx->tie_source[i] = cx->is_sink[p] && own_a ? infinite : 0;
+    cx->tie_sink[i] = cx->is_sink[p] && !own_a ? infinite : 0;
+    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+        uint32_t q = g->neighbors[e];
+        if (!in_pair(cx->group[q], a, b) || cx->band_of[q] != NOT_IN_BAND) continue;
+        if (cx->group[q] == a) cx->tie_source[i] += cx->capacity[e];
+        else cx->tie_sink[i] += cx->capacity[e];
+    }
+}
+
+/* Band points (reached within width) in point order, ties to the
+ * terminals; returns the count. */
+size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b) {
+    size_t nb = 0;
+    for (size_t i = 1; i < n_reached; i++)
+        if (cx->dist[cx->reached[i]] <= width) cx->band[nb++] = cx->reached[i];
+    qsort(cx->band, nb, sizeof *cx->band, ps_compare_u32);
+    int has_sink = 0;
+    for (size_t i = 0; i < nb; i++) {
+        cx->band_of[cx->band[i]] = (uint32_t)i;
+        cx->old_group[i] = cx->group[cx->band[i]];
+        has_sink |= cx->is_sink[cx->band[i]];
+    }
+    double infinite = has_sink ? pair_capacity(cx, a, b) : 0;
+    for (size_t i = 0; i < nb; i++) tie_band_point(cx, i, a, b, infinite);
+    return nb;
+}
+
+static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacity) {
+    cx->net_heads[*arcs] = head;
+    cx->net_capacity[(*arcs)++] = capacity;
+}
+
+/* The flow network: band nodes 0..nb-1, source nb, sink nb+1.  Returns 0
+ * when a terminal has no tie (nothing to cut). */
+int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net) {
+    const ps_graph *g = cx->in->graph;
+    uint32_t source = (uint32_t)nb, sink = (uint32_t)nb + 1;
+    size_t arcs = 0;
+    for (size_t i = 0; i < nb; i++) {
+        uint32_t p = cx->band[i];
+        cx->net_offsets[i] = arcs;
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            uint32_t u = cx->band_of[g->neighbors[e]];
+            if (u != NOT_IN_BAND) add_arc(cx, &arcs, u, cx->capacity[e]);
+        }
+        if (cx->tie_source[i] > 0) add_arc(cx, &arcs, source, cx->tie_source[i]);
+        if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->tie_sink[i]);
+    }
+    cx->net_offsets[nb] = arcs;
+    for (uint32_t i = 0; i < nb; i++)
+        if (cx->tie_source[i] > 0) add_arc(cx, &arcs, i, cx->tie_source[i]);
+    cx->net_offsets[nb + 1] = arcs;
+    if (arcs == cx->net_offsets[nb]) return 0;
+    for (uint32_t i = 0; i < nb; i++)
+        if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, i, cx->tie_sink[i]);
+    cx->net_offsets[nb + 2] = arcs;
+    if (arcs == cx->net_offsets[nb + 1]) return 0;
+    *net = (ps_flow_graph){.n = nb + 2, .offsets = cx->net_offsets, .heads = cx->net_heads,
+                           .capacity = cx->net_capacity};
+    return 1;
+}

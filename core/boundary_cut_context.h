@@ -1,0 +1,119 @@
+/*
+ * boundary_cut_context.h: PRIVATE to the boundary cut, not part of the
+ * public API; only boundary_cut.c (the driver), boundary_cut_band.c (a
+ * pair's boundary, band and flow network) and boundary_cut_pieces.c (the
+ * keep-largest-piece search) include it.  The public interface is
+ * boundary_cut.h.
+ *
+ * It holds the state one ps_boundary_cut call shares between those files
+ * (every scratch array sized once, for #P points, #E graph arcs and
+ * #groups segments) and the functions one of them calls in another.
+ */
+#ifndef PS_BOUNDARY_CUT_CONTEXT_H
+#define PS_BOUNDARY_CUT_CONTEXT_H
+
+#include "boundary_cut.h"
+#include "dijkstra.h"
+#include "maxflow.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define NOT_IN_BAND UINT32_MAX
+#define NO_MOVE SIZE_MAX
+
+/* A point on the boundary between segments a < b at the start. */
+typedef struct boundary_entry {
+    int a, b;
+    uint32_t point;
+} boundary_entry;
+
+/* Points moved into each segment by the cuts so far: one list per segment,
+ * linked through next, newest first. */
+typedef struct move_log {
+    uint32_t *point;  /* #count */
+    size_t *next;     /* #count the segment's previous entry, or NO_MOVE */
+    size_t *head;     /* #groups newest entry of each segment, or NO_MOVE */
+    size_t count, capacity;
+} move_log;
+
+typedef struct cut_context {
+    const ps_boundary_cut_input *in;
+    int *group;                /* #P in/out */
+    uint32_t *label;           /* #P+1 group as uint32_t, the ball's region labels */
+    size_t *size;              /* #groups points of each segment, kept current */
+    size_t *sinks_in;          /* #groups sink points of each segment, kept current */
+    double *capacity;          /* #E cut capacity of every graph arc */
+    unsigned char *is_sink;    /* #P */
+    double mean_edge;          /* mean Euclidean kNN edge length */
+    ps_graph geo;              /* #P+1 vertices: the graph, Euclidean lengths, and a
+                                * source vertex whose row is the pair's boundary */
+    ps_dijkstra *dijkstra;     /* for #P+1 vertices */
+    uint32_t stamp;            /* bumped for each ball, boundary and piece search */
+    uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
+    uint32_t *seen;            /* #P stamp of the boundary candidates checked */
+    uint32_t *visited;         /* #P stamp of the points a piece search reached */
+    double *dist;              /* #P+1 INFINITY outside a pair's ball */
+    uint32_t *reached;         /* #P+1 */
+    boundary_entry *initial;   /* #I initial boundary points, sorted by (a, b, point) */
+    size_t n_initial;
+    move_log moves;
+    uint32_t *band_of;         /* #P band index of each point, or NOT_IN_BAND */
+    uint32_t *band;            /* #P band points, increasing */
+    int *old_group;            /* #P group of each band point before the cut */
+    double *tie_source;        /* #P */
+    double *tie_sink;          /* #P */
+    size_t *net_offsets;       /* #P+3 */
+    uint32_t *net_heads;       /* #E+4#P */
+    double *net_capacity;      /* #E+4#P */
+    unsigned char *side;       /* #P+2 */
+    ps_maxflow_workspace *flow_space;  /* reused by every pair's max flow */
+    int *piece;                /* #P piece of each band point of the segment searched */
+    uint32_t *piece_start;     /* #P first band index of each piece (its lowest point) */
+    size_t *piece_size;        /* #P */
+    unsigned char *anchored;   /* #P 1 for a piece with a neighbour outside the band */
+    uint32_t *queue;           /* #P */
+} cut_context;
+
+/* boundary_cut.c */
+
+/* Point p (< #P) joins segment g: group[p], label[p] and the per-segment
+ * size and sinks_in counts of cx are updated; nothing if p is in g. */
+void ps_bc_set_group(cut_context *cx, uint32_t p, int g);
+
+/* boundary_cut_band.c; a < b are the pair's segments throughout. */
+
+/* Writes the pair's current boundary points (in a or b, next to the other)
+ * as geo's source row (vertex #P), bumping cx->stamp.  Returns the row's
+ * size, 0 when the pair no longer touches. */
+size_t ps_bc_boundary_points(cut_context *cx, int a, int b);
+
+/* Ball Dijkstra from geo's source row within a and b, out to distance
+ * reach: fills dist for the reached points and reached[0..count) (the
+ * source vertex first).  Returns that count.  Call after
+ * ps_bc_boundary_points (it uses the stamp set there). */
+size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach);
+
+/* Band half-width from the n_reached ball of ps_bc_boundary_distances:
+ * PS_BOUNDARY_CUT_BAND x the smaller segment's extent (reach for a segment
+ * the ball did not cover), at most PS_BOUNDARY_CUT_MAX_EDGES x mean_edge. */
+double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, double reach);
+
+/* The reached points within width become band[0..nb) in point order, with
+ * band_of, old_group and the terminal ties tie_source / tie_sink
+ * (#nb each; infinite for a sink point).  Returns nb. */
+size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b);
+
+/* net: the band's flow network, #nb+2 nodes (band nodes 0..nb-1, source
+ * nb, sink nb+1), over cx's net_* arrays.  Returns 0 (net unset) when a
+ * terminal has no tie, so there is nothing to cut; else 1. */
+int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net);
+
+/* boundary_cut_pieces.c */
+
+/* Pieces of segment x the cut left wholly inside band[0..nb), except the
+ * largest of all x's pieces (ties: the lowest point), join segment y
+ * (through ps_bc_set_group). */
+void ps_bc_keep_largest_piece(cut_context *cx, size_t nb, int x, int y);
+
+#endif

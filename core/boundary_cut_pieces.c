@@ -1,0 +1,105 @@
+/*
+ * boundary_cut_pieces.c: after a pair's cut (boundary_cut.h), the pieces
+ * of a segment the cut left inside the band apart from the rest go to the
+ * other segment, except the segment's largest piece.  Pieces are found
+ * inside the band; only when one is loose does a search outside it,
+ * stopped once a piece is larger, tell whether an anchored piece is the
+ * largest.  The state is the driver's cut_context (boundary_cut_context.h,
+ * private).
+ */
+#include "boundary_cut_context.h"
+
+/* Pieces of the band points labelled x (connected within the band, in
+ * order of their lowest point); a piece with an x neighbour outside the
+ * band is anchored.  Returns the count. */
+static int band_pieces(cut_context *cx, size_t nb, int x) {
+    const ps_graph *g = cx->in->graph;
+    int n_pieces = 0;
+    for (size_t i = 0; i < nb; i++) cx->piece[i] = -1;
+    for (uint32_t start = 0; start < nb; start++) {
+        if (cx->piece[start] >= 0 || cx->group[cx->band[start]] != x) continue;
+        size_t head = 0, tail = 0;
+        cx->piece[start] = n_pieces;
+        cx->anchored[n_pieces] = 0;
+        cx->queue[tail++] = start;
+        while (head < tail) {
+            uint32_t p = cx->band[cx->queue[head++]];
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+                uint32_t q = g->neighbors[e], u = cx->band_of[q];
+                if (cx->group[q] != x) continue;
+                if (u == NOT_IN_BAND) cx->anchored[n_pieces] = 1;
+                else if (cx->piece[u] < 0) cx->piece[u] = n_pieces, cx->queue[tail++] = u;
+            }
+        }
+        cx->piece_start[n_pieces] = start;
+        cx->piece_size[n_pieces++] = tail;
+    }
+    return n_pieces;
+}
+
+/* Breadth first over the unvisited points labelled x from start, stopped
+ * once it holds more than cap points.  1 if that piece comes before the
+ * loose piece of cap points whose lowest point is loose_start (larger, or
+ * as large with a lower point); else adds its size to *explored. */
+static int comes_first(cut_context *cx, uint32_t start, int x, size_t cap,
+                       uint32_t loose_start, size_t *explored) {
+    const ps_graph *g = cx->in->graph;
+    size_t head = 0, tail = 0;
+    uint32_t lowest = start;
+    cx->visited[start] = cx->stamp;
+    cx->queue[tail++] = start;
+    while (head < tail) {
+        uint32_t p = cx->queue[head++];
+        if (p < lowest) lowest = p;
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            uint32_t q = g->neighbors[e];
+            if (cx->group[q] != x || cx->visited[q] == cx->stamp) continue;
+            cx->visited[q] = cx->stamp;
+            cx->queue[tail++] = q;
+            if (tail > cap) return 1;
+        }
+    }
+    *explored += tail;
+    return tail == cap && lowest < loose_start;
+}
+
+/* Whether a piece of x holding points outside the band comes before the
+ * loose piece best (x's pieces, whole, ordered by size, then lowest
+ * point).  Those joined to the band are searched first; the rest, not
+ * joined to it, only if their points could make one as large. */
+static int anchored_piece_first(cut_context *cx, size_t nb, int x, int best, size_t loose) {
+    size_t cap = cx->piece_size[best], explored = 0;
+    uint32_t loose_start = cx->band[cx->piece_start[best]];
+    cx->stamp++;
+    for (size_t i = 0; i < nb; i++)
+        if (cx->piece[i] >= 0 && !cx->anchored[cx->piece[i]]) cx->visited[cx->band[i]] = cx->stamp;
+    for (size_t i = 0; i < nb; i++) {
+        uint32_t p = cx->band[i];
+        if (cx->piece[i] < 0 || !cx->anchored[cx->piece[i]] || cx->visited[p] == cx->stamp)
+            continue;
+        if (comes_first(cx, p, x, cap, loose_start, &explored)) return 1;
+    }
+    if (cx->size[x] - loose - explored < cap) return 0;
+    for (uint32_t p = 0; p < cx->in->graph->n; p++)
+        if (cx->group[p] == x && cx->visited[p] != cx->stamp &&
+            comes_first(cx, p, x, cap, loose_start, &explored))
+            return 1;
+    return 0;
+}
+
+/* Pieces of x the cut made (wholly inside the band), except the largest
+ * of all x's pieces (ties: the lowest point), become y. */
+void ps_bc_keep_largest_piece(cut_context *cx, size_t nb, int x, int y) {
+    int n_pieces = band_pieces(cx, nb, x), best = -1;
+    size_t loose = 0;
+    for (int k = 0; k < n_pieces; k++) {
+        if (cx->anchored[k]) continue;
+        loose += cx->piece_size[k];
+        if (best < 0 || cx->piece_size[k] > cx->piece_size[best]) best = k;
+    }
+    if (best < 0) return;
+    if (anchored_piece_first(cx, nb, x, best, loose)) best = -1;
+    for (size_t i = 0; i < nb; i++)
+        if (cx->piece[i] >= 0 && cx->piece[i] != best && !cx->anchored[cx->piece[i]])
+            ps_bc_set_group(cx, cx->band[i], y);
+}
