@@ -8,7 +8,9 @@
  *                  ascent flow of f to its sinks; one supernode per sink;
  *   2. hierarchy:  recursive normalized-cut bisection of the supernodes;
  *   3. refinement: segments with a small feature size merge into a
- *                  neighbour.
+ *                  neighbour (method auto: then boundaries move onto
+ *                  creases, and uncreased boundaries and flat patches
+ *                  merge).
  * It knows no file format, no socket and no daemon thread: points in,
  * a ps_result out.  Everything here is reentrant; one call may use several
  * threads of its own (params.threads).
@@ -64,7 +66,8 @@ typedef enum ps_centrality_mode {
 
 typedef enum ps_method {
     PS_METHOD_AUTO = 0, /* the default: crease-aware metric (3-D), persistence,
-                           minima, crease split and merge (docs/method.md) */
+                           minima, crease split and merge, patch merge
+                           (docs/method.md) */
     PS_METHOD_PAPER     /* the published pipeline: Euclidean geodesics, every
                            sink a supernode, no minima, no f2 */
 } ps_method;
