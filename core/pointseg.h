@@ -184,6 +184,9 @@ typedef struct ps_result {
     int n_components;      /* connected components of the kNN graph */
     int normal_smoothing;  /* iterations the estimated normals were smoothed
                               (params.smooth_normals on a noisy scan; else 0) */
+    size_t n_outliers;     /* distinct points left out as stray (method auto:
+                              far from their neighbours' spacing); each takes
+                              the answers of its nearest kept neighbour */
 
     int n_supernodes;
     ps_supernode *supernodes;  /* #n_supernodes */

@@ -16,14 +16,15 @@
 #include "control.h"
 #include "crease.h"
 #include "crease_merge.h"
-#include "patch_merge.h"
 #include "crease_split.h"
 #include "dedup.h"
 #include "f2_split.h"
 #include "knn_graph.h"
 #include "ncut.h"
 #include "normals.h"
+#include "outliers.h"
 #include "parallel.h"
+#include "patch_merge.h"
 #include "pointseg.h"
 #include "refine.h"
 #include "result.h"
@@ -47,6 +48,7 @@ typedef struct pipeline {
     int n_components;
     double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
     int normal_smoothing;  /* iterations the normals were smoothed (normals.h) */
+    size_t n_outliers;     /* distinct points dropped as stray (outliers.h) */
     ps_crease_points creases; /* with normals: crease strengths of the #U points */
     double *f;             /* #U centrality */
     ps_supernodes sn;
@@ -87,15 +89,12 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
     return ps_params_check(p, err);
 }
 
-/* Distinct points; fails when fewer than k + 1 remain. */
-static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
+/* pl->points: the distinct points of pl->dedup (the input itself when
+ * every point is distinct); an earlier copy is freed. */
+static ps_status distinct_points(pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
-    ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
-    if (st != PS_OK) return st;
     size_t u = pl->dedup.n_unique;
-    if (u < (size_t)pl->params.k + 1)
-        return ps_fail(err, PS_ERR_INVALID,
-                       "need at least k + 1 = %d distinct points, got %zu", pl->params.k + 1, u);
+    if (pl->points != in->points) free(pl->points);
     if (u == in->n) {
         pl->points = (double *)in->points;
         return PS_OK;
@@ -106,6 +105,18 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
         memcpy(pl->points + i * in->dim, in->points + pl->dedup.first[i] * in->dim,
                (size_t)in->dim * sizeof *pl->points);
     return PS_OK;
+}
+
+/* Distinct points; fails when fewer than k + 1 remain. */
+static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
+    const ps_input *in = pl->in;
+    ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
+    if (st != PS_OK) return st;
+    size_t u = pl->dedup.n_unique;
+    if (u < (size_t)pl->params.k + 1)
+        return ps_fail(err, PS_ERR_INVALID,
+                       "need at least k + 1 = %d distinct points, got %zu", pl->params.k + 1, u);
+    return distinct_points(pl, err);
 }
 
 /* Normals (given, or PCA) of the distinct points, kept for the boundary
@@ -135,11 +146,47 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
     return st;
 }
 
+/* One round of the outlier removal (outliers.h): stray points leave the
+ * distinct points and the kNN graph is built again on the rest, unless
+ * too few would remain.  *dropped out: how many left. */
+static ps_status drop_outliers_once(pipeline *pl, size_t *dropped, ps_error *err) {
+    size_t u = pl->dedup.n_unique, count = 0;
+    *dropped = 0;
+    uint32_t *keep_for = malloc(u * sizeof *keep_for);
+    if (!keep_for) return ps_fail(err, PS_ERR_NOMEM, "out of memory (outliers)");
+    ps_status st = ps_outliers_find(&pl->graph, keep_for, &count, err);
+    if (st == PS_OK && count > 0 && u - count >= (size_t)pl->params.k + 1) {
+        st = ps_outliers_drop(&pl->dedup, pl->in->n, keep_for, err);
+        if (st == PS_OK) st = distinct_points(pl, err);
+        ps_graph_free(&pl->graph);
+        if (st == PS_OK)
+            st = ps_knn_graph_build(pl->points, pl->dedup.n_unique, pl->in->dim, pl->params.k,
+                                    pl->threads, &pl->graph, err);
+        *dropped = count;
+    }
+    free(keep_for);
+    return st;
+}
+
+/* Method auto: rounds of outlier removal until one finds none (a stray
+ * point hidden by a farther one shows once that one is gone). */
+static ps_status drop_outliers(pipeline *pl, ps_error *err) {
+    size_t dropped = 0;
+    ps_status st = PS_OK;
+    for (int round = 0; st == PS_OK && round < PS_OUTLIER_ROUNDS; round++) {
+        st = drop_outliers_once(pl, &dropped, err);
+        pl->n_outliers += dropped;
+        if (!dropped) break;
+    }
+    return st;
+}
+
 static ps_status phase_knn(pipeline *pl, ps_error *err) {
-    size_t u = pl->dedup.n_unique;
-    ps_status st = ps_knn_graph_build(pl->points, u, pl->in->dim, pl->params.k, pl->threads,
-                                      &pl->graph, err);
+    ps_status st = ps_knn_graph_build(pl->points, pl->dedup.n_unique, pl->in->dim,
+                                      pl->params.k, pl->threads, &pl->graph, err);
+    if (st == PS_OK && pl->params.method == PS_METHOD_AUTO) st = drop_outliers(pl, err);
     if (st != PS_OK) return st;
+    size_t u = pl->dedup.n_unique;
     pl->component = malloc(u * sizeof *pl->component);
     if (!pl->component) return ps_fail(err, PS_ERR_NOMEM, "out of memory (components)");
     pl->n_components = ps_graph_components(&pl->graph, pl->component);
@@ -301,6 +348,7 @@ static ps_result_parts parts_of(const pipeline *pl) {
         .f = pl->f,
         .n_components = pl->n_components,
         .normal_smoothing = pl->normal_smoothing,
+        .n_outliers = pl->n_outliers,
         .n_supernodes = pl->sn.m,
         .sinks = pl->sn.sinks,
         .is_minimum = pl->sn.is_minimum,

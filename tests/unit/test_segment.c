@@ -231,6 +231,33 @@ static void test_hand_scanned_from_one_side(void) {
     free(part);
 }
 
+/* Ten stray points between the star's arms, at least 2 away from any
+ * (a scanner's outliers, outliers.h): they are left out, each takes a star point's label, and the star's own
+ * labels are those of the clean star, point for point. */
+static void test_stray_points_left_out(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_star(0, &n, &part);
+    REQUIRE(pts && part);
+    double *noisy = malloc((n + 10) * 3 * sizeof *noisy);
+    REQUIRE(noisy);
+    memcpy(noisy, pts, n * 3 * sizeof *pts);
+    static const double strays[10][3] = {{2, 2, 2},  {2, 2, -2},  {2, -2, 2},  {2, -2, -2},
+                                         {-2, 2, 2}, {-2, 2, -2}, {-2, -2, 2}, {-2, -2, -2},
+                                         {2.5, 2.5, 0}, {0, -2.5, -2.5}};
+    memcpy(noisy + 3 * n, strays, sizeof strays);
+    ps_result *clean = segment_default(pts, n), *r = segment_default(noisy, n + 10);
+    REQUIRE(clean && r);
+    CHECK_MSG(r->n_outliers == 10, "%zu outliers", r->n_outliers);
+    CHECK(clean->n_outliers == 0);
+    CHECK(r->n_segments == clean->n_segments);
+    CHECK(memcmp(r->labels, clean->labels, n * sizeof *r->labels) == 0);
+    for (size_t i = n; i < n + 10; i++) CHECK(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
+    check_consistent(r);
+    ps_result_free(clean), ps_result_free(r);
+    free(pts), free(part), free(noisy);
+}
+
 /* A flat surface has no creases: the crease steps leave it alone and the
  * fingers still come out apart (they used to merge into one segment). */
 static void test_flat_hand_in_3d(void) {
@@ -472,7 +499,7 @@ static void test_progress_and_cancel(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_hand_scanned_from_one_side), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
+             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
              TEST(test_threads_exact),

@@ -1,0 +1,102 @@
+/*
+ * test_outliers.c: stray points (outliers.h).  A sphere keeps every point;
+ * points far off it are found, each mapped to a sphere point; a cluster of
+ * its own stays; dropping remaps the distinct points and the duplicates of
+ * an outlier to the kept neighbour.
+ */
+#include "dedup.h"
+#include "outliers.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define STRAYS 6
+
+/* The unit sphere, then `extra` more points from `more` (#extra by 3). */
+static double *sphere_and(const double *more, size_t extra, size_t *n) {
+    size_t m = 0;
+    int *part = NULL;
+    double *sphere = ps_shape_sphere(0, &m, &part);
+    double *p = sphere ? realloc(sphere, (m + extra) * 3 * sizeof *p) : NULL;
+    if (!p) free(sphere);
+    if (p && extra) memcpy(p + 3 * m, more, extra * 3 * sizeof *p);
+    free(part);
+    *n = m + extra;
+    return p;
+}
+
+/* Runs ps_outliers_find on the kNN graph (k = 7) of p #n. */
+static size_t find(const double *p, size_t n, uint32_t *keep_for) {
+    ps_graph g = {0};
+    ps_error err = {0};
+    size_t count = 0;
+    if (ps_knn_graph_build(p, n, 3, 7, 1, &g, &err) != PS_OK) return SIZE_MAX;
+    if (ps_outliers_find(&g, keep_for, &count, &err) != PS_OK) count = SIZE_MAX;
+    ps_graph_free(&g);
+    return count;
+}
+
+static void test_sphere_keeps_every_point(void) {
+    size_t n;
+    double *p = sphere_and(NULL, 0, &n);
+    uint32_t *keep_for = malloc(n * sizeof *keep_for);
+    REQUIRE(p && keep_for);
+    CHECK(find(p, n, keep_for) == 0);
+    for (size_t i = 0; i < n; i++) CHECK(keep_for[i] == i);
+    free(p), free(keep_for);
+}
+
+static void test_strays_are_found(void) {
+    const double strays[STRAYS * 3] = {3, 0, 0, 0, -3, 0, 0, 0, 4, 2, 2, 2, -2, 2, -2, 0, 0, -3.5};
+    size_t n;
+    double *p = sphere_and(strays, STRAYS, &n);
+    uint32_t *keep_for = malloc(n * sizeof *keep_for);
+    REQUIRE(p && keep_for);
+    CHECK(find(p, n, keep_for) == STRAYS);
+    size_t m = n - STRAYS;
+    for (size_t i = 0; i < m; i++) CHECK(keep_for[i] == i);
+    for (size_t i = m; i < n; i++) {
+        CHECK(keep_for[i] < m);
+        const double *q = p + 3 * keep_for[i];
+        CHECK_NEAR(sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]), 1.0, 1e-9);
+    }
+    free(p), free(keep_for);
+}
+
+/* 30 points on a small circle far away: a part of its own, not strays. */
+static void test_far_cluster_stays(void) {
+    double ring[30 * 3];
+    for (int i = 0; i < 30; i++) {
+        double t = 2 * 3.14159265358979 * i / 30;
+        ring[3 * i] = 10 + 0.2 * cos(t), ring[3 * i + 1] = 0.2 * sin(t), ring[3 * i + 2] = 0;
+    }
+    size_t n;
+    double *p = sphere_and(ring, 30, &n);
+    uint32_t *keep_for = malloc(n * sizeof *keep_for);
+    REQUIRE(p && keep_for);
+    CHECK(find(p, n, keep_for) == 0);
+    free(p), free(keep_for);
+}
+
+/* Input 0..4 with point 3 a duplicate of the stray 1: distinct 0, 1, 2, 4
+ * (indices 0..3), stray 1 kept for by distinct 2. */
+static void test_drop_remaps(void) {
+    const double pts[5 * 3] = {0, 0, 0, 9, 9, 9, 1, 0, 0, 9, 9, 9, 2, 0, 0};
+    ps_dedup d;
+    REQUIRE(ps_dedup_build(pts, 5, 3, &d, NULL) == PS_OK);
+    REQUIRE(d.n_unique == 4);
+    const uint32_t keep_for[4] = {0, 2, 2, 3};
+    ps_error err = {0};
+    REQUIRE(ps_outliers_drop(&d, 5, keep_for, &err) == PS_OK);
+    CHECK(d.n_unique == 3);
+    const size_t unique_of[5] = {0, 1, 1, 1, 2}, first[3] = {0, 2, 4};
+    CHECK(memcmp(d.unique_of, unique_of, sizeof unique_of) == 0);
+    CHECK(memcmp(d.first, first, sizeof first) == 0);
+    ps_dedup_free(&d);
+}
+
+PS_TEST_MAIN(TEST(test_sphere_keeps_every_point), TEST(test_strays_are_found),
+             TEST(test_far_cluster_stays), TEST(test_drop_remaps))
