@@ -8,7 +8,10 @@
  * method (method=paper), printed side by side.  --noise F first moves every
  * vertex by Gaussian noise of F mean mesh edge lengths per axis (the same
  * noise for both methods, seeded by the model id): how the segmentation
- * holds up on noisy scans.  See tests/bench/README.md.
+ * holds up on noisy scans.  --strays F adds F times the vertex count of
+ * stray points, uniform in the bounding box grown by 10% (seeded by the
+ * model id), segments them with the vertices and scores the vertices only:
+ * how it holds up against a scanner's outliers.  See tests/bench/README.md.
  */
 #include <math.h>
 #include <stdint.h>
@@ -31,6 +34,7 @@ typedef struct quality_options {
     int baseline_none;         /* --baseline none: every vertex labelled 0 */
     int runs;                  /* 1 with --single (or a baseline), else 2 */
     double noise;              /* --noise: sigma in mean mesh edge lengths */
+    double strays;             /* --strays: stray points per vertex */
     ps_request_params params;  /* defaults + --param + --threads */
 } quality_options;
 
@@ -51,10 +55,11 @@ typedef struct category_sums {
 static const char usage[] =
     "usage: bench_quality [PSB_DIR] [--ids 1,2,21] [--param name=value]...\n"
     "                     [--threads N] [--out DIR] [--baseline none] [--single]\n"
-    "                     [--noise F]\n"
+    "                     [--noise F] [--strays F]\n"
     "Prints the given parameters (default: method auto) next to method=paper;\n"
     "--single runs the given parameters only; --noise F moves the vertices by\n"
-    "Gaussian noise of F mean edge lengths first.\n"
+    "Gaussian noise of F mean edge lengths first; --strays F adds F stray points\n"
+    "per vertex in the grown bounding box (the vertices alone are scored).\n"
     "PSB_DIR defaults to $POINTSEG_SHARED/psb-dev, else ../shared/data/psb-dev.\n";
 
 static double now_ms(void) {
@@ -111,6 +116,7 @@ static int parse_options(int argc, char **argv, quality_options *o) {
         else if (!strcmp(a, "--threads")) { if (set_param(&o->params, "threads", v)) return -1; }
         else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1, o->runs = 1;
         else if (!strcmp(a, "--noise") && (o->noise = atof(v)) >= 0 && o->noise <= 100) continue;
+        else if (!strcmp(a, "--strays") && (o->strays = atof(v)) >= 0 && o->strays <= 1) continue;
         else { fprintf(stderr, "bench_quality: unknown option %s %s\n%s", a, v, usage); return -1; }
     }
     return 0;
@@ -150,9 +156,11 @@ static ps_params run_params(const quality_options *o, int run) {
 }
 
 /* Vertex labels of the mesh (malloc'ed #P) by ps_segment, or all 0 for the
- * "none" baseline; fills the row's segment count and time.  NULL on failure. */
-static int *label_vertices(const ps_pointset *mesh, const quality_options *o, int run,
-                           model_row *row) {
+ * "none" baseline; fills the row's segment count and time.  strays, if not
+ * NULL, is the input to segment instead: the vertices first, then stray
+ * points.  NULL on failure. */
+static int *label_vertices(const ps_pointset *mesh, const ps_input *strays,
+                           const quality_options *o, int run, model_row *row) {
     double start = now_ms();
     if (o->baseline_none) {
         row->segments[run] = 1;
@@ -161,6 +169,7 @@ static int *label_vertices(const ps_pointset *mesh, const quality_options *o, in
         return zeros;
     }
     ps_input in = {mesh->points, mesh->n, mesh->dim, mesh->normals};
+    if (strays) in = *strays;
     ps_params params = run_params(o, run);
     ps_result *r = NULL;
     ps_error err;
@@ -205,19 +214,48 @@ static void add_noise(ps_pointset *mesh, double noise, int id) {
                            cos(2 * 3.14159265358979323846 * uniform(&state));
 }
 
+/* The mesh's vertices followed by fraction x #P stray points, uniform in
+ * the bounding box grown by 10% on every side (the same for a given model
+ * id on every run); normals, when the mesh has them, +z for the strays.
+ * 0 or -1 (out of memory). */
+static int with_strays(const ps_pointset *mesh, double fraction, int id, ps_input *in) {
+    size_t extra = (size_t)ceil(fraction * (double)mesh->n), n = mesh->n + extra;
+    double *points = malloc(3 * n * sizeof *points);
+    double *normals = mesh->normals ? calloc(3 * n, sizeof *normals) : NULL;
+    if (!points || (mesh->normals && !normals)) return free(points), free(normals), -1;
+    memcpy(points, mesh->points, 3 * mesh->n * sizeof *points);
+    if (normals) memcpy(normals, mesh->normals, 3 * mesh->n * sizeof *normals);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < 3 * mesh->n; i++)
+        lo[i % 3] = fmin(lo[i % 3], points[i]), hi[i % 3] = fmax(hi[i % 3], points[i]);
+    uint64_t state = 0x2545F4914F6CDD1Dull ^ (uint64_t)id;
+    for (size_t i = 3 * mesh->n; i < 3 * n; i++) {
+        double grow = 0.1 * (hi[i % 3] - lo[i % 3]);
+        points[i] = lo[i % 3] - grow + (hi[i % 3] - lo[i % 3] + 2 * grow) * uniform(&state);
+        if (normals && i % 3 == 2) normals[i] = 1;
+    }
+    *in = (ps_input){points, n, 3, normals};
+    return 0;
+}
+
 /* Segments and scores one model; 0 or -1. */
 static int run_model(const char *dir, const quality_options *o, model_row *row) {
     ps_pointset mesh;
     ps_psb_humans humans;
     if (ps_psb_load_mesh(dir, row->id, &mesh) != 0) return -1;
     if (o->noise > 0) add_noise(&mesh, o->noise, row->id);
+    ps_input strays = {0};
     int rc = -1;
     row->points = mesh.n;
+    if (o->strays > 0 && with_strays(&mesh, o->strays, row->id, &strays) != 0) {
+        ps_pointset_free(&mesh);
+        return -1;
+    }
     if (ps_psb_load_humans(dir, row->id, mesh.n_faces, &humans) == 0) {
         row->human_segments = ps_psb_mean_segments(&humans);
         rc = 0;
         for (int run = 0; run < o->runs && rc == 0; run++) {
-            int *labels = label_vertices(&mesh, o, run, row);
+            int *labels = label_vertices(&mesh, o->strays > 0 ? &strays : NULL, o, run, row);
             int write = o->out_dir && run == 0;
             rc = labels && (!write || write_labels(o->out_dir, row->id, labels, mesh.n) == 0)
                      ? 0
@@ -227,6 +265,7 @@ static int run_model(const char *dir, const quality_options *o, model_row *row) 
         }
         ps_psb_humans_free(&humans);
     }
+    free((double *)strays.points), free((double *)strays.normals);
     ps_pointset_free(&mesh);
     return rc;
 }
@@ -244,6 +283,7 @@ static void print_params(const char *dir, const quality_options *o) {
            p->persistence, p->ncut_threshold, p->feature_threshold, p->use_minima, p->use_f2,
            p->threads);
     if (o->noise > 0) printf("noise: sigma %g mean edge lengths per coordinate\n", o->noise);
+    if (o->strays > 0) printf("strays: %g stray points per vertex (vertices scored)\n", o->strays);
     if (o->runs > 1) printf("compared with: the same, method=paper\n");
     printf("\n");
 }
