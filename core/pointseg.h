@@ -65,9 +65,9 @@ typedef enum ps_centrality_mode {
 #define PS_EXACT_AUTO_LIMIT 4096
 
 typedef enum ps_method {
-    PS_METHOD_AUTO = 0, /* the default: crease-aware metric (3-D), persistence,
-                           minima, crease split and merge, patch merge
-                           (docs/method.md) */
+    PS_METHOD_AUTO = 0, /* the default: stray points left out, crease-aware
+                           metric (3-D), persistence, minima, crease split
+                           and merge, patch merge (docs/method.md) */
     PS_METHOD_PAPER     /* the published pipeline: Euclidean geodesics, every
                            sink a supernode, no minima, no f2 */
 } ps_method;
