@@ -1,30 +1,21 @@
 /*
  * outliers.c: stray points found by a median local outlier factor on the
  * kNN graph, and their removal from the distinct points (outliers.h).
- * O(E log k) for the medians, O(P) for the remapping.
+ * O(E) for the medians (quickselect on each row), O(P) for the remapping.
  */
 #include "outliers.h"
 
+#include "sort_util.h"
+
 #include <stdlib.h>
 #include <string.h>
-
-/* The median (upper middle) of x #n, n > 0, by insertion sort: rows hold
- * at most a few tens of values.  Reorders x. */
-static double median_of(double *x, size_t n) {
-    for (size_t i = 1; i < n; i++)
-        for (size_t j = i; j > 0 && x[j - 1] > x[j]; j--) {
-            double t = x[j];
-            x[j] = x[j - 1], x[j - 1] = t;
-        }
-    return x[n / 2];
-}
 
 /* scale #U out: each point's median edge length (0 without edges). */
 static void median_edges(const ps_graph *g, double *scale, double *row) {
     for (size_t p = 0; p < g->n; p++) {
         size_t n = g->offsets[p + 1] - g->offsets[p];
         memcpy(row, g->weights + g->offsets[p], n * sizeof *row);
-        scale[p] = n ? median_of(row, n) : 0;
+        scale[p] = n ? ps_select_kth(row, n, n / 2) : 0;
     }
 }
 
@@ -36,7 +27,7 @@ static void mark_outliers(const ps_graph *g, const double *scale, double *row,
         size_t n = 0;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
             row[n++] = scale[g->neighbors[e]];
-        outlier[p] = n > 0 && scale[p] > PS_OUTLIER_RATIO * median_of(row, n);
+        outlier[p] = n > 0 && scale[p] > PS_OUTLIER_RATIO * ps_select_kth(row, n, n / 2);
     }
 }
 
