@@ -3,98 +3,39 @@
  * neighbour.
  *
  * Segments start as the hierarchy leaves and keep the id of their surviving
- * leaf.  Their borders are counted once, in O(E): for each pair of adjacent
- * segments, the number of kNN edges joining their points (each undirected
- * edge once), kept in small per-segment lists that are combined when two
- * segments merge.  Each step takes the segment with the smallest feature size
+ * leaf.  Their borders and f ranges are those of segment_graph.h (for each
+ * pair of adjacent segments, the number of kNN edges joining their points,
+ * each undirected edge once; combined when two segments merge).  Each step
+ * takes the segment with the smallest feature size
  * (ties: lowest leaf id) that is below feature_threshold * (range of f over
  * its component) and has a neighbour, and merges it into the neighbour with
  * the largest (shared border edges) * (neighbour's feature size): a long
  * border with a large part wins (ties: lowest id).  The survivor's feature
  * size becomes max f - min f over the union.  A step costs O(segments +
- * border list lengths); a segment alone in its component never merges.
+ * adjacent pairs); a segment alone in its component never merges.
  */
 #include "refine.h"
 
 #include "component_range.h"
+#include "segment_graph.h"
 
-#include <math.h>
 #include <stdlib.h>
 
-typedef struct border {
-    int segment; /* the neighbour's leaf id */
-    long edges;  /* kNN edges shared with it */
-} border;
-
-typedef struct border_list {
-    border *items;
-    int count, capacity;
-} border_list;
-
-/* Per tree id; only leaves are used. */
+/* The leaves' merge thresholds over segment_graph.h's adjacency. */
 typedef struct segments {
-    int n_tree;
-    double *f_min, *f_max;  /* #n_tree f range over the segment's points */
-    double *threshold;      /* #n_tree merge below this feature size */
-    int *alive;             /* #n_tree 1 for a leaf not yet merged away */
-    int *merged_into;       /* #n_tree leaf id it merged into, or -1 */
-    border_list *borders;   /* #n_tree */
+    ps_segment_graph graph;  /* groups = tree ids; only leaves have points */
+    double *threshold;       /* #n_tree merge below this feature size */
+    int *has_border;         /* #n_tree scratch: 1 when some pair record holds it */
 } segments;
 
 static double feature_size(const segments *s, int id) {
-    return s->f_max[id] - s->f_min[id];
-}
-
-static int find_border(const border_list *list, int segment) {
-    for (int i = 0; i < list->count; i++)
-        if (list->items[i].segment == segment) return i;
-    return -1;
-}
-
-static int add_border(border_list *list, int segment, long edges) {
-    int i = find_border(list, segment);
-    if (i >= 0) {
-        list->items[i].edges += edges;
-        return 1;
-    }
-    if (list->count == list->capacity) {
-        int capacity = list->capacity ? 2 * list->capacity : 4;
-        border *items = realloc(list->items, (size_t)capacity * sizeof *items);
-        if (!items) return 0;
-        list->items = items;
-        list->capacity = capacity;
-    }
-    list->items[list->count++] = (border){.segment = segment, .edges = edges};
-    return 1;
-}
-
-static void remove_border(border_list *list, int segment) {
-    int i = find_border(list, segment);
-    if (i < 0) return;
-    for (; i + 1 < list->count; i++) list->items[i] = list->items[i + 1];
-    list->count--;
+    return s->graph.f_max[id] - s->graph.f_min[id];
 }
 
 static void segments_free(segments *s) {
-    for (int i = 0; s->borders && i < s->n_tree; i++) free(s->borders[i].items);
-    free(s->borders);
-    free(s->f_min);
-    free(s->f_max);
+    ps_segment_graph_free(&s->graph);
     free(s->threshold);
-    free(s->alive);
-    free(s->merged_into);
-}
-
-static int segments_alloc(segments *s, int n_tree) {
-    size_t n = (size_t)n_tree;
-    *s = (segments){.n_tree = n_tree};
-    s->f_min = malloc(n * sizeof *s->f_min);
-    s->f_max = malloc(n * sizeof *s->f_max);
-    s->threshold = malloc(n * sizeof *s->threshold);
-    s->alive = malloc(n * sizeof *s->alive);
-    s->merged_into = malloc(n * sizeof *s->merged_into);
-    s->borders = calloc(n, sizeof *s->borders);
-    return s->f_min && s->f_max && s->threshold && s->alive && s->merged_into && s->borders;
+    free(s->has_border);
 }
 
 /* #S = the largest supernode id in the tree + 1, or -1 when one is negative. */
@@ -127,54 +68,29 @@ static ps_status component_ranges(const double *f, const int *component, size_t 
     return PS_OK;
 }
 
-/* f range of each leaf's points (0 for a leaf without points), and its
- * merge threshold from the range of f over its component. */
-static ps_status measure(segments *s, const ps_tree_node *tree, size_t n, const double *f,
-                         const int *component, const int *seg_of_point,
-                         double feature_threshold, ps_error *err) {
+/* threshold #n_tree out: feature_threshold x the range of f over the
+ * component of each leaf's points (0 for a leaf without points). */
+static ps_status thresholds(const ps_graph *g, const double *f, const int *component,
+                            const int *seg_of_point, double feature_threshold, int n_tree,
+                            double *threshold, ps_error *err) {
     double *range = NULL;
-    ps_status st = component_ranges(f, component, n, &range, err);
-    if (st != PS_OK) {
-        free(range);
-        return st;
-    }
-    for (int i = 0; i < s->n_tree; i++) {
-        s->f_min[i] = INFINITY;
-        s->f_max[i] = -INFINITY;
-        s->threshold[i] = 0;
-        s->alive[i] = tree[i].children[0] < 0;
-        s->merged_into[i] = -1;
-    }
-    for (size_t p = 0; p < n; p++) {
-        int id = seg_of_point[p];
-        s->f_min[id] = fmin(s->f_min[id], f[p]);
-        s->f_max[id] = fmax(s->f_max[id], f[p]);
-        s->threshold[id] = feature_threshold * range[component[p]];
-    }
-    for (int i = 0; i < s->n_tree; i++)
-        if (s->f_min[i] > s->f_max[i]) s->f_min[i] = s->f_max[i] = 0;
+    ps_status st = component_ranges(f, component, g->n, &range, err);
+    for (int i = 0; st == PS_OK && i < n_tree; i++) threshold[i] = 0;
+    for (size_t p = 0; st == PS_OK && p < g->n; p++)
+        threshold[seg_of_point[p]] = feature_threshold * range[component[p]];
     free(range);
-    return PS_OK;
-}
-
-static ps_status count_borders(segments *s, const ps_graph *g, const int *seg_of_point,
-                               ps_error *err) {
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            size_t q = g->neighbors[e];
-            int a = seg_of_point[p], b = seg_of_point[q];
-            if (q <= p || a == b) continue;
-            if (!add_border(&s->borders[a], b, 1) || !add_border(&s->borders[b], a, 1))
-                return ps_fail(err, PS_ERR_NOMEM, "refine: out of memory");
-        }
-    return PS_OK;
+    return st;
 }
 
 /* The mergeable segment with the smallest feature size, or -1. */
-static int smallest_feature(const segments *s) {
+static int smallest_feature(segments *s) {
+    const ps_segment_graph *sg = &s->graph;
+    for (int i = 0; i < sg->n_groups; i++) s->has_border[i] = 0;
+    for (size_t r = 0; r < sg->count; r++)
+        s->has_border[sg->list[r].a] = s->has_border[sg->list[r].b] = 1;
     int best = -1;
-    for (int i = 0; i < s->n_tree; i++) {
-        if (!s->alive[i] || s->borders[i].count == 0) continue;
+    for (int i = 0; i < sg->n_groups; i++) {
+        if (!s->has_border[i]) continue;
         double size = feature_size(s, i);
         if (size < s->threshold[i] && (best < 0 || size < feature_size(s, best))) best = i;
     }
@@ -183,12 +99,14 @@ static int smallest_feature(const segments *s) {
 
 /* The neighbour maximizing border edges * feature size (ties: lowest id). */
 static int merge_target(const segments *s, int id) {
-    const border_list *list = &s->borders[id];
+    const ps_segment_graph *sg = &s->graph;
     int best = -1;
     double best_score = -1;
-    for (int i = 0; i < list->count; i++) {
-        int x = list->items[i].segment;
-        double score = (double)list->items[i].edges * feature_size(s, x);
+    for (size_t r = 0; r < sg->count; r++) {
+        const ps_boundary *b = &sg->list[r];
+        int x = b->a == id ? b->b : b->b == id ? b->a : -1;
+        if (x < 0) continue;
+        double score = (double)b->edges * feature_size(s, x);
         if (score > best_score || (score == best_score && x < best)) {
             best = x;
             best_score = score;
@@ -197,67 +115,41 @@ static int merge_target(const segments *s, int id) {
     return best;
 }
 
-/* Moves id's borders to into; neighbours now border into instead. */
-static int merge(segments *s, int id, int into) {
-    border_list *list = &s->borders[id];
-    for (int i = 0; i < list->count; i++) {
-        int x = list->items[i].segment;
-        long edges = list->items[i].edges;
-        if (x == into) continue;
-        remove_border(&s->borders[x], id);
-        if (!add_border(&s->borders[into], x, edges) ||
-            !add_border(&s->borders[x], into, edges))
-            return 0;
-    }
-    remove_border(&s->borders[into], id);
-    list->count = 0;
-    s->f_min[into] = fmin(s->f_min[into], s->f_min[id]);
-    s->f_max[into] = fmax(s->f_max[into], s->f_max[id]);
-    s->alive[id] = 0;
-    s->merged_into[id] = into;
-    return 1;
-}
-
-static ps_status merge_all(segments *s, ps_merge *merges, int *n_merges, ps_error *err) {
+static ps_status merge_all(segments *s, ps_merge **merges, int *n_merges, ps_error *err) {
     int id;
-    while ((id = smallest_feature(s)) >= 0) {
-        int into = merge_target(s, id);
-        merges[*n_merges] = (ps_merge){.segment = id, .into = into,
-                                       .feature_size = feature_size(s, id)};
-        (*n_merges)++;
-        if (!merge(s, id, into)) return ps_fail(err, PS_ERR_NOMEM, "refine: out of memory");
-    }
+    while ((id = smallest_feature(s)) >= 0)
+        if (!ps_segment_graph_merge(&s->graph, id, merge_target(s, id), merges, n_merges))
+            return ps_fail(err, PS_ERR_NOMEM, "refine: out of memory");
     return PS_OK;
 }
 
-static void final_groups(const segments *s, const ps_tree_node *tree, int *group_of_leaf) {
-    for (int i = 0; i < s->n_tree; i++) {
-        int g = -1;
-        if (tree[i].children[0] < 0)
-            for (g = i; s->merged_into[g] >= 0;) g = s->merged_into[g];
-        group_of_leaf[i] = g;
-    }
+static void final_groups(const segments *s, const ps_tree_node *tree, int n_tree,
+                         int *group_of_leaf) {
+    for (int i = 0; i < n_tree; i++)
+        group_of_leaf[i] = tree[i].children[0] < 0 ? ps_segment_graph_survivor(&s->graph, i) : -1;
 }
 
 /* A segment holding a minimum's supernode is a central region, not a
  * feature: its f is flat by nature, so it never merges away. */
-static void protect_cores(segments *s, const int *supernode_of, const int *is_minimum,
+static void protect_cores(double *threshold, const int *supernode_of, const int *is_minimum,
                           const int *seg_of_point, size_t n) {
     for (size_t p = 0; is_minimum && p < n; p++)
-        if (is_minimum[supernode_of[p]]) s->threshold[seg_of_point[p]] = 0;
+        if (is_minimum[supernode_of[p]]) threshold[seg_of_point[p]] = 0;
 }
 
 static ps_status refine_with(segments *s, const ps_graph *g, const double *f,
-                             const int *component, const ps_tree_node *tree,
+                             const int *component, const ps_tree_node *tree, int n_tree,
                              const int *seg_of_point, const int *supernode_of,
                              const int *is_minimum, double feature_threshold,
-                             int *group_of_leaf, ps_merge *merges, int *n_merges,
+                             int *group_of_leaf, ps_merge **merges, int *n_merges,
                              ps_error *err) {
-    ps_status st = measure(s, tree, g->n, f, component, seg_of_point, feature_threshold, err);
-    if (st == PS_OK) protect_cores(s, supernode_of, is_minimum, seg_of_point, g->n);
-    if (st == PS_OK) st = count_borders(s, g, seg_of_point, err);
+    ps_status st = thresholds(g, f, component, seg_of_point, feature_threshold, n_tree,
+                              s->threshold, err);
+    if (st == PS_OK) protect_cores(s->threshold, supernode_of, is_minimum, seg_of_point, g->n);
+    if (st == PS_OK)
+        st = ps_segment_graph_build(&s->graph, g, f, seg_of_point, n_tree, NULL, NULL, err);
     if (st == PS_OK) st = merge_all(s, merges, n_merges, err);
-    if (st == PS_OK) final_groups(s, tree, group_of_leaf);
+    if (st == PS_OK) final_groups(s, tree, n_tree, group_of_leaf);
     return st;
 }
 
@@ -289,16 +181,16 @@ ps_status ps_refine(const ps_graph *g, const double *f, const int *supernode_of,
     *merges = NULL;
     *n_merges = 0;
     if (n_tree < 1) return ps_fail(err, PS_ERR_INVALID, "refine: empty tree");
-    segments s;
+    segments s = {.threshold = malloc((size_t)n_tree * sizeof(double)),
+                  .has_border = malloc((size_t)n_tree * sizeof(int))};
     int *seg_of_point = malloc((g->n ? g->n : 1) * sizeof *seg_of_point);
     ps_merge *list = malloc((size_t)n_tree * sizeof *list);
-    ps_status st = segments_alloc(&s, n_tree) && seg_of_point && list
+    ps_status st = s.threshold && s.has_border && seg_of_point && list
                        ? point_leaves(tree, n_tree, supernode_of, g->n, seg_of_point, err)
                        : ps_fail(err, PS_ERR_NOMEM, "refine: out of memory");
     if (st == PS_OK)
-        st = refine_with(&s, g, f, component, tree, seg_of_point, supernode_of, is_minimum,
-                         feature_threshold,
-                         group_of_leaf, list, n_merges, err);
+        st = refine_with(&s, g, f, component, tree, n_tree, seg_of_point, supernode_of,
+                         is_minimum, feature_threshold, group_of_leaf, &list, n_merges, err);
     segments_free(&s);
     free(seg_of_point);
     if (st != PS_OK) {
