@@ -119,6 +119,16 @@ static void test_dumbbell_two_spheres(void) {
     check_shape_parts(pts, n, part, 1, 2, 0.9);
 }
 
+/* The segment holding most of the hand's palm (part 0) holds at least
+ * min_purity of it and is no finger's (parts 1..5) majority segment. */
+static void check_palm_apart(const ps_result *r, const int *part, double min_purity) {
+    double palm_purity, finger_purity;
+    int palm = majority_label(r, part, 0, &palm_purity);
+    CHECK_MSG(palm_purity >= min_purity, "palm: only %.2f of it in one segment", palm_purity);
+    for (int finger = 1; finger <= 5; finger++)
+        CHECK(majority_label(r, part, finger, &finger_purity) != palm);
+}
+
 /* The fingers come out whole and apart; the palm's far end is a maximum of
  * f of its own (like a wrist), so the palm may be two segments, but the
  * one holding most of it holds no finger. */
@@ -130,11 +140,7 @@ static void test_hand_five_fingers(void) {
     REQUIRE(r);
     check_consistent(r);
     check_parts_separate(r, part, 1, 5, 0.75);
-    double palm_purity, finger_purity;
-    int palm = majority_label(r, part, 0, &palm_purity);
-    CHECK_MSG(palm_purity >= 0.45, "palm: only %.2f of it in one segment", palm_purity);
-    for (int finger = 1; finger <= 5; finger++)
-        CHECK(majority_label(r, part, finger, &finger_purity) != palm);
+    check_palm_apart(r, part, 0.45);
     ps_result_free(r);
     free(pts);
     free(part);
@@ -221,19 +227,16 @@ static void test_hand_scanned_from_one_side(void) {
     ps_result *r = segment_default(pts, kept);
     REQUIRE(r);
     check_consistent(r);
-    double palm_purity, finger_purity;
-    int palm = majority_label(r, part, 0, &palm_purity);
-    CHECK_MSG(palm_purity >= 0.9, "palm: only %.2f of it in one segment", palm_purity);
-    for (int finger = 1; finger <= 5; finger++)
-        CHECK(majority_label(r, part, finger, &finger_purity) != palm);
+    check_palm_apart(r, part, 0.9);
     ps_result_free(r);
     free(pts);
     free(part);
 }
 
-/* Ten stray points between the star's arms, at least 2 away from any
- * (a scanner's outliers, outliers.h): they are left out, each takes a star point's label, and the star's own
- * labels are those of the clean star, point for point. */
+/* Ten stray points between the star's arms, at least 2 away from any (a
+ * scanner's outliers, outliers.h): they are left out, each takes a star
+ * point's label, and the star's own labels are those of the clean star,
+ * point for point. */
 static void test_stray_points_left_out(void) {
     size_t n;
     int *part;
