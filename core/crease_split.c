@@ -154,13 +154,12 @@ ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points 
         work_free(&w);
         return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
     }
-    double crease = 0;
+    double crease = INFINITY; /* a flat surface has no creases */
     if (creases->mean >= PS_CREASE_FLAT && !crease_threshold(creases, g->n, &crease)) {
         work_free(&w);
         return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
     }
-    for (size_t p = 0; p < g->n; p++)
-        w.on_crease[p] = creases->mean >= PS_CREASE_FLAT && creases->strength[p] >= crease;
+    for (size_t p = 0; p < g->n; p++) w.on_crease[p] = creases->strength[p] >= crease;
     label_pieces(&w);
     spread_labels(&w);
     if (w.n_new > sn->m && w.n_new <= PS_MAX_SUPERNODES) {
