@@ -108,9 +108,12 @@ unit: tests-build
 fuzz: deps-test
 	@tests/fuzz/run.sh $(BUILD) long
 
+# The 304 PSB models (psb-dev and the unpacked psb-train) in both input
+# modes, with the stability check; loud SKIP without the data.
+BENCH_QUALITY_ARGS ?= --input vertices --input surface:40000 --stability
 bench-quality: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BUILD)/pointseg
-	@$(BUILD)/bench/bench_quality $(BENCH_ARGS)
+	@$(BUILD)/bench/bench_quality $(BENCH_QUALITY_ARGS) $(BENCH_ARGS)
 
 bench-speed: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BUILD)/pointseg

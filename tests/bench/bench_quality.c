@@ -1,72 +1,105 @@
 /*
- * bench_quality.c: segmentation quality on the PSB developer set.  Segments
- * the vertices of every off/ID.off with ps_segment, turns vertex labels
- * into face labels by majority, and prints the Rand Index error against the
- * model's human segmentations: one row per model, the category means, the
- * overall means and the published references.  Unless --single, every
- * model is segmented twice, with the given parameters and with the paper's
- * method (method=paper), printed side by side.  --noise F first moves every
- * vertex by Gaussian noise of F mean mesh edge lengths per axis (the same
- * noise for both methods, seeded by the model id): how the segmentation
- * holds up on noisy scans.  --strays F adds F times the vertex count of
- * stray points, uniform in the bounding box grown by 10% (seeded by the
- * model id), segments them with the vertices and scores the vertices only:
- * how it holds up against a scanner's outliers.  See tests/bench/README.md.
+ * bench_quality.c: segmentation quality on the Princeton Segmentation
+ * Benchmark (PSB).  Reads one or more PSB folders (psb-dev, the unpacked
+ * psb-train), segments every model in each input mode (`vertices`: the mesh
+ * vertices; `surface:N`: the vertices, then points sampled uniformly by
+ * area until N in all, only the vertices scored), turns vertex labels into
+ * face labels by majority and prints the Rand Index error against the
+ * model's human segmentations.  Models run in parallel, one per core.
+ *
+ * The split that keeps tuning honest: ids with (ID-1) % 20 in {15..18} are
+ * validation models.  Their figures are printed only as a mean per mode and
+ * method, never per model or per category; every per-model row and the
+ * category table cover the development models alone.
+ *
+ * --stability also segments a rotated, scaled and shifted copy of every
+ * development model and prints those whose partition moved (Rand index
+ * below 0.99 or another segment count).  --noise and --strays make the
+ * input a noisy or outlier-ridden scan.  See tests/bench/README.md.
  */
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
+#include "mesh_sample.h"
 #include "params_table.h"
 #include "pointseg.h"
 #include "psb_data.h"
+#include "shapes.h"
 
 #define N_CATEGORIES 20
-#define MAX_RUNS 2 /* the given parameters, then method=paper */
+#define MAX_RUNS 2   /* the given parameters, then method=paper */
+#define MAX_DIRS 8
+#define MAX_MODES 4
+#define STABLE_RI 0.99 /* the least Rand index a moved copy must keep */
+
+typedef struct input_mode {
+    char name[32];
+    size_t surface_points; /* 0: the vertices alone */
+} input_mode;
 
 typedef struct quality_options {
-    const char *dir_arg;       /* PSB directory given on the command line */
+    const char *dirs[MAX_DIRS]; /* PSB folders given on the command line */
+    int n_dirs;
+    input_mode modes[MAX_MODES];
+    int n_modes;
     const char *ids_arg;       /* --ids list, or NULL for every model */
     const char *out_dir;       /* --out: write ID.lab predictions here */
     int baseline_none;         /* --baseline none: every vertex labelled 0 */
     int runs;                  /* 1 with --single (or a baseline), else 2 */
+    int jobs;                  /* models segmented at once */
+    int stability;             /* --stability: also a moved copy per dev model */
+    int dev_only;              /* --dev-only: skip the validation models */
     double noise;              /* --noise: sigma in mean mesh edge lengths */
     double strays;             /* --strays: stray points per vertex */
     ps_request_params params;  /* defaults + --param + --threads */
 } quality_options;
 
 typedef struct model_row {
+    const char *dir;
     int id;
-    size_t points;
+    int validation;
+    int failed;
+    size_t points;             /* vertices */
     double human_segments;
     int segments[MAX_RUNS];
     double error[MAX_RUNS];
     double ms[MAX_RUNS];
+    double moved_ri;           /* --stability: RI between the copy and the original */
+    int moved_segments;
 } model_row;
 
-typedef struct category_sums {
-    double error[MAX_RUNS][N_CATEGORIES];
-    int models[N_CATEGORIES];
-} category_sums;
+typedef struct pool {
+    const quality_options *o;
+    const input_mode *mode;
+    model_row *rows;
+    size_t n_rows;
+    size_t next;
+    pthread_mutex_t lock;
+} pool;
 
 static const char usage[] =
-    "usage: bench_quality [PSB_DIR] [--ids 1,2,21] [--param name=value]...\n"
-    "                     [--threads N] [--out DIR] [--baseline none] [--single]\n"
+    "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N]... [--ids 1,2,21]\n"
+    "                     [--param name=value]... [--threads N] [--jobs N] [--single]\n"
+    "                     [--dev-only] [--stability] [--out DIR] [--baseline none]\n"
     "                     [--noise F] [--strays F]\n"
-    "Prints the given parameters (default: method auto) next to method=paper;\n"
-    "--single runs the given parameters only; --noise F moves the vertices by\n"
-    "Gaussian noise of F mean edge lengths first; --strays F adds F stray points\n"
-    "per vertex in the grown bounding box (the vertices alone are scored).\n"
-    "PSB_DIR defaults to $POINTSEG_SHARED/psb-dev, else ../shared/data/psb-dev.\n";
+    "Segments every model of the PSB folders (default: psb-dev and psb-train, see\n"
+    "tests/bench/README.md) in each input mode (default: vertices), with the given\n"
+    "parameters (default: method auto) and with method=paper.  Validation models\n"
+    "((ID-1) %% 20 in 15..18) are reported as a mean only.\n";
 
 static double now_ms(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
+
+static int is_validation(int id) { return (id - 1) % 20 >= 15 && (id - 1) % 20 <= 18; }
 
 /* Sets one parameter through the shared parameter table; 0 or -1. */
 static int set_param(ps_request_params *rp, const char *name, const char *value) {
@@ -91,6 +124,25 @@ static int apply_assignment(ps_request_params *rp, const char *assignment) {
     return set_param(rp, name, eq + 1);
 }
 
+/* Parses "vertices" or "surface:N" into the next mode slot; 0 or -1. */
+static int add_mode(quality_options *o, const char *text) {
+    if (o->n_modes == MAX_MODES) return -1;
+    input_mode *m = &o->modes[o->n_modes];
+    char *end = NULL;
+    if (!strcmp(text, "vertices")) {
+        m->surface_points = 0;
+    } else if (!strncmp(text, "surface:", 8)) {
+        long n = strtol(text + 8, &end, 10);
+        if (end == text + 8 || *end || n < 1 || n > 10000000) return -1;
+        m->surface_points = (size_t)n;
+    } else {
+        return -1;
+    }
+    snprintf(m->name, sizeof m->name, "%s", text);
+    o->n_modes++;
+    return 0;
+}
+
 /* The value of a flag that needs one, or NULL with a message. */
 static const char *flag_value(int argc, char **argv, int *i) {
     if (*i + 1 >= argc) {
@@ -100,25 +152,54 @@ static const char *flag_value(int argc, char **argv, int *i) {
     return argv[++*i];
 }
 
+/* Handles the flags without a value; 1 if a was one of them. */
+static int switch_flag(quality_options *o, const char *a) {
+    if (!strcmp(a, "--single")) o->runs = 1;
+    else if (!strcmp(a, "--stability")) o->stability = 1;
+    else if (!strcmp(a, "--dev-only")) o->dev_only = 1;
+    else return 0;
+    return 1;
+}
+
+/* Handles a flag with value v; 0 or -1. */
+static int value_flag(quality_options *o, const char *a, const char *v) {
+    if (!strcmp(a, "--ids")) o->ids_arg = v;
+    else if (!strcmp(a, "--out")) o->out_dir = v;
+    else if (!strcmp(a, "--input")) return add_mode(o, v);
+    else if (!strcmp(a, "--param")) return apply_assignment(&o->params, v);
+    else if (!strcmp(a, "--threads")) return set_param(&o->params, "threads", v);
+    else if (!strcmp(a, "--jobs") && (o->jobs = atoi(v)) >= 1 && o->jobs <= 64) return 0;
+    else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1, o->runs = 1;
+    else if (!strcmp(a, "--noise") && (o->noise = atof(v)) >= 0 && o->noise <= 100) return 0;
+    else if (!strcmp(a, "--strays") && (o->strays = atof(v)) >= 0 && o->strays <= 1) return 0;
+    else return -1;
+    return 0;
+}
+
 static int parse_options(int argc, char **argv, quality_options *o) {
     memset(o, 0, sizeof *o);
     ps_request_params_default(&o->params);
     o->runs = MAX_RUNS;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    o->jobs = cores > 0 && cores < 64 ? (int)cores : 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(usage, stdout); exit(0); }
-        if (!strcmp(a, "--single")) { o->runs = 1; continue; }
-        if (a[0] != '-') { o->dir_arg = a; continue; }
+        if (switch_flag(o, a)) continue;
+        if (a[0] != '-') {
+            if (o->n_dirs == MAX_DIRS) return -1;
+            o->dirs[o->n_dirs++] = a;
+            continue;
+        }
         if (!(v = flag_value(argc, argv, &i))) return -1;
-        if (!strcmp(a, "--ids")) o->ids_arg = v;
-        else if (!strcmp(a, "--out")) o->out_dir = v;
-        else if (!strcmp(a, "--param")) { if (apply_assignment(&o->params, v)) return -1; }
-        else if (!strcmp(a, "--threads")) { if (set_param(&o->params, "threads", v)) return -1; }
-        else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1, o->runs = 1;
-        else if (!strcmp(a, "--noise") && (o->noise = atof(v)) >= 0 && o->noise <= 100) continue;
-        else if (!strcmp(a, "--strays") && (o->strays = atof(v)) >= 0 && o->strays <= 1) continue;
-        else { fprintf(stderr, "bench_quality: unknown option %s %s\n%s", a, v, usage); return -1; }
+        if (value_flag(o, a, v) != 0) {
+            fprintf(stderr, "bench_quality: bad option %s %s\n%s", a, v, usage);
+            return -1;
+        }
     }
+    if (o->n_modes == 0) add_mode(o, "vertices");
+    /* Models run in parallel; each one single-threaded unless asked. */
+    if (o->params.core.threads == 0 && o->jobs > 1) o->params.core.threads = 1;
     return 0;
 }
 
@@ -138,9 +219,9 @@ static int id_selected(const char *list, int id) {
     return 0;
 }
 
-static int write_labels(const char *dir, int id, const int *labels, size_t n) {
+static int write_labels(const char *dir, const char *mode, int id, const int *labels, size_t n) {
     char path[4096];
-    snprintf(path, sizeof path, "%s/%d.lab", dir, id);
+    snprintf(path, sizeof path, "%s/%d.%s.lab", dir, id, mode);
     FILE *f = fopen(path, "w");
     if (!f) { perror(path); return -1; }
     for (size_t i = 0; i < n; i++) fprintf(f, "%d\n", labels[i]);
@@ -155,32 +236,19 @@ static ps_params run_params(const quality_options *o, int run) {
     return p;
 }
 
-/* Vertex labels of the mesh (malloc'ed #P) by ps_segment, or all 0 for the
- * "none" baseline; fills the row's segment count and time.  strays, if not
- * NULL, is the input to segment instead: the vertices first, then stray
- * points.  NULL on failure. */
-static int *label_vertices(const ps_pointset *mesh, const ps_input *strays,
-                           const quality_options *o, int run, model_row *row) {
-    double start = now_ms();
-    if (o->baseline_none) {
-        row->segments[run] = 1;
-        int *zeros = calloc(mesh->n, sizeof *zeros);
-        row->ms[run] = now_ms() - start;
-        return zeros;
-    }
-    ps_input in = {mesh->points, mesh->n, mesh->dim, mesh->normals};
-    if (strays) in = *strays;
-    ps_params params = run_params(o, run);
+/* Segments `in` and copies the labels of its first n_scored points into a
+ * malloc'ed array; *segments gets the segment count.  NULL on failure. */
+static int *segment_labels(const ps_input *in, const ps_params *params, size_t n_scored,
+                           int id, int *segments) {
     ps_result *r = NULL;
     ps_error err;
-    if (ps_segment(&in, &params, NULL, &r, &err) != PS_OK) {
-        fprintf(stderr, "model %d: %s\n", row->id, err.message);
+    if (ps_segment(in, params, NULL, &r, &err) != PS_OK) {
+        fprintf(stderr, "model %d: %s\n", id, err.message);
         return NULL;
     }
-    row->ms[run] = now_ms() - start;
-    row->segments[run] = r->n_segments;
-    int *labels = malloc(mesh->n * sizeof *labels);
-    if (labels) memcpy(labels, r->labels, mesh->n * sizeof *labels);
+    *segments = r->n_segments;
+    int *labels = malloc(n_scored * sizeof *labels);
+    if (labels) memcpy(labels, r->labels, n_scored * sizeof *labels);
     ps_result_free(r);
     return labels;
 }
@@ -214,78 +282,187 @@ static void add_noise(ps_pointset *mesh, double noise, int id) {
                            cos(2 * 3.14159265358979323846 * uniform(&state));
 }
 
-/* The mesh's vertices followed by fraction x #P stray points, uniform in
- * the bounding box grown by 10% on every side (the same for a given model
- * id on every run); normals, when the mesh has them, +z for the strays.
- * 0 or -1 (out of memory). */
-static int with_strays(const ps_pointset *mesh, double fraction, int id, ps_input *in) {
-    size_t extra = (size_t)ceil(fraction * (double)mesh->n), n = mesh->n + extra;
-    double *points = malloc(3 * n * sizeof *points);
-    double *normals = mesh->normals ? calloc(3 * n, sizeof *normals) : NULL;
-    if (!points || (mesh->normals && !normals)) return free(points), free(normals), -1;
-    memcpy(points, mesh->points, 3 * mesh->n * sizeof *points);
-    if (normals) memcpy(normals, mesh->normals, 3 * mesh->n * sizeof *normals);
+/* Appends `extra` stray points, uniform in the vertices' bounding box grown
+ * by 10% on every side (seeded by the model id), to points[0 .. 3 n). */
+static void add_strays(double *points, size_t n_mesh, size_t n, int id) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < 3 * mesh->n; i++)
+    for (size_t i = 0; i < 3 * n_mesh; i++)
         lo[i % 3] = fmin(lo[i % 3], points[i]), hi[i % 3] = fmax(hi[i % 3], points[i]);
     uint64_t state = 0x2545F4914F6CDD1Dull ^ (uint64_t)id;
-    for (size_t i = 3 * mesh->n; i < 3 * n; i++) {
+    for (size_t i = 3 * n_mesh; i < 3 * n; i++) {
         double grow = 0.1 * (hi[i % 3] - lo[i % 3]);
         points[i] = lo[i % 3] - grow + (hi[i % 3] - lo[i % 3] + 2 * grow) * uniform(&state);
-        if (normals && i % 3 == 2) normals[i] = 1;
     }
-    *in = (ps_input){points, n, 3, normals};
+}
+
+/* The model's input points (malloc'ed #n by 3): the vertices first, then
+ * the surface samples of the mode, then the stray points; 0 or -1. */
+static int build_input(const ps_pointset *mesh, const input_mode *mode, double strays, int id,
+                       double **points, size_t *n) {
+    size_t n_surface = mode->surface_points > mesh->n ? mode->surface_points - mesh->n : 0;
+    size_t n_strays = (size_t)ceil(strays * (double)mesh->n);
+    *n = mesh->n + n_surface + n_strays;
+    double *all = malloc(3 * *n * sizeof *all), *samples = NULL;
+    if (!all) return -1;
+    memcpy(all, mesh->points, 3 * mesh->n * sizeof *all);
+    if (n_surface) {
+        if (ps_mesh_sample_surface(mesh, n_surface, 0x5851F42D4C957F2Dull ^ (uint64_t)id,
+                                   &samples) != 0)
+            return free(all), -1;
+        memcpy(all + 3 * mesh->n, samples, 3 * n_surface * sizeof *all);
+        free(samples);
+    }
+    add_strays(all, mesh->n + n_surface, *n, id);
+    *points = all;
     return 0;
 }
 
-/* Segments and scores one model; 0 or -1. */
-static int run_model(const char *dir, const quality_options *o, model_row *row) {
+/* The points moved by a rotation of 1.1 rad about (1, 2, 3), a scale of
+ * 1000 and a shift: the copy --stability segments. */
+static double *moved_copy(const double *points, size_t n) {
+    double *copy = malloc(3 * n * sizeof *copy);
+    if (!copy) return NULL;
+    memcpy(copy, points, 3 * n * sizeof *copy);
+    const double shift[3] = {12.5, -7.25, 3.0};
+    double r = sqrt(14.0);
+    ps_shape_transform(copy, n, 1 / r, 2 / r, 3 / r, 1.1, 1000, shift);
+    return copy;
+}
+
+/* --stability: segments the moved copy with the given parameters and
+ * compares its labels with the original's on the scored points. */
+static int check_moved(const ps_input *in, const ps_params *params, const int *labels,
+                       size_t n_scored, model_row *row) {
+    double *copy = moved_copy(in->points, in->n);
+    if (!copy) return -1;
+    ps_input moved = {copy, in->n, 3, NULL};
+    int *moved_labels = segment_labels(&moved, params, n_scored, row->id, &row->moved_segments);
+    free(copy);
+    if (!moved_labels) return -1;
+    row->moved_ri = 1 - ps_rand_index_error(labels, moved_labels, n_scored);
+    free(moved_labels);
+    return 0;
+}
+
+/* Segments the input with each run's parameters and scores the vertices. */
+static int score_runs(const quality_options *o, const input_mode *mode, const ps_input *in,
+                      const ps_pointset *mesh, const ps_psb_humans *humans, model_row *row) {
+    for (int run = 0; run < o->runs; run++) {
+        ps_params params = run_params(o, run);
+        double start = now_ms();
+        int *labels = o->baseline_none ? calloc(mesh->n, sizeof *labels)
+                                       : segment_labels(in, &params, mesh->n, row->id,
+                                                        &row->segments[run]);
+        row->ms[run] = now_ms() - start;
+        if (o->baseline_none) row->segments[run] = 1;
+        int rc = labels ? 0 : -1;
+        if (rc == 0 && o->out_dir && run == 0)
+            rc = write_labels(o->out_dir, mode->name, row->id, labels, mesh->n);
+        if (rc == 0 && o->stability && run == 0 && !row->validation && !o->baseline_none)
+            rc = check_moved(in, &params, labels, mesh->n, row);
+        if (rc == 0) row->error[run] = ps_psb_score(mesh, labels, humans);
+        free(labels);
+        if (rc != 0) return -1;
+    }
+    return 0;
+}
+
+/* Loads, segments and scores one model; 0 or -1. */
+static int run_model(const quality_options *o, const input_mode *mode, model_row *row) {
     ps_pointset mesh;
     ps_psb_humans humans;
-    if (ps_psb_load_mesh(dir, row->id, &mesh) != 0) return -1;
+    if (ps_psb_load_mesh(row->dir, row->id, &mesh) != 0) return -1;
     if (o->noise > 0) add_noise(&mesh, o->noise, row->id);
-    ps_input strays = {0};
-    int rc = -1;
     row->points = mesh.n;
-    if (o->strays > 0 && with_strays(&mesh, o->strays, row->id, &strays) != 0) {
-        ps_pointset_free(&mesh);
-        return -1;
-    }
-    if (ps_psb_load_humans(dir, row->id, mesh.n_faces, &humans) == 0) {
+    double *points = NULL;
+    size_t n = 0;
+    int rc = -1;
+    if (build_input(&mesh, mode, o->strays, row->id, &points, &n) == 0 &&
+        ps_psb_load_humans(row->dir, row->id, mesh.n_faces, &humans) == 0) {
         row->human_segments = ps_psb_mean_segments(&humans);
-        rc = 0;
-        for (int run = 0; run < o->runs && rc == 0; run++) {
-            int *labels = label_vertices(&mesh, o->strays > 0 ? &strays : NULL, o, run, row);
-            int write = o->out_dir && run == 0;
-            rc = labels && (!write || write_labels(o->out_dir, row->id, labels, mesh.n) == 0)
-                     ? 0
-                     : -1;
-            if (rc == 0) row->error[run] = ps_psb_score(&mesh, labels, &humans);
-            free(labels);
-        }
+        ps_input in = {points, n, 3, n == mesh.n ? mesh.normals : NULL};
+        rc = score_runs(o, mode, &in, &mesh, &humans, row);
         ps_psb_humans_free(&humans);
     }
-    free((double *)strays.points), free((double *)strays.normals);
+    free(points);
     ps_pointset_free(&mesh);
     return rc;
 }
 
-static void print_params(const char *dir, const quality_options *o) {
+static void *pool_worker(void *arg) {
+    pool *p = arg;
+    for (;;) {
+        pthread_mutex_lock(&p->lock);
+        size_t i = p->next++;
+        pthread_mutex_unlock(&p->lock);
+        if (i >= p->n_rows) return NULL;
+        p->rows[i].failed = run_model(p->o, p->mode, &p->rows[i]) != 0;
+    }
+}
+
+/* Runs every row in one mode on o->jobs threads. */
+static void run_rows(const quality_options *o, const input_mode *mode, model_row *rows, size_t n) {
+    pool p = {.o = o, .mode = mode, .rows = rows, .n_rows = n};
+    pthread_mutex_init(&p.lock, NULL);
+    pthread_t threads[64];
+    int started = 0;
+    for (int t = 0; t < o->jobs; t++)
+        if (pthread_create(&threads[started], NULL, pool_worker, &p) == 0) started++;
+    if (started == 0) pool_worker(&p);
+    for (int t = 0; t < started; t++) pthread_join(threads[t], NULL);
+    pthread_mutex_destroy(&p.lock);
+}
+
+/* The psb-train folder: $POINTSEG_PSB_TRAIN, else ~/.cache/pointseg/psb-train. */
+static int find_train_dir(char *out, size_t cap) {
+    const char *env = getenv("POINTSEG_PSB_TRAIN"), *home = getenv("HOME");
+    char given[4096];
+    if (env) snprintf(given, sizeof given, "%s", env);
+    else snprintf(given, sizeof given, "%s/.cache/pointseg/psb-train", home ? home : ".");
+    return ps_psb_find_dir(given, out, cap);
+}
+
+/* Every selected model of every folder, in folder then id order. */
+static model_row *collect_rows(const quality_options *o, char dirs[][4096], int n_dirs,
+                               size_t *n_rows) {
+    size_t cap = 0, n = 0;
+    model_row *rows = NULL;
+    for (int d = 0; d < n_dirs; d++) {
+        size_t n_ids = 0;
+        int *ids = ps_psb_model_ids(dirs[d], &n_ids);
+        for (size_t m = 0; m < n_ids; m++) {
+            if (!id_selected(o->ids_arg, ids[m])) continue;
+            if (o->dev_only && is_validation(ids[m])) continue;
+            if (n == cap) {
+                cap = cap ? 2 * cap : 512;
+                model_row *grown = realloc(rows, cap * sizeof *rows);
+                if (!grown) { free(ids); free(rows); *n_rows = 0; return NULL; }
+                rows = grown;
+            }
+            rows[n++] = (model_row){.dir = dirs[d], .id = ids[m], .validation = is_validation(ids[m])};
+        }
+        free(ids);
+    }
+    *n_rows = n;
+    return rows;
+}
+
+static void print_params(const quality_options *o, char dirs[][4096], int n_dirs) {
     const ps_params *p = &o->params.core;
-    printf("PSB developer set: %s\n", dir);
+    for (int d = 0; d < n_dirs; d++) printf("PSB folder: %s\n", dirs[d]);
     if (o->baseline_none) {
         printf("labelling: baseline none (every vertex the same label)\n\n");
         return;
     }
     printf("params: method=%s k=%d centrality=%s samples=%d persistence=%g ncut_threshold=%g "
-           "feature_threshold=%g minima=%d f2=%d threads=%d\n",
+           "feature_threshold=%g minima=%d f2=%d threads=%d (models at once: %d)\n",
            ps_method_name(p->method), p->k, ps_centrality_name(p->centrality), p->samples,
            p->persistence, p->ncut_threshold, p->feature_threshold, p->use_minima, p->use_f2,
-           p->threads);
+           p->threads, o->jobs);
     if (o->noise > 0) printf("noise: sigma %g mean edge lengths per coordinate\n", o->noise);
     if (o->strays > 0) printf("strays: %g stray points per vertex (vertices scored)\n", o->strays);
     if (o->runs > 1) printf("compared with: the same, method=paper\n");
-    printf("\n");
+    printf("validation models ((ID-1) %% 20 in 15..18): mean only\n");
 }
 
 static const char *run_name(const quality_options *o, int run) {
@@ -293,85 +470,147 @@ static const char *run_name(const quality_options *o, int run) {
     return ps_method_name(run_params(o, run).method);
 }
 
-static void print_header(const quality_options *o) {
+static void print_model_rows(const quality_options *o, const model_row *rows, size_t n) {
     printf("%5s %-10s %7s %10s", "id", "category", "points", "human segs");
     for (int run = 0; run < o->runs; run++)
         printf(" | %-6s %5s %7s %9s", run_name(o, run), "segs", "1-RI", "time ms");
+    if (o->stability) printf(" | moved segs     RI");
     printf("\n");
+    for (size_t i = 0; i < n; i++) {
+        const model_row *row = &rows[i];
+        if (row->validation) continue;
+        printf("%5d %-10s", row->id, ps_psb_category(row->id));
+        if (row->failed) { printf(" FAILED\n"); continue; }
+        printf(" %7zu %10.1f", row->points, row->human_segments);
+        for (int run = 0; run < o->runs; run++)
+            printf(" | %-6s %5d %7.4f %9.1f", "", row->segments[run], row->error[run], row->ms[run]);
+        if (o->stability) printf(" | %10d %6.4f", row->moved_segments, row->moved_ri);
+        printf("\n");
+    }
 }
 
-static void print_row(const quality_options *o, const model_row *row) {
-    printf("%5d %-10s %7zu %10.1f", row->id, ps_psb_category(row->id), row->points,
-           row->human_segments);
-    for (int run = 0; run < o->runs; run++)
-        printf(" | %-6s %5d %7.4f %9.1f", "", row->segments[run], row->error[run], row->ms[run]);
-    printf("\n");
-}
-
-static void print_summary(const quality_options *o, const category_sums *c,
-                          const double *total, int models, int failed) {
-    double category_total[MAX_RUNS] = {0};
-    int categories = 0;
+/* The category table over the development models. */
+static void print_categories(const quality_options *o, const model_row *rows, size_t n) {
+    double sum[MAX_RUNS][N_CATEGORIES] = {{0}};
+    int count[N_CATEGORIES] = {0};
+    for (size_t i = 0; i < n; i++) {
+        int k = category_index(rows[i].id);
+        if (rows[i].validation || rows[i].failed || k < 0) continue;
+        for (int run = 0; run < o->runs; run++) sum[run][k] += rows[i].error[run];
+        count[k]++;
+    }
     printf("\n%-10s %6s", "category", "models");
     for (int run = 0; run < o->runs; run++) printf(" %7s", run_name(o, run));
-    printf("\n");
+    printf("   (development models)\n");
     for (int k = 0; k < N_CATEGORIES; k++) {
-        if (!c->models[k]) continue;
-        printf("%-10s %6d", ps_psb_category(20 * k + 1), c->models[k]);
-        for (int run = 0; run < o->runs; run++) {
-            double mean = c->error[run][k] / c->models[k];
-            printf(" %7.4f", mean);
-            category_total[run] += mean;
-        }
+        if (!count[k]) continue;
+        printf("%-10s %6d", ps_psb_category(20 * k + 1), count[k]);
+        for (int run = 0; run < o->runs; run++) printf(" %7.4f", sum[run][k] / count[k]);
         printf("\n");
-        categories++;
     }
-    printf("\nmodels scored:          %d (failed: %d)\n", models, failed);
-    for (int run = 0; run < o->runs; run++) {
-        printf("%-6s mean over models:       %.4f\n", run_name(o, run),
-               models ? total[run] / models : 0.0);
-        printf("%-6s mean of category means: %.4f\n", run_name(o, run),
-               categories ? category_total[run] / categories : 0.0);
+}
+
+typedef struct split_means {
+    double mean[2][MAX_RUNS]; /* [validation][run] */
+    int models[2];
+    int failed;
+} split_means;
+
+static split_means split_summary(const quality_options *o, const model_row *rows, size_t n) {
+    split_means s;
+    memset(&s, 0, sizeof s);
+    for (size_t i = 0; i < n; i++) {
+        if (rows[i].failed) { s.failed++; continue; }
+        int v = rows[i].validation;
+        for (int run = 0; run < o->runs; run++) s.mean[v][run] += rows[i].error[run];
+        s.models[v]++;
     }
-    printf("references (1-RI, mean over the 38 dev models): human 0.092, "
-           "k-means 0.268, none 0.6645\n");
+    for (int v = 0; v < 2; v++)
+        for (int run = 0; run < o->runs; run++)
+            s.mean[v][run] = s.models[v] ? s.mean[v][run] / s.models[v] : NAN;
+    return s;
+}
+
+/* --stability: the development models whose moved copy's partition moved. */
+static int print_stability(const model_row *rows, size_t n) {
+    int checked = 0, moved = 0;
+    double least = 1;
+    for (size_t i = 0; i < n; i++) {
+        const model_row *row = &rows[i];
+        if (row->validation || row->failed) continue;
+        checked++;
+        least = fmin(least, row->moved_ri);
+        if (row->moved_ri >= STABLE_RI && row->moved_segments == row->segments[0]) continue;
+        printf("  unstable: %d (%s, %zu vertices): RI %.4f, %d segments moved vs %d\n", row->id,
+               ps_psb_category(row->id), row->points, row->moved_ri, row->moved_segments,
+               row->segments[0]);
+        moved++;
+    }
+    printf("stability (rotated 1.1 rad, scaled 1000, shifted): %d of %d development models "
+           "keep RI >= %.2f and their segment count; least RI %.4f\n",
+           checked - moved, checked, STABLE_RI, least);
+    return moved;
+}
+
+static void print_totals(const quality_options *o, const input_mode *modes, const split_means *s,
+                         int n_modes) {
+    printf("\n== mean 1-RI per input mode (development | validation | all) ==\n");
+    printf("%-16s %-6s %12s %12s %12s\n", "input", "method", "development", "validation", "all");
+    for (int m = 0; m < n_modes; m++)
+        for (int run = 0; run < o->runs; run++) {
+            int nd = s[m].models[0], nv = s[m].models[1];
+            double all = ((nd ? s[m].mean[0][run] * nd : 0) + (nv ? s[m].mean[1][run] * nv : 0)) /
+                         (nd + nv ? nd + nv : 1);
+            printf("%-16s %-6s %7.4f (%3d) %7.4f (%3d) %7.4f (%3d)\n", modes[m].name,
+                   run_name(o, run), s[m].mean[0][run], nd, s[m].mean[1][run], nv, all, nd + nv);
+        }
+    printf("references (1-RI): people 0.101, PCL CPC 0.124 (unseen PSB models, scan-like input)\n");
+}
+
+/* The folders to read: the given ones, else psb-dev and psb-train. */
+static int resolve_dirs(const quality_options *o, char dirs[][4096]) {
+    int n = 0;
+    if (o->n_dirs) {
+        for (int d = 0; d < o->n_dirs; d++)
+            if (ps_psb_find_dir(o->dirs[d], dirs[n], sizeof dirs[n])) n++;
+            else printf("SKIP: PSB folder %s not found (no off/ in it)\n", o->dirs[d]);
+        return n;
+    }
+    if (ps_psb_find_dir(NULL, dirs[n], sizeof dirs[n])) n++;
+    else printf("SKIP: PSB developer set %s not found\n", dirs[n]);
+    if (find_train_dir(dirs[n], sizeof dirs[n])) n++;
+    else printf("SKIP: PSB training set %s not found: unpack ../shared/data/psb-train.tar.xz "
+                "there (see its README) or set POINTSEG_PSB_TRAIN\n", dirs[n]);
+    return n;
 }
 
 int main(int argc, char **argv) {
     quality_options o;
-    char dir[4096];
+    static char dirs[MAX_DIRS][4096];
     if (parse_options(argc, argv, &o) != 0) return 2;
-    if (!ps_psb_find_dir(o.dir_arg, dir, sizeof dir)) {
-        printf("SKIP: PSB developer set %s not found\n", dir);
-        return 0;
-    }
-    size_t n_ids = 0;
-    int *ids = ps_psb_model_ids(dir, &n_ids);
-    category_sums cats;
-    memset(&cats, 0, sizeof cats);
-    double total[MAX_RUNS] = {0};
-    int models = 0, failed = 0;
+    int n_dirs = resolve_dirs(&o, dirs);
+    if (n_dirs == 0) return 0;
+    size_t n = 0;
+    model_row *rows = collect_rows(&o, dirs, n_dirs, &n);
     setvbuf(stdout, NULL, _IOLBF, 0);
-    print_params(dir, &o);
-    print_header(&o);
-    for (size_t m = 0; m < n_ids; m++) {
-        model_row row = {.id = ids[m]};
-        if (!id_selected(o.ids_arg, row.id)) continue;
-        if (run_model(dir, &o, &row) != 0) {
-            printf("%5d %-10s FAILED\n", row.id, ps_psb_category(row.id));
-            failed++;
-            continue;
-        }
-        print_row(&o, &row);
-        int k = category_index(row.id);
-        for (int run = 0; run < o.runs; run++) {
-            if (k >= 0) cats.error[run][k] += row.error[run];
-            total[run] += row.error[run];
-        }
-        if (k >= 0) cats.models[k]++;
-        models++;
+    print_params(&o, dirs, n_dirs);
+    split_means means[MAX_MODES];
+    int failed = 0, unstable = 0;
+    for (int m = 0; m < o.n_modes; m++) {
+        double start = now_ms();
+        for (size_t i = 0; i < n; i++)
+            rows[i] = (model_row){.dir = rows[i].dir, .id = rows[i].id, .validation = rows[i].validation};
+        run_rows(&o, &o.modes[m], rows, n);
+        printf("\n== input %s: %zu models, %.0f s ==\n", o.modes[m].name, n,
+               (now_ms() - start) / 1e3);
+        print_model_rows(&o, rows, n);
+        print_categories(&o, rows, n);
+        means[m] = split_summary(&o, rows, n);
+        failed += means[m].failed;
+        if (o.stability) unstable += print_stability(rows, n);
     }
-    free(ids);
-    print_summary(&o, &cats, total, models, failed);
-    return failed ? 1 : 0;
+    print_totals(&o, o.modes, means, o.n_modes);
+    printf("models failed: %d\n", failed);
+    free(rows);
+    return failed || unstable ? 1 : 0;
 }

@@ -18,6 +18,7 @@
 
 #include "decode.h"
 #include "encode.h"
+#include "mesh_sample.h"
 #include "pointseg.h"
 #include "shapes.h"
 #include "testlib.h"
@@ -171,63 +172,6 @@ static void run_case(const speed_case *c) {
            median.v[COL_TOTAL], median.v[COL_SEGMENTS], peak_rss_mb());
 }
 
-static uint64_t xorshift64(uint64_t *s) {
-    *s ^= *s << 13;
-    *s ^= *s >> 7;
-    *s ^= *s << 17;
-    return *s;
-}
-
-static double uniform01(uint64_t *s) { return (double)(xorshift64(s) >> 11) * 0x1.0p-53; }
-
-static double triangle_area(const double *a, const double *b, const double *c) {
-    double u[3], v[3];
-    for (int i = 0; i < 3; i++) { u[i] = b[i] - a[i]; v[i] = c[i] - a[i]; }
-    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
-           z = u[0] * v[1] - u[1] * v[0];
-    return 0.5 * sqrt(x * x + y * y + z * z);
-}
-
-/* Index of the first cumulative area above target (cumulative increasing). */
-static size_t find_face(const double *cumulative, size_t n_faces, double target) {
-    size_t lo = 0, hi = n_faces - 1;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (cumulative[mid] > target) hi = mid;
-        else lo = mid + 1;
-    }
-    return lo;
-}
-
-/* n points uniform by area on mesh's triangles (deterministic); 0 or -1. */
-static int sample_surface(const ps_pointset *mesh, size_t n, ps_pointset *out) {
-    double *cumulative = malloc(mesh->n_faces * sizeof *cumulative);
-    memset(out, 0, sizeof *out);
-    out->points = malloc(3 * n * sizeof *out->points);
-    if (!cumulative || !out->points) { free(cumulative); free(out->points); return -1; }
-    double total = 0;
-    for (size_t f = 0; f < mesh->n_faces; f++) {
-        const uint32_t *v = mesh->faces + 3 * f;
-        total += triangle_area(mesh->points + 3 * v[0], mesh->points + 3 * v[1],
-                               mesh->points + 3 * v[2]);
-        cumulative[f] = total;
-    }
-    uint64_t seed = 0x9E3779B97F4A7C15ull;
-    for (size_t i = 0; i < n; i++) {
-        const uint32_t *v = mesh->faces + 3 * find_face(cumulative, mesh->n_faces,
-                                                        uniform01(&seed) * total);
-        double r1 = sqrt(uniform01(&seed)), r2 = uniform01(&seed);
-        double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2;
-        for (int d = 0; d < 3; d++)
-            out->points[3 * i + d] = wa * mesh->points[3 * v[0] + d] +
-                                     wb * mesh->points[3 * v[1] + d] + wc * mesh->points[3 * v[2] + d];
-    }
-    free(cumulative);
-    out->n = n;
-    out->dim = 3;
-    return 0;
-}
-
 static int file_exists(const char *path) { return access(path, R_OK) == 0; }
 
 /* The scan model cases (horse, bunny: approx centrality; the horse also
@@ -278,7 +222,9 @@ static void run_large(const char *shared) {
         return;
     }
     if (load_file(path, &horse) != 0) return;
-    int rc = horse.n_faces ? sample_surface(&horse, LARGE_POINTS, &sampled) : -1;
+    memset(&sampled, 0, sizeof sampled);
+    int rc = ps_mesh_sample_surface(&horse, LARGE_POINTS, 0, &sampled.points);
+    sampled.n = LARGE_POINTS, sampled.dim = 3;
     ps_pointset_free(&horse);
     if (rc != 0) { printf("%-24s FAILED: no faces or out of memory\n", "horse 1M sampled"); return; }
     speed_case c = {"horse 1M sampled auto", NULL, &sampled, PS_CENTRALITY_AUTO, 1, PS_METHOD_AUTO};

@@ -1,0 +1,20 @@
+/*
+ * mesh_sample.h: points sampled uniformly by area on a triangle mesh, for
+ * the benchmarks' scan-like inputs (bench_speed's 1M horse, bench_quality's
+ * surface:N mode).  Deterministic: the same mesh and seed give the same
+ * points on every machine.
+ */
+#ifndef PS_MESH_SAMPLE_H
+#define PS_MESH_SAMPLE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "pointset.h"
+
+/* Writes n points uniform by area on mesh's #F by 3 triangles into the
+ * malloc'ed #n by 3 array *out (xorshift64 seeded by seed).  0, or -1 when
+ * the mesh has no faces of positive area or memory runs out. */
+int ps_mesh_sample_surface(const ps_pointset *mesh, size_t n, uint64_t seed, double **out);
+
+#endif
