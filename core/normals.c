@@ -125,22 +125,62 @@ static void orient_from(const ps_graph *g, uint32_t root, double *n, unsigned ch
     }
 }
 
-/* PCA normals: each component's root (its point of largest x) is made to
- * look along +x, and the rest of the component follows it over the tree. */
-static ps_status orient_components(const ps_graph *g, const uint32_t *extreme,
-                                  int n_components, double *normals, ps_error *err) {
+/* Each component's centroid (#C by 3) and its root for the orientation
+ * tree (#C): the point farthest from the centroid, which no rotation,
+ * scaling or reordering of the points changes. */
+static int component_centers(size_t n, const double *points, const int *component,
+                             int n_components, double *centroid, uint32_t *root) {
+    size_t *count = calloc((size_t)n_components, sizeof *count);
+    double *far = malloc((size_t)n_components * sizeof *far);
+    if (!count || !far) return free(count), free(far), -1;
+    for (size_t p = 0; p < n; p++) {
+        for (int i = 0; i < 3; i++) centroid[3 * component[p] + i] += points[3 * p + i];
+        count[component[p]]++;
+    }
+    for (int c = 0; c < n_components; c++) {
+        for (int i = 0; i < 3; i++) centroid[3 * c + i] /= (double)(count[c] ? count[c] : 1);
+        root[c] = UINT32_MAX;
+    }
+    for (size_t p = 0; p < n; p++) {
+        int c = component[p];
+        double d[3];
+        for (int i = 0; i < 3; i++) d[i] = points[3 * p + i] - centroid[3 * c + i];
+        if (root[c] == UINT32_MAX || dot3(d, d) > far[c]) root[c] = (uint32_t)p, far[c] = dot3(d, d);
+    }
+    free(count), free(far);
+    return 0;
+}
+
+/* Flips every normal of a component whose normals point inward on the
+ * whole: by the divergence theorem, outward normals of a closed surface
+ * sampled evenly have sum n . (x - centroid) > 0.  A vote over all the
+ * points, so that no single point (an extreme one on a thin fin, whose
+ * normal is sideways) decides the sign, and no rotation changes it. */
+static void point_outward(size_t n, const double *points, const int *component,
+                          int n_components, const double *centroid, double *vote,
+                          double *normals) {
+    memset(vote, 0, (size_t)n_components * sizeof *vote);
+    for (size_t p = 0; p < n; p++) {
+        const double *c = centroid + 3 * component[p];
+        double d[3] = {points[3 * p] - c[0], points[3 * p + 1] - c[1], points[3 * p + 2] - c[2]};
+        vote[component[p]] += dot3(d, normals + 3 * p);
+    }
+    for (size_t p = 0; p < n; p++)
+        if (vote[component[p]] < 0)
+            for (int i = 0; i < 3; i++) normals[3 * p + i] = -normals[3 * p + i];
+}
+
+/* PCA normals: each component's orientation spreads from its root over
+ * the tree. */
+static ps_status orient_components(const ps_graph *g, const uint32_t *root, int n_components,
+                                   double *normals, ps_error *err) {
     unsigned char *done = calloc(g->n ? g->n : 1, 1);
     prim_item *heap = malloc((g->offsets[g->n] + 1) * sizeof *heap);
     if (!done || !heap) {
         free(done), free(heap);
         return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
     }
-    for (int c = 0; c < n_components; c++) {
-        double *root = normals + 3 * extreme[c];
-        if (root[0] < 0)
-            for (int i = 0; i < 3; i++) root[i] = -root[i];
-        orient_from(g, extreme[c], normals, done, heap);
-    }
+    for (int c = 0; c < n_components; c++) orient_from(g, root[c], normals, done, heap);
     free(done), free(heap);
     return PS_OK;
 }
@@ -155,21 +195,19 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
         else ps_noise_add(&noise, pca_normal(g, points, p, normals + 3 * p));
         normalize(normals + 3 * p);
     }
-    uint32_t *extreme = malloc((size_t)n_components * sizeof *extreme);
-    if (!extreme) return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
-    for (int c = 0; c < n_components; c++) extreme[c] = UINT32_MAX;
-    for (size_t p = 0; p < n; p++) {
-        uint32_t *x = &extreme[component[p]];
-        if (*x == UINT32_MAX || points[3 * p] > points[3 * *x]) *x = (uint32_t)p;
-    }
-    ps_status st = PS_OK;
-    if (!given) st = orient_components(g, extreme, n_components, normals, err);
+    double *centroid = calloc(4 * (size_t)n_components, sizeof *centroid); /* then the votes */
+    uint32_t *root = malloc((size_t)n_components * sizeof *root);
+    ps_status st = centroid && root &&
+                           component_centers(n, points, component, n_components, centroid, root) == 0
+                       ? PS_OK
+                       : ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
+    if (st == PS_OK && !given) st = orient_components(g, root, n_components, normals, err);
+    if (st == PS_OK)
+        point_outward(n, points, component, n_components, centroid,
+                      centroid + 3 * (size_t)n_components, normals);
     int iterations = given || !smooth ? 0 : ps_noise_iterations(ps_noise_median(&noise));
     if (smoothing) *smoothing = iterations;
     if (st == PS_OK) st = ps_normals_smooth(g, normals, iterations, err);
-    for (size_t p = 0; given && p < n; p++) /* given: consistent, maybe inward */
-        if (given[3 * extreme[component[p]]] < 0)
-            for (int i = 0; i < 3; i++) normals[3 * p + i] = -normals[3 * p + i];
-    free(extreme);
+    free(centroid), free(root);
     return st;
 }

@@ -1,7 +1,8 @@
 /* test_normals.c: PCA normals on a sphere come out unit and outward, given
  * normals that point inward are flipped outward, a shifted, rotated copy
- * keeps its orientation, and the normals of a noisy sphere are smoothed
- * close to the true ones. */
+ * keeps its orientation (also when its most extreme point lies on a thin
+ * fin, whose normal is sideways), and the normals of a noisy sphere are
+ * smoothed close to the true ones. */
 #include "knn_graph.h"
 #include "normals.h"
 #include "shapes.h"
@@ -45,6 +46,45 @@ static void check_sphere(double shift, double angle) {
 
 static void test_pca_sphere_outward(void) { check_sphere(0, 0); }
 static void test_pca_moved_sphere_outward(void) { check_sphere(40, 2.2); }
+
+/* The unit sphere and a flat fin of zero thickness in the plane y = 0
+ * sticking out along +x to x = 2.5: the point of largest x is on the fin's
+ * edge, where the normal is sideways.  *n_sphere: the sphere's points,
+ * which come first. */
+static double *sphere_with_fin(size_t *n, size_t *n_sphere) {
+    double *sphere = ps_shape_sphere(0, n_sphere, NULL);
+    const double step = 0.06;
+    const int columns = 26, rows = 11;
+    *n = *n_sphere + (size_t)(columns * rows);
+    double *pts = realloc(sphere, *n * 3 * sizeof *pts);
+    if (!pts) return free(sphere), NULL;
+    double *fin = pts + 3 * *n_sphere;
+    for (int i = 0; i < columns; i++)
+        for (int j = 0; j < rows; j++, fin += 3)
+            fin[0] = 1.0 + step * i, fin[1] = 0, fin[2] = step * (j - rows / 2);
+    return pts;
+}
+
+static void test_fin_does_not_decide_the_sign(void) {
+    for (int turn = 0; turn < 6; turn++) {
+        size_t n, n_sphere;
+        double *pts = sphere_with_fin(&n, &n_sphere);
+        REQUIRE(pts);
+        const double t[3] = {1, 2, 3}, angle = 0.3 + 0.6 * turn;
+        ps_shape_transform(pts, n, 0.3, 0.5, 0.81, angle, 2.0, t);
+        ps_graph g;
+        REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
+        int *comp = malloc(n * sizeof *comp);
+        double *nrm = malloc(n * 3 * sizeof *nrm);
+        REQUIRE(comp && nrm);
+        int nc = ps_graph_components(&g, comp);
+        REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, 0, nrm, NULL, NULL) == PS_OK);
+        double share = outward_share(pts, nrm, n_sphere, t);
+        CHECK_MSG(share > 0.99, "angle %g: only %.3f of the sphere outward", angle, share);
+        ps_graph_free(&g);
+        free(pts), free(comp), free(nrm);
+    }
+}
 
 static void test_given_inward_flipped(void) {
     size_t n;
@@ -115,4 +155,5 @@ static void test_noisy_sphere_smoothed(void) {
 }
 
 PS_TEST_MAIN(TEST(test_pca_sphere_outward), TEST(test_pca_moved_sphere_outward),
+             TEST(test_fin_does_not_decide_the_sign),
              TEST(test_given_inward_flipped), TEST(test_noisy_sphere_smoothed))
