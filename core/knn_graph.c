@@ -4,8 +4,11 @@
  *
  * FLANN's single kd-tree (an exact search) on the double coordinates finds
  * k + EXTRA candidates per point; their distances are recomputed here in
- * double and the k nearest other points kept by (distance, index), so ties
- * and the thread count never change the graph.  Queries go in Morton order
+ * double, rounded to single precision, and the k nearest other points kept
+ * by (rounded distance, index): the equal distances of a regular grid stay
+ * ties broken by index when a rotation moves them apart in the last bits
+ * (for tie sets that fit in the EXTRA candidates), and the thread count
+ * never changes the graph.  Queries go in Morton order
  * (morton.h), blocks of them per worker, which keeps the tree walks in
  * cache for inputs in any order.  The directed lists are then
  * mirrored into CSR rows sorted by neighbour index without duplicates.
@@ -28,7 +31,7 @@
 #define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
 
 typedef struct candidate {
-    double dist;
+    float dist;      /* the distance to single precision: a tie key */
     uint32_t index;
 } candidate;
 
@@ -89,7 +92,7 @@ static int keep_nearest(const query_job *j, size_t p, const int *found) {
         int q = found[t];
         if (q < 0 || (size_t)q == p) continue;
         c[m].index = (uint32_t)q;
-        c[m].dist = point_distance(x, j->points + (size_t)q * (size_t)j->dim, j->dim);
+        c[m].dist = (float)point_distance(x, j->points + (size_t)q * (size_t)j->dim, j->dim);
         m++;
     }
     if (m < j->k) return -1;

@@ -1,6 +1,7 @@
 /* test_knn_graph.c: the kNN graph equals a brute-force one (exact neighbour
  * sets, ties by index), is symmetric with sorted rows, does not depend on
- * the thread count or the scale, and components are numbered by lowest vertex. */
+ * the thread count, the scale or a rotation of a grid full of ties, and
+ * components are numbered by lowest vertex. */
 #include "knn_graph.h"
 #include "shapes.h"
 #include "testlib.h"
@@ -144,6 +145,25 @@ static void test_threads_and_scale_invariant(void) {
     free(p), free(big), free(tiny);
 }
 
+/* A square grid in 3-D, rotated and scaled: its equal distances differ in
+ * the last bits after the move, and must still be ties broken by index
+ * (4 neighbours at 1, 4 at sqrt 2: a tie set within the EXTRA candidates). */
+static void test_rotated_grid_same_graph(void) {
+    enum { side = 30, count = side * side };
+    double *grid = malloc(3 * count * sizeof *grid), *moved = malloc(3 * count * sizeof *moved);
+    REQUIRE(grid && moved);
+    for (int i = 0; i < count; i++) grid[3 * i] = i % side, grid[3 * i + 1] = i / side, grid[3 * i + 2] = 0;
+    memcpy(moved, grid, 3 * count * sizeof *moved);
+    const double shift[3] = {3.5, -1.25, 7};
+    ps_shape_transform(moved, count, 1, 2, 3, 1.1, 1000, shift);
+    ps_graph a, b;
+    REQUIRE(ps_knn_graph_build(grid, count, 3, 7, 1, &a, NULL) == PS_OK);
+    REQUIRE(ps_knn_graph_build(moved, count, 3, 7, 2, &b, NULL) == PS_OK);
+    CHECK(same_graph(&a, &b));
+    ps_graph_free(&a), ps_graph_free(&b);
+    free(grid), free(moved);
+}
+
 /* Two clusters far apart, interleaved in index order, and a small third
  * one of k + 2 points at the end. */
 static void test_components(void) {
@@ -174,6 +194,7 @@ static void test_rejects_bad_k(void) {
 }
 
 PS_TEST_MAIN(TEST(test_random_3d), TEST(test_random_high_dim), TEST(test_grid_ties),
+             TEST(test_rotated_grid_same_graph),
              TEST(test_hub_row),
              TEST(test_threads_and_scale_invariant), TEST(test_components),
              TEST(test_rejects_bad_k))
