@@ -14,7 +14,7 @@
 BUILD ?= build
 SAN ?= 0
 CC ?= cc
-PKGS := lapacke libmicrohttpd libcjson libcurl zlib
+PKGS := lapacke libmicrohttpd libcjson libcurl zlib hiredis
 
 OPT ?= -O2
 CFLAGS ?= $(OPT) -g
@@ -43,6 +43,7 @@ obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
 CORE_LIB := $(BUILD)/libpointseg.a
 API_LIB := $(BUILD)/libpointseg_api.a
 CCLIENT_LIB := $(if $(CCLIENT_SRC),$(BUILD)/libpointseg_client.a)
+SERVER_LIB := $(BUILD)/libpointseg_server.a
 TESTLIB_OBJ := $(call obj,$(TESTLIB_SRC))
 UNIT_BIN := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRC))
 INTEG_BIN := $(patsubst tests/integration/%.c,$(BUILD)/itests/%,$(INTEG_SRC))
@@ -70,13 +71,15 @@ $(API_LIB): $(call obj,$(API_SRC))
 	@rm -f $@; ar rcs $@ $^
 $(BUILD)/libpointseg_client.a: $(call obj,$(CCLIENT_SRC))
 	@rm -f $@; ar rcs $@ $^
+$(SERVER_LIB): $(call obj,$(filter-out server/main.c,$(SERVER_SRC)))
+	@rm -f $@; ar rcs $@ $^
 
 $(BUILD)/pointseg: $(call obj,$(CLI_SRC)) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
-$(BUILD)/pointsegd: $(call obj,$(SERVER_SRC)) $(API_LIB) $(CORE_LIB)
+$(BUILD)/pointsegd: $(call obj,server/main.c) $(SERVER_LIB) $(API_LIB) $(CORE_LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
+$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(SERVER_LIB) $(API_LIB) $(CORE_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 $(BUILD)/itests/%: $(BUILD)/obj/tests/integration/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)

@@ -5,13 +5,12 @@
 
 #include "deadline.h"
 #include "job_runner.h"
+#include "jobstore.h"
 
-#include <errno.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/random.h>
 #include <time.h>
 
 struct ps_job {
@@ -62,18 +61,6 @@ static double now_seconds(void) {
 const char *ps_job_state_name(ps_job_state s) {
     static const char *const names[] = {"queued", "running", "done", "failed", "cancelled"};
     return (unsigned)s < sizeof names / sizeof names[0] ? names[s] : "unknown";
-}
-
-static void make_id(const char *prefix, char *out, size_t cap) {
-    unsigned char raw[16];
-    size_t got = 0;
-    while (got < sizeof raw) {
-        ssize_t r = getrandom(raw + got, sizeof raw - got, 0);
-        if (r > 0) got += (size_t)r;
-        else if (errno != EINTR) break;
-    }
-    size_t n = prefix[0] ? (size_t)snprintf(out, cap, "%s-", prefix) : 0;
-    for (size_t i = 0; i < sizeof raw && n + 2 < cap; i++) n += (size_t)snprintf(out + n, cap - n, "%02x", raw[i]);
 }
 
 static void job_free(ps_job *job) {
@@ -263,7 +250,7 @@ static ps_job *new_job(ps_jobs *q, ps_pointset *points, const ps_request_params 
     ps_job *job = calloc(1, sizeof *job);
     if (!job) return NULL;
     job->owner = q;
-    make_id(q->prefix, job->id, sizeof job->id);
+    ps_job_make_id(q->prefix, job->id, sizeof job->id);
     job->state = PS_JOB_QUEUED;
     job->created = now_seconds();
     job->points = *points;
