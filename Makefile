@@ -154,8 +154,9 @@ uninstall:
 	rm -f $(DESTDIR)$(UNITDIR)/pointsegd.service
 	rm -rf $(DESTDIR)$(PREFIX)/share/pointseg
 
-# Three pointsegd behind a real nginx on loopback, routed like
-# docker/compose.yaml (installs nginx when root, else skips).  Not part of
+# redis-server, three pointsegd --redis and a real nginx on loopback, as in
+# docker/compose.yaml, with a replica SIGKILLed and Redis restarted mid-run
+# (installs nginx and redis-server when root, else skips).  Not part of
 # `make test` (the script is not executable, so tests/run.sh passes it by).
 test-scale: all
 	@sh tests/integration/scale.sh $(BUILD)
