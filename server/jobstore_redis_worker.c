@@ -61,7 +61,7 @@ static const char renew_script[] =
 static const char finish_script[] =
     OWNER_CHECK
     "redis.call('HSET', KEYS[2], 'state', ARGV[4], 'finished', ARGV[5], 'media_type', ARGV[7],"
-    "  'error_status', ARGV[8], 'error', ARGV[9])\n"
+    "  'error_status', ARGV[8], 'error', ARGV[9], 'phase', ARGV[11], 'fraction', ARGV[12])\n"
     "if ARGV[4] == 'done' then redis.call('SET', KEYS[4], ARGV[10], 'EX', ARGV[6]) end\n"
     "redis.call('EXPIRE', KEYS[2], ARGV[6])\n"
     "redis.call('DEL', KEYS[3])\n"
@@ -229,20 +229,24 @@ static long long run_owned(ps_redis_slot *w, ps_redis_link *l, const char *scrip
 
 static void store_outcome(ps_redis_slot *w, ps_redis_link *l, const taken *t, const ps_run_outcome *out) {
     static const char *const state_names[] = {"done", "failed", "cancelled"};
-    char hash[160], body[160], result[160], now[32], ttl[32], status[16];
+    char hash[160], body[160], result[160], now[32], ttl[32], status[16], phase[16], fraction[32];
     ps_redis_job_key(t->id, NULL, hash, sizeof hash);
     ps_redis_job_key(t->id, ":body", body, sizeof body);
     ps_redis_job_key(t->id, ":result", result, sizeof result);
     ps_redis_now_text(now, sizeof now);
     snprintf(ttl, sizeof ttl, "%d", w->store->cfg.job_ttl > 0 ? w->store->cfg.job_ttl : 1);
     snprintf(status, sizeof status, "%d", out->error_status);
+    pthread_mutex_lock(&w->store->lock);
+    snprintf(phase, sizeof phase, "%d", (int)w->phase);
+    snprintf(fraction, sizeof fraction, "%.4f", w->fraction);
+    pthread_mutex_unlock(&w->store->lock);
     const char *args[] = {PS_REDIS_STREAM, hash, body, result, PS_REDIS_GROUP, t->entry, w->consumer,
                           state_names[out->state], now, ttl,
                           out->media_type ? out->media_type : "", status, out->error,
-                          out->doc ? out->doc : ""};
-    size_t lens[14];
-    for (int i = 0; i < 14; i++) lens[i] = i == 13 ? out->doc_len : strlen(args[i]);
-    run_owned(w, l, finish_script, 4, args, lens, 14);
+                          out->doc ? out->doc : "", phase, fraction};
+    size_t lens[16];
+    for (int i = 0; i < 16; i++) lens[i] = i == 13 ? out->doc_len : strlen(args[i]);
+    run_owned(w, l, finish_script, 4, args, lens, 16);
 }
 
 static void hand_back(ps_redis_slot *w, ps_redis_link *l, const taken *t) {
