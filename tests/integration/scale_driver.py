@@ -20,16 +20,16 @@ pointsegd:8080" line turned into the three replicas; then:
 Prints PASS/FAIL lines; the shell counts them.
 """
 import concurrent.futures
-import json
 import os
 import re
 import signal
-import socket
 import subprocess
 import sys
 import time
-import urllib.error
-import urllib.request
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from http_checks import (call, free_port, metric, poll, report, result_labels, sphere,  # noqa: E402
+                         submit, wait_http, write)
 
 BUILD, TMP, NGINX, TEMPLATE = sys.argv[1:5]
 PS, PSD = BUILD + "/pointseg", BUILD + "/pointsegd"
@@ -38,65 +38,10 @@ procs = []
 accepted = {}  # job id -> (expected labels or None when cancelled, what)
 
 
-def report(ok, name, why=""):
-    print(("PASS scale:%s" % name) if ok else ("FAIL scale:%s: %s" % (name, why)), flush=True)
-    return ok
-
-
-def free_port():
-    s = socket.socket()
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
-
-
-def sphere(m, shift=0.0):
-    golden = 3.141592653589793 * (3 - 5 ** 0.5)
-    rows = []
-    for i in range(m):
-        y = 1 - 2 * (i + 0.5) / m
-        r = (1 - y * y) ** 0.5
-        t = golden * i
-        import math
-        rows.append("%.6f %.6f %.6f" % (shift + r * math.cos(t), y, r * math.sin(t)))
-    return rows
-
-
-def write(name, rows):
-    path = os.path.join(TMP, name)
-    with open(path, "w") as f:
-        f.write("\n".join(rows) + "\n")
-    return path
-
-
 def local_labels(path, *params):
     out = subprocess.run([PS, "segment", path, "--output", "labels"] + list(params),
                          check=True, capture_output=True, text=True).stdout
     return out.split()
-
-
-def call(base, method, path, data=None, timeout=30):
-    req = urllib.request.Request(base + path, data=data, method=method)
-    if data is not None:
-        req.add_header("Content-Type", "application/octet-stream")
-    try:
-        with urllib.request.urlopen(req, timeout=timeout) as r:
-            return r.status, r.read(), dict(r.headers)
-    except urllib.error.HTTPError as e:
-        return e.code, e.read(), dict(e.headers)
-
-
-def wait_http(base, path="/healthz", seconds=10, want=200):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        try:
-            if call(base, "GET", path, timeout=2)[0] == want:
-                return True
-        except OSError:
-            pass
-        time.sleep(0.1)
-    return False
 
 
 class Redis:
@@ -168,35 +113,6 @@ def start_nginx(replicas):
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
     base = "http://127.0.0.1:%d" % port
     return base if wait_http(base) else None
-
-
-def poll(base, job, deadline, states=("done", "failed", "cancelled")):
-    """Polls GET /jobs/{id} until a final state; (state, error) or (None, why)."""
-    while time.monotonic() < deadline:
-        try:
-            status, raw, _ = call(base, "GET", "/jobs/" + job)
-        except OSError as e:
-            return None, "GET /jobs/%s: %s" % (job, e)
-        if status == 503:
-            time.sleep(0.2)
-            continue
-        if status != 200:
-            return None, "GET /jobs/%s answered %d (job lost)" % (job, status)
-        doc = json.loads(raw)
-        if doc["status"] in states:
-            return doc["status"], doc.get("error")
-        time.sleep(0.05)
-    return None, "job %s not final at the deadline" % job
-
-
-def result_labels(base, job):
-    status, raw, _ = call(base, "GET", "/jobs/%s/result" % job)
-    return raw.decode().split() if status == 200 else None
-
-
-def submit(base, body, query="output=labels"):
-    status, raw, headers = call(base, "POST", "/jobs?" + query, body)
-    return status, (json.loads(raw).get("id") if status == 202 else raw), headers
 
 
 # ---- phases -----------------------------------------------------------------
@@ -274,12 +190,6 @@ def any_replica(replicas, small, small_labels):
         if state != "done" or result_labels(r.base, job) != small_labels:
             bad.append("replica %d: %s %s" % (r.n, state, err))
     report(not bad, "any-replica-reads", "; ".join(bad))
-
-
-def metric(base, name):
-    status, raw, _h = call(base, "GET", "/metrics")
-    m = re.search(r"^%s (\S+)$" % name, raw.decode(), re.M) if status == 200 else None
-    return float(m.group(1)) if m else None
 
 
 def sigkill(base, replicas, redis, medium, medium_labels):
@@ -389,8 +299,8 @@ def no_job_lost(base):
 
 
 def main():
-    small_path = write("small.xyz", sphere(150) + sphere(150, 4.0))
-    medium_path = write("medium.xyz", sphere(6000))
+    small_path = write(TMP, "small.xyz", sphere(150) + sphere(150, 4.0))
+    medium_path = write(TMP, "medium.xyz", sphere(6000))
     small, medium = open(small_path, "rb").read(), open(medium_path, "rb").read()
     small_labels = local_labels(small_path)
     medium_labels = local_labels(medium_path, "--centrality", "exact", "--threads", "1")
