@@ -173,13 +173,22 @@ static int ensure_connected(ps_redis_link *l) {
     return introduce(l);
 }
 
+/* One attempt: NULL (disconnected, why in last_error) or the reply. */
+static redisReply *attempt(ps_redis_link *l, int argc, const char **argv, const size_t *lens) {
+    if (ensure_connected(l)) return NULL;
+    redisReply *r = redisCommandArgv(l->ctx, argc, argv, lens);
+    if (!r) disconnect(l, l->ctx->errstr[0] ? l->ctx->errstr : strerror(errno));
+    return r;
+}
+
 redisReply *ps_redis_run(ps_redis_link *l, int argc, const char **argv, const size_t *lens,
                          char *why, size_t why_cap) {
     double t0 = monotonic_seconds();
-    redisReply *r = NULL;
-    if (ensure_connected(l) == 0) {
-        r = redisCommandArgv(l->ctx, argc, argv, lens);
-        if (!r) disconnect(l, l->ctx->errstr[0] ? l->ctx->errstr : strerror(errno));
+    int was_connected = l->ctx != NULL;
+    redisReply *r = attempt(l, argc, argv, lens);
+    if (!r && was_connected) { /* a connection from before a Redis restart: once more, on a new one */
+        l->retry_at = 0;
+        r = attempt(l, argc, argv, lens);
     }
     if (!r) snprintf(why, why_cap, "%s", l->last_error);
     else if (r->type == REDIS_REPLY_ERROR) {

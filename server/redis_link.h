@@ -40,8 +40,10 @@ typedef struct ps_redis_link ps_redis_link;
 ps_redis_link *ps_redis_link_new(const ps_redis_url *url, double timeout_s);
 void ps_redis_link_free(ps_redis_link *l);
 
-/* Runs one command.  Returns the reply (freeReplyObject), or NULL with why
- * ("Redis at host:port is unreachable: ...", or the error reply's text). */
+/* Runs one command (once more on a new connection when the one it had
+ * broke: Redis restarted since).  Returns the reply (freeReplyObject), or
+ * NULL with why ("Redis at host:port is unreachable: ...", or the error
+ * reply's text). */
 redisReply *ps_redis_run(ps_redis_link *l, int argc, const char **argv, const size_t *lens,
                          char *why, size_t why_cap);
 

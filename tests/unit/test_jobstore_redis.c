@@ -308,6 +308,20 @@ static void test_redis_down_then_back(void) {
     free_upload(&u);
 }
 
+/* A Redis restart between two calls breaks the pooled connection: the next
+ * call reconnects and succeeds instead of answering 503. */
+static void test_restart_between_calls(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    ps_api_error err;
+    ps_jobstore *store = open_store(0);
+    REQUIRE(store);
+    CHECK(ps_jobstore_ready(store, &err) == 0);
+    REQUIRE(ps_test_redis_restart(&server) == 0);
+    CHECK_MSG(ps_jobstore_ready(store, &err) == 0, "first call after the restart: %d %s",
+              err.http_status, err.message);
+    ps_jobstore_free(store);
+}
+
 /* Shutdown with a job running past the drain time: the job goes back to the
  * queue (not counted as a loss) and another store's worker finishes it. */
 static void test_drain_hands_back(void) {
@@ -337,4 +351,5 @@ static void test_drain_hands_back(void) {
 
 PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(test_cancel_reaches_worker),
              TEST(test_lapsed_lease_is_taken_over), TEST(test_third_loss_fails_job),
-             TEST(test_redis_down_then_back), TEST(test_drain_hands_back))
+             TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
+             TEST(test_drain_hands_back))
