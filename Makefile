@@ -51,7 +51,7 @@ BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
 .PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-load clean tests-build \
-        install uninstall test-scale web test-browser
+        install uninstall test-scale test-docker web test-browser
 .DEFAULT_GOAL := all
 
 all: $(PROGRAMS)
@@ -160,6 +160,13 @@ uninstall:
 # `make test` (the script is not executable, so tests/run.sh passes it by).
 test-scale: all
 	@sh tests/integration/scale.sh $(BUILD)
+
+# docker/Dockerfile built and run (the horse through it), then
+# docker/compose.yaml brought up and its replicas and Redis killed
+# (tests/docker/run.sh; root: installs docker.io and starts dockerd, makes
+# its Debian base images with debootstrap; skips saying why otherwise).
+test-docker: all
+	@sh tests/docker/run.sh $(BUILD)
 
 # The web viewer: three.js (pinned in clients/web/package-lock.json) copied
 # into clients/web/vendor/, which pointsegd serves at /.  test-browser runs

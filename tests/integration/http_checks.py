@@ -1,12 +1,14 @@
 """http_checks.py: what the Python test drivers share (scale_driver.py here,
 tests/docker/compose_driver.py): PASS/FAIL lines, free ports, the sphere
 test input, HTTP calls with their status, and the job helpers (submit,
-poll to a final state, result labels, a metric's value)."""
+poll to a final state, result labels, a metric's value), the test inputs and
+the closing check that no accepted job was lost."""
 import json
 import math
 import os
 import re
 import socket
+import subprocess
 import time
 import urllib.error
 import urllib.request
@@ -103,3 +105,37 @@ def metric(base, name):
     status, raw, _h = call(base, "GET", "/metrics")
     m = re.search(r"^%s (\S+)$" % name, raw.decode(), re.M) if status == 200 else None
     return float(m.group(1)) if m else None
+
+
+def local_labels(ps, path, *params):
+    """The labels `pointseg segment` gives locally."""
+    out = subprocess.run([ps, "segment", path, "--output", "labels"] + list(params),
+                         check=True, capture_output=True, text=True).stdout
+    return out.split()
+
+
+def inputs(tmp, ps):
+    """(small body, its labels, medium body, its labels with exact centrality):
+    two spheres of 150 points (quick, two segments) and a sphere of 6000
+    points, seconds of work with centrality=exact."""
+    small_path = write(tmp, "small.xyz", sphere(150) + sphere(150, 4.0))
+    medium_path = write(tmp, "medium.xyz", sphere(6000))
+    return (open(small_path, "rb").read(), local_labels(ps, small_path),
+            open(medium_path, "rb").read(),
+            local_labels(ps, medium_path, "--centrality", "exact", "--threads", "1"))
+
+
+def no_job_lost(base, accepted, name="no-job-lost"):
+    """Every accepted job (id -> (labels, or None when it was cancelled;
+    what)) ends as expected."""
+    bad = []
+    deadline = time.monotonic() + 120
+    for job, (labels, what) in accepted.items():
+        state, err = poll(base, job, deadline)
+        if labels is None:
+            ok = state == "cancelled"
+        else:
+            ok = state == "done" and result_labels(base, job) == labels
+        if not ok:
+            bad.append("%s job %s: %s %s" % (what, job, state, err))
+    report(not bad, name, "%d of %d: %s" % (len(bad), len(accepted), bad[:3]))

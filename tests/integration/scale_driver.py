@@ -28,20 +28,14 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from http_checks import (call, free_port, metric, poll, report, result_labels, sphere,  # noqa: E402
-                         submit, wait_http, write)
+from http_checks import (call, free_port, inputs, metric, no_job_lost, poll, report,  # noqa: E402
+                         result_labels, submit, wait_http)
 
 BUILD, TMP, NGINX, TEMPLATE = sys.argv[1:5]
 PS, PSD = BUILD + "/pointseg", BUILD + "/pointsegd"
 LEASE = 3
 procs = []
 accepted = {}  # job id -> (expected labels or None when cancelled, what)
-
-
-def local_labels(path, *params):
-    out = subprocess.run([PS, "segment", path, "--output", "labels"] + list(params),
-                         check=True, capture_output=True, text=True).stdout
-    return out.split()
 
 
 class Redis:
@@ -284,26 +278,8 @@ def redis_restart(base, replicas, redis, small, small_labels):
     report(not bad, "redis-back-post", "POST /jobs answered %s" % bad)
 
 
-def no_job_lost(base):
-    bad = []
-    deadline = time.monotonic() + 120
-    for job, (labels, what) in accepted.items():
-        state, err = poll(base, job, deadline)
-        if labels is None:
-            ok = state == "cancelled"
-        else:
-            ok = state == "done" and result_labels(base, job) == labels
-        if not ok:
-            bad.append("%s job %s: %s %s" % (what, job, state, err))
-    report(not bad, "no-job-lost", "%d of %d: %s" % (len(bad), len(accepted), bad[:3]))
-
-
 def main():
-    small_path = write(TMP, "small.xyz", sphere(150) + sphere(150, 4.0))
-    medium_path = write(TMP, "medium.xyz", sphere(6000))
-    small, medium = open(small_path, "rb").read(), open(medium_path, "rb").read()
-    small_labels = local_labels(small_path)
-    medium_labels = local_labels(medium_path, "--centrality", "exact", "--threads", "1")
+    small, small_labels, medium, medium_labels = inputs(TMP, PS)
     redis = Redis()
     if not report(redis.start(), "redis-start", "redis-server did not answer"):
         return
@@ -319,7 +295,7 @@ def main():
     sigkill(base, replicas, redis, medium, medium_labels)
     three_losses(base, replicas, redis, medium)
     redis_restart(base, replicas, redis, small, small_labels)
-    no_job_lost(base)
+    no_job_lost(base, accepted)
     logs = [open(os.path.join(TMP, "replica-%d.log" % r.n)).read() for r in replicas]
     served = [len(re.findall(r"^POST /(?:segment 200|jobs 202) ", log, re.M)) for log in logs]
     report(all(served), "every-replica-served", "requests per replica %s" % served)
