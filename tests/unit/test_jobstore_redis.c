@@ -17,7 +17,7 @@
 
 #define LEASE_S 2
 #define SMALL_POINTS 400
-#define SLOW_POINTS 12000 /* exact centrality: seconds of work */
+#define SLOW_POINTS 6000 /* exact centrality: seconds of work */
 
 static ps_test_redis server;
 static int server_up;
