@@ -14,7 +14,7 @@
 BUILD ?= build
 SAN ?= 0
 CC ?= cc
-PKGS := lapacke libmicrohttpd libcjson libcurl zlib
+PKGS := lapacke libmicrohttpd libcjson libcurl zlib hiredis
 
 OPT ?= -O2
 CFLAGS ?= $(OPT) -g
@@ -43,6 +43,7 @@ obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
 CORE_LIB := $(BUILD)/libpointseg.a
 API_LIB := $(BUILD)/libpointseg_api.a
 CCLIENT_LIB := $(if $(CCLIENT_SRC),$(BUILD)/libpointseg_client.a)
+SERVER_LIB := $(BUILD)/libpointseg_server.a
 TESTLIB_OBJ := $(call obj,$(TESTLIB_SRC))
 UNIT_BIN := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRC))
 INTEG_BIN := $(patsubst tests/integration/%.c,$(BUILD)/itests/%,$(INTEG_SRC))
@@ -50,7 +51,7 @@ BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
 .PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-load clean tests-build \
-        install uninstall test-scale web test-browser
+        install uninstall test-scale test-docker web test-browser
 .DEFAULT_GOAL := all
 
 all: $(PROGRAMS)
@@ -70,13 +71,15 @@ $(API_LIB): $(call obj,$(API_SRC))
 	@rm -f $@; ar rcs $@ $^
 $(BUILD)/libpointseg_client.a: $(call obj,$(CCLIENT_SRC))
 	@rm -f $@; ar rcs $@ $^
+$(SERVER_LIB): $(call obj,$(filter-out server/main.c,$(SERVER_SRC)))
+	@rm -f $@; ar rcs $@ $^
 
 $(BUILD)/pointseg: $(call obj,$(CLI_SRC)) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
-$(BUILD)/pointsegd: $(call obj,$(SERVER_SRC)) $(API_LIB) $(CORE_LIB)
+$(BUILD)/pointsegd: $(call obj,server/main.c) $(SERVER_LIB) $(API_LIB) $(CORE_LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
+$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(SERVER_LIB) $(API_LIB) $(CORE_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 $(BUILD)/itests/%: $(BUILD)/obj/tests/integration/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(API_LIB) $(CORE_LIB)
@@ -154,11 +157,19 @@ uninstall:
 	rm -f $(DESTDIR)$(UNITDIR)/pointsegd.service
 	rm -rf $(DESTDIR)$(PREFIX)/share/pointseg
 
-# Three pointsegd behind a real nginx on loopback, routed like
-# docker/compose.yaml (installs nginx when root, else skips).  Not part of
+# redis-server, three pointsegd --redis and a real nginx on loopback, as in
+# docker/compose.yaml, with a replica SIGKILLed and Redis restarted mid-run
+# (installs nginx and redis-server when root, else skips).  Not part of
 # `make test` (the script is not executable, so tests/run.sh passes it by).
 test-scale: all
 	@sh tests/integration/scale.sh $(BUILD)
+
+# docker/Dockerfile built and run (the horse through it), then
+# docker/compose.yaml brought up and its replicas and Redis killed
+# (tests/docker/run.sh; root: installs docker.io and starts dockerd, makes
+# its Debian base images with debootstrap; skips saying why otherwise).
+test-docker: all
+	@sh tests/docker/run.sh $(BUILD)
 
 # The web viewer: three.js (pinned in clients/web/package-lock.json) copied
 # into clients/web/vendor/, which pointsegd serves at /.  test-browser runs

@@ -138,6 +138,8 @@ static cJSON *operation(const char *summary, const char *id, cJSON *responses) {
     return op;
 }
 
+#define SHARED_QUEUE_DOWN "the shared job queue (pointsegd --redis) is unreachable (see Retry-After)"
+
 static cJSON *segment_responses(int async) {
     cJSON *r = cJSON_CreateObject();
     if (async) {
@@ -156,7 +158,8 @@ static cJSON *segment_responses(int async) {
     add_problem(r, 413, "body, inflated body or point count over the limit");
     add_problem(r, 415, "unsupported Content-Type or format");
     add_problem(r, 422, "well-formed but unusable input, or a parameter out of range");
-    add_problem(r, 503, "queue full (see Retry-After) or shutting down");
+    add_problem(r, 503, async ? "queue full, shutting down, or " SHARED_QUEUE_DOWN
+                              : "queue full (see Retry-After) or shutting down");
     return r;
 }
 
@@ -195,9 +198,11 @@ static cJSON *job_path(void) {
     cJSON *path = cJSON_CreateObject(), *r = cJSON_CreateObject(), *d = cJSON_CreateObject();
     add_response(r, "200", "the job's status and progress", "application/json", ref("#/components/schemas/JobStatus"));
     add_problem(r, 404, "no such job (or it expired)");
+    add_problem(r, 503, SHARED_QUEUE_DOWN);
     cJSON_AddItemToObject(path, "get", operation("status of a job", "getJob", r));
     add_response(d, "202", "cancellation requested; the job's status", "application/json", ref("#/components/schemas/JobStatus"));
     add_problem(d, 404, "no such job");
+    add_problem(d, 503, SHARED_QUEUE_DOWN);
     cJSON_AddItemToObject(path, "delete", operation("cancel a job", "cancelJob", d));
     cJSON_AddItemToObject(path, "parameters", job_id_parameter());
     return path;
@@ -209,6 +214,8 @@ static cJSON *result_path(void) {
     add_problem(r, 404, "no such job");
     add_problem(r, 409, "the job is not done (queued, running or cancelled)");
     add_problem(r, 422, "the job failed: its input was unusable");
+    add_problem(r, 500, "the job failed: an internal error, or it lost its worker 3 times");
+    add_problem(r, 503, SHARED_QUEUE_DOWN);
     cJSON_AddItemToObject(path, "get", operation("result of a finished job", "getJobResult", r));
     cJSON_AddItemToObject(path, "parameters", job_id_parameter());
     return path;
@@ -223,8 +230,10 @@ static cJSON *paths(void) {
     cJSON_AddItemToObject(p, "/jobs/{id}", job_path());
     cJSON_AddItemToObject(p, "/jobs/{id}/result", result_path());
     cJSON_AddItemToObject(p, "/healthz", simple_get("the daemon is alive", "healthz", "application/json", type_schema("object")));
-    cJSON *ready = simple_get("ready: the queue is not full", "readyz", "application/json", type_schema("object"));
-    add_problem(cJSON_GetObjectItem(cJSON_GetObjectItem(ready, "get"), "responses"), 503, "queue full or shutting down");
+    cJSON *ready = simple_get("ready: the queue is not full and the shared job queue (--redis) answers",
+                              "readyz", "application/json", type_schema("object"));
+    add_problem(cJSON_GetObjectItem(cJSON_GetObjectItem(ready, "get"), "responses"), 503,
+                "queue full, shutting down, or " SHARED_QUEUE_DOWN);
     cJSON_AddItemToObject(p, "/readyz", ready);
     cJSON_AddItemToObject(p, "/metrics", simple_get("Prometheus metrics", "metrics", "text/plain", type_schema("string")));
     cJSON_AddItemToObject(p, "/openapi.json", simple_get("this document", "openapi", "application/json", type_schema("object")));

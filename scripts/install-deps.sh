@@ -8,9 +8,9 @@
 set -eu
 
 PACKAGES="gcc make pkg-config libflann-dev liblapacke-dev libopenblas-dev
-libmicrohttpd-dev libcjson-dev libcurl4-openssl-dev zlib1g-dev
+libmicrohttpd-dev libcjson-dev libcurl4-openssl-dev zlib1g-dev libhiredis-dev
 curl python3"
-TEST_PACKAGES="clang"
+TEST_PACKAGES="clang redis-server"
 
 [ "${1:-}" = "--test" ] && PACKAGES="$PACKAGES $TEST_PACKAGES"
 

@@ -50,6 +50,8 @@ static const opt_spec options[] = {
     TEXT_OPT("cors-origin", cors_origin, "", "allowed CORS origins: * or a comma-separated list"),
     DIR_OPT("static-dir", static_dir, "clients/web", "directory served at / (if it exists)"),
     TEXT_OPT("replica-name", replica_name, "", "prefix of job ids (routing between replicas)"),
+    TEXT_OPT("redis", redis, "", "redis://[:password@]host[:port][/db]: jobs on a queue shared by replicas"),
+    INT_OPT("job-lease", job_lease, 2, 86400, "30", "with --redis: seconds before a silent worker's job runs elsewhere"),
     {"quiet", OPT_FLAG, offsetof(ps_config, quiet), 0, 0, 1, "off", DEFAULT_TEXT, "no per-request log lines"},
 };
 #define N_OPTIONS (sizeof options / sizeof options[0])

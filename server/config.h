@@ -23,6 +23,8 @@ typedef struct ps_config {
     char cors_origin[512]; /* --cors-origin: "*" or comma-separated origins, "" = none */
     char static_dir[512];  /* --static-dir, default clients/web when it exists */
     char replica_name[64]; /* --replica-name: job id prefix, "" = none */
+    char redis[512];       /* --redis: redis://... URL of the shared job queue, "" = in-process */
+    int job_lease;         /* --job-lease: seconds a worker's hold on a Redis job lasts unrenewed */
     int quiet;             /* --quiet: no request log */
 } ps_config;
 

@@ -149,7 +149,8 @@ static struct MHD_Daemon *start_daemon(ps_http *h, const struct sockaddr_in *add
                             MHD_OPTION_END);
 }
 
-ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t why_cap) {
+ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, ps_jobstore *store, char *why,
+                       size_t why_cap) {
     struct sockaddr_in addr = {.sin_family = AF_INET, .sin_port = htons((uint16_t)cfg->port)};
     if (inet_pton(AF_INET, cfg->bind, &addr.sin_addr) != 1) {
         snprintf(why, why_cap, "--bind %s is not an IPv4 address", cfg->bind);
@@ -159,6 +160,7 @@ ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t wh
     if (!h) return snprintf(why, why_cap, "out of memory"), NULL;
     h->srv.cfg = cfg;
     h->srv.jobs = jobs;
+    h->srv.store = store;
     pthread_mutex_init(&h->srv.lock, NULL);
     pthread_cond_init(&h->srv.changed, NULL);
     h->srv.openapi = ps_openapi_json(&h->srv.openapi_len);

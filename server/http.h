@@ -10,13 +10,15 @@
 
 #include "config.h"
 #include "jobs.h"
+#include "jobstore.h"
 
 typedef struct ps_http ps_http;
 struct ps_server;
 
-/* Listens on cfg->bind:cfg->port.  NULL on failure (why says so).  cfg and
- * jobs must outlive the server. */
-ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, char *why, size_t why_cap);
+/* Listens on cfg->bind:cfg->port.  NULL on failure (why says so).  cfg,
+ * jobs (POST /segment) and store (/jobs) must outlive the server. */
+ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, ps_jobstore *store, char *why,
+                       size_t why_cap);
 
 /* The port actually bound (useful with --port 0). */
 int ps_http_port(ps_http *h);

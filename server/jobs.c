@@ -1,16 +1,16 @@
 /* jobs.c: the in-process job backend: a bounded ring of queued jobs, a fixed
- * pool of worker threads running ps_segment, and the registry of jobs by id. */
+ * pool of worker threads running them (job_runner.c), and the registry of
+ * jobs by id. */
 #include "jobs.h"
 
 #include "deadline.h"
-#include "encode.h"
+#include "job_runner.h"
+#include "jobstore.h"
 
-#include <errno.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/random.h>
 #include <time.h>
 
 struct ps_job {
@@ -61,18 +61,6 @@ static double now_seconds(void) {
 const char *ps_job_state_name(ps_job_state s) {
     static const char *const names[] = {"queued", "running", "done", "failed", "cancelled"};
     return (unsigned)s < sizeof names / sizeof names[0] ? names[s] : "unknown";
-}
-
-static void make_id(const char *prefix, char *out, size_t cap) {
-    unsigned char raw[16];
-    size_t got = 0;
-    while (got < sizeof raw) {
-        ssize_t r = getrandom(raw + got, sizeof raw - got, 0);
-        if (r > 0) got += (size_t)r;
-        else if (errno != EINTR) break;
-    }
-    size_t n = prefix[0] ? (size_t)snprintf(out, cap, "%s-", prefix) : 0;
-    for (size_t i = 0; i < sizeof raw && n + 2 < cap; i++) n += (size_t)snprintf(out + n, cap - n, "%02x", raw[i]);
 }
 
 static void job_free(ps_job *job) {
@@ -147,46 +135,22 @@ static void report_progress(void *user, ps_phase phase, double fraction) {
     pthread_mutex_unlock(&job->owner->lock);
 }
 
-static int status_of(ps_status s) {
-    return s == PS_ERR_INVALID ? 422 : 500;
-}
-
-static char *encode_result(ps_job *job, const ps_result *r, size_t *len, const char **media) {
-    switch (job->params.output) {
-    case PS_OUTPUT_PLY:
-        *media = "application/ply";
-        return ps_encode_ply(&job->points, r, len);
-    case PS_OUTPUT_LABELS:
-        *media = "text/plain; charset=utf-8";
-        return ps_encode_labels(r, len);
-    default:
-        *media = "application/json";
-        return ps_encode_json(r, job->params.include, len);
-    }
+static ps_job_state job_state_of(ps_run_state s) {
+    return s == PS_RUN_DONE ? PS_JOB_DONE : s == PS_RUN_FAILED ? PS_JOB_FAILED : PS_JOB_CANCELLED;
 }
 
 /* Runs the job outside the lock; fills the outcome fields it alone owns
  * while RUNNING, and returns the final state. */
 static ps_job_state run_job(ps_job *job) {
-    ps_input in = {job->points.points, job->points.n, job->points.dim, job->points.normals};
     ps_control ctl = {report_progress, job, &job->cancel};
-    ps_result *r = NULL;
-    ps_error err = {0};
-    ps_status s = ps_segment(&in, &job->params.core, &ctl, &r, &err);
-    if (s == PS_ERR_CANCELLED) return PS_JOB_CANCELLED;
-    if (s != PS_OK) {
-        job->error_status = status_of(s);
-        snprintf(job->error, sizeof job->error, "%s", err.message);
-        return PS_JOB_FAILED;
-    }
-    job->doc = encode_result(job, r, &job->doc_len, &job->media_type);
-    ps_result_free(r);
-    if (!job->doc) {
-        job->error_status = 500;
-        snprintf(job->error, sizeof job->error, "out of memory encoding the result");
-        return PS_JOB_FAILED;
-    }
-    return PS_JOB_DONE;
+    ps_run_outcome out;
+    ps_job_run(&job->points, &job->params, &ctl, &out);
+    job->doc = out.doc;
+    job->doc_len = out.doc_len;
+    job->media_type = out.media_type;
+    job->error_status = out.error_status;
+    memcpy(job->error, out.error, sizeof job->error);
+    return job_state_of(out.state);
 }
 
 /* Records a final state; the caller holds the lock.  Returns the callback
@@ -286,7 +250,7 @@ static ps_job *new_job(ps_jobs *q, ps_pointset *points, const ps_request_params 
     ps_job *job = calloc(1, sizeof *job);
     if (!job) return NULL;
     job->owner = q;
-    make_id(q->prefix, job->id, sizeof job->id);
+    ps_job_make_id(q->prefix, job->id, sizeof job->id);
     job->state = PS_JOB_QUEUED;
     job->created = now_seconds();
     job->points = *points;

@@ -10,6 +10,7 @@
 #include "config.h"
 #include "http.h"
 #include "jobs.h"
+#include "jobstore_redis.h"
 
 #include <errno.h>
 #include <semaphore.h>
@@ -17,6 +18,7 @@
 #include <stdio.h>
 
 #define ANSWER_SECONDS 5.0
+#define MAX_WORKER_LOSSES 3
 
 static sem_t stop_posted;
 static volatile sig_atomic_t stop_signal;
@@ -39,6 +41,25 @@ static int wait_for_stop_signal(void) {
     return stop_signal;
 }
 
+/* The store of asynchronous jobs: Redis with --redis, else the in-process
+ * queue.  NULL after saying why on stderr. */
+static ps_jobstore *open_store(const ps_config *cfg, ps_jobs *jobs) {
+    char why[512];
+    if (!cfg->redis[0]) return ps_jobstore_memory_new(jobs);
+    ps_redis_store_config rc = {.workers = cfg->threads, .job_ttl = cfg->job_ttl,
+                                .lease_seconds = cfg->job_lease, .max_losses = MAX_WORKER_LOSSES,
+                                .max_points = cfg->max_points, .name = cfg->replica_name};
+    if (ps_redis_url_parse(cfg->redis, &rc.url, why, sizeof why)) {
+        fprintf(stderr, "pointsegd: %s\n", why);
+        return NULL;
+    }
+    ps_jobstore *store = ps_jobstore_redis_new(&rc, why, sizeof why);
+    if (!store) fprintf(stderr, "pointsegd: %s\n", why);
+    else fprintf(stderr, "pointsegd: jobs on Redis at %s:%d (lease %d s)\n", rc.url.host, rc.url.port,
+                 cfg->job_lease);
+    return store;
+}
+
 int main(int argc, char **argv) {
     ps_config cfg;
     char why[256];
@@ -54,21 +75,25 @@ int main(int argc, char **argv) {
         fprintf(stderr, "pointsegd: cannot start %d worker threads\n", cfg.threads);
         return 1;
     }
-    ps_http *http = ps_http_start(&cfg, jobs, why, sizeof why);
+    ps_jobstore *store = open_store(&cfg, jobs);
+    ps_http *http = store ? ps_http_start(&cfg, jobs, store, why, sizeof why) : NULL;
     if (!http) {
-        fprintf(stderr, "pointsegd: %s\n", why);
+        if (store) fprintf(stderr, "pointsegd: %s\n", why);
+        ps_jobstore_free(store);
         ps_jobs_drain(jobs, 0);
         ps_jobs_free(jobs);
-        return 1;
+        return store ? 1 : 2;
     }
     fprintf(stderr, "pointsegd: listening on http://%s:%d (%d workers, queue %d)\n", cfg.bind,
             ps_http_port(http), cfg.threads, cfg.queue_size);
     int sig = wait_for_stop_signal();
     fprintf(stderr, "pointsegd: signal %d, draining\n", sig);
     ps_http_quiesce(http);
+    ps_jobstore_drain(store, cfg.drain_seconds);
     ps_jobs_drain(jobs, cfg.drain_seconds);
     ps_http_wait_idle(http, ANSWER_SECONDS);
     ps_http_stop(http);
+    ps_jobstore_free(store);
     ps_jobs_free(jobs);
     fprintf(stderr, "pointsegd: stopped\n");
     return 0;

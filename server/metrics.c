@@ -1,6 +1,8 @@
 /* metrics.c: request counters and latency histograms in Prometheus text format. */
 #include "metrics.h"
 
+#include "redis_link.h"
+
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -121,7 +123,35 @@ static void render_jobs(text *t, const ps_jobs_stats *j) {
         j->jobs_done, j->jobs_failed, j->jobs_cancelled, j->points_segmented);
 }
 
-char *ps_metrics_render(const ps_jobs_stats *jobs, size_t *len) {
+static void render_shared_queue(text *t, const ps_jobstore_stats *s) {
+    ps_redis_counters c;
+    ps_redis_counters_get(&c);
+    put(t, "# HELP pointseg_redis_up Redis answered the last look at the shared queue.\n"
+           "# TYPE pointseg_redis_up gauge\npointseg_redis_up %d\n", s->reachable);
+    if (s->reachable)
+        put(t, "# HELP pointseg_shared_queue_length Jobs in the shared queue no worker took yet.\n"
+               "# TYPE pointseg_shared_queue_length gauge\npointseg_shared_queue_length %zu\n"
+               "# HELP pointseg_shared_pending Jobs taken by a worker (any replica), not finished.\n"
+               "# TYPE pointseg_shared_pending gauge\npointseg_shared_pending %zu\n",
+            s->queue_length, s->pending);
+    put(t, "# HELP pointseg_jobs_reclaimed_total Jobs this replica took over from a lost worker.\n"
+           "# TYPE pointseg_jobs_reclaimed_total counter\npointseg_jobs_reclaimed_total %llu\n"
+           "# HELP pointseg_jobs_lost_failed_total Jobs failed for losing their worker too often.\n"
+           "# TYPE pointseg_jobs_lost_failed_total counter\npointseg_jobs_lost_failed_total %llu\n"
+           "# HELP pointseg_jobs_handed_back_total Running jobs given back to the queue on shutdown.\n"
+           "# TYPE pointseg_jobs_handed_back_total counter\npointseg_jobs_handed_back_total %llu\n",
+        s->reclaimed, s->lost_failed, s->handed_back);
+    put(t, "# HELP pointseg_redis_commands_total Redis commands sent.\n"
+           "# TYPE pointseg_redis_commands_total counter\npointseg_redis_commands_total %llu\n"
+           "# HELP pointseg_redis_errors_total Redis commands that failed (unreachable, timeout, error).\n"
+           "# TYPE pointseg_redis_errors_total counter\npointseg_redis_errors_total %llu\n"
+           "# HELP pointseg_redis_command_seconds Time spent in Redis commands.\n"
+           "# TYPE pointseg_redis_command_seconds summary\n"
+           "pointseg_redis_command_seconds_sum %.6f\npointseg_redis_command_seconds_count %llu\n",
+        c.commands, c.errors, c.seconds, c.commands);
+}
+
+char *ps_metrics_render(const ps_jobs_stats *jobs, const ps_jobstore_stats *store, size_t *len) {
     text t = {malloc(4096), 0, 4096, 0};
     if (!t.buf) return NULL;
     pthread_mutex_lock(&lock);
@@ -129,6 +159,7 @@ char *ps_metrics_render(const ps_jobs_stats *jobs, size_t *len) {
     render_latency(&t);
     pthread_mutex_unlock(&lock);
     render_jobs(&t, jobs);
+    if (store->shared) render_shared_queue(&t, store);
     if (t.failed) {
         free(t.buf);
         return NULL;

@@ -1,7 +1,9 @@
 /*
  * metrics.h: the daemon's Prometheus counters: requests by route and status,
  * a request latency histogram per route, and (from the job backend's stats)
- * queue depth, running jobs, jobs by outcome and points segmented.
+ * queue depth, running jobs, jobs by outcome and points segmented; with a
+ * Redis job store, the shared queue's length and pending jobs, reclaimed
+ * jobs, and Redis commands, errors and latency.
  * Thread safe.
  */
 #ifndef PS_METRICS_H
@@ -10,6 +12,7 @@
 #include <stddef.h>
 
 #include "jobs.h"
+#include "jobstore.h"
 
 typedef enum ps_route {
     PS_ROUTE_SEGMENT = 0, PS_ROUTE_JOBS, PS_ROUTE_JOB, PS_ROUTE_JOB_RESULT,
@@ -23,6 +26,6 @@ const char *ps_route_name(ps_route r); /* "/segment", "/jobs/{id}", ... */
 void ps_metrics_observe(ps_route route, int status, double seconds);
 
 /* The text exposition document (malloc'ed, *len its length), or NULL. */
-char *ps_metrics_render(const ps_jobs_stats *jobs, size_t *len);
+char *ps_metrics_render(const ps_jobs_stats *jobs, const ps_jobstore_stats *store, size_t *len);
 
 #endif

@@ -1,7 +1,8 @@
 /*
  * request.h: the state shared by the HTTP layer's files: the server (config,
- * job backend, libmicrohttpd daemon, the list of requests waiting for their
- * job) and one request's state from its first callback to its completion.
+ * job backend and job store, libmicrohttpd daemon, the list of requests
+ * waiting for their job) and one request's state from its first callback
+ * to its completion.
  */
 #ifndef PS_REQUEST_H
 #define PS_REQUEST_H
@@ -14,6 +15,7 @@
 #include "config.h"
 #include "intake.h"
 #include "jobs.h"
+#include "jobstore.h"
 #include "metrics.h"
 
 struct MHD_Connection;
@@ -22,7 +24,8 @@ typedef struct ps_request ps_request;
 
 typedef struct ps_server {
     const ps_config *cfg;
-    ps_jobs *jobs;
+    ps_jobs *jobs;            /* the in-process queue: POST /segment */
+    ps_jobstore *store;       /* asynchronous jobs: on jobs, or on Redis */
     struct MHD_Daemon *mhd;
     pthread_mutex_t lock;     /* guards waiting, in_flight, stop_watch */
     pthread_cond_t changed;   /* in_flight dropped, or stop_watch set */

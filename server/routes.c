@@ -75,9 +75,8 @@ static void add_time(cJSON *o, const char *name, double t) {
     cJSON_AddStringToObject(o, name, text);
 }
 
-static cJSON *status_document(ps_job *job) {
-    ps_job_status st;
-    ps_job_get_status(job, &st);
+static cJSON *status_document(const ps_job_status *job) {
+    ps_job_status st = *job;
     cJSON *doc = cJSON_CreateObject(), *progress = cJSON_CreateObject();
     cJSON_AddStringToObject(doc, "id", st.id);
     cJSON_AddStringToObject(doc, "status", ps_job_state_name(st.state));
@@ -98,72 +97,73 @@ static cJSON *status_document(ps_job *job) {
 }
 
 static enum MHD_Result job_route(ps_request *r) {
-    ps_job *job = ps_jobs_find(r->srv->jobs, r->job_id);
-    if (!job) return ps_respond_problem(r, 404, NULL, "no job '%s' (unknown or expired)", r->job_id);
-    enum MHD_Result rc;
-    if (is(r, "DELETE")) {
-        ps_job_cancel(job);
-        rc = respond_json(r, 202, status_document(job), NULL);
-    } else {
-        rc = respond_json(r, 200, status_document(job), NULL);
-    }
-    ps_job_release(job);
-    return rc;
+    ps_job_status st;
+    int cancel = is(r, "DELETE");
+    int rc = cancel ? ps_jobstore_cancel(r->srv->store, r->job_id, &st, &r->error)
+                    : ps_jobstore_status(r->srv->store, r->job_id, &st, &r->error);
+    if (rc) return ps_respond_error(r, &r->error);
+    return respond_json(r, cancel ? 202 : 200, status_document(&st), NULL);
 }
 
-/* The answer of a finished job (its document, or its error). */
-static enum MHD_Result answer_from_job(ps_request *r, ps_job *job, int cancelled_status) {
+static enum MHD_Result result_route(ps_request *r) {
+    ps_job_doc doc;
+    if (ps_jobstore_result(r->srv->store, r->job_id, &doc, &r->error)) return ps_respond_error(r, &r->error);
+    return ps_respond(r, 200, doc.media_type, doc.doc, doc.len, NULL);
+}
+
+/* The answer of a finished synchronous job (its document, or its error). */
+static enum MHD_Result answer_from_job(ps_request *r, ps_job *job) {
     size_t len;
     const char *media;
     const char *doc = ps_job_result(job, &len, &media);
     if (doc) return ps_respond_copy(r, 200, media, doc, len, NULL);
     ps_job_status st;
     ps_job_get_status(job, &st);
-    if (st.state == PS_JOB_FAILED) return ps_respond_problem(r, st.error_status, NULL, "%s", st.error);
-    if (st.state == PS_JOB_CANCELLED)
-        return ps_respond_problem(r, cancelled_status,
-                                  cancelled_status == 503 ? ps_retry_after_header : NULL,
-                                  "job %s was cancelled", st.id);
-    return ps_respond_problem(r, 409, NULL, "job %s is %s, not done", st.id, ps_job_state_name(st.state));
+    ps_job_result_error(&st, 503, &r->error);
+    return ps_respond_error(r, &r->error);
 }
 
-static enum MHD_Result result_route(ps_request *r) {
-    ps_job *job = ps_jobs_find(r->srv->jobs, r->job_id);
-    if (!job) return ps_respond_problem(r, 404, NULL, "no job '%s' (unknown or expired)", r->job_id);
-    enum MHD_Result rc = answer_from_job(r, job, 409);
-    ps_job_release(job);
-    return rc;
+/* Ready when a synchronous job and an asynchronous one would be taken. */
+static enum MHD_Result readyz_route(ps_request *r) {
+    ps_jobs_stats st;
+    if (ps_jobs_full(r->srv->jobs))
+        return ps_respond_problem(r, 503, ps_retry_after_header, "the job queue is full");
+    if (ps_jobstore_ready(r->srv->store, &r->error)) return ps_respond_error(r, &r->error);
+    ps_jobs_get_stats(r->srv->jobs, &st);
+    cJSON *doc = cJSON_CreateObject();
+    cJSON_AddStringToObject(doc, "status", "ready");
+    cJSON_AddNumberToObject(doc, "queued", (double)st.queued);
+    cJSON_AddNumberToObject(doc, "capacity", (double)st.capacity);
+    return respond_json(r, 200, doc, NULL);
+}
+
+static enum MHD_Result metrics_route(ps_request *r) {
+    ps_jobs_stats st;
+    ps_jobstore_stats shared;
+    size_t len = 0;
+    ps_jobs_get_stats(r->srv->jobs, &st);
+    ps_jobstore_get_stats(r->srv->store, &shared);
+    char *text = ps_metrics_render(&st, &shared, &len);
+    if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
+    return ps_respond(r, 200, "text/plain; version=0.0.4", text, len, NULL);
 }
 
 static enum MHD_Result simple_route(ps_request *r) {
     cJSON *doc;
-    ps_jobs_stats st;
-    size_t len = 0;
-    char *text;
     switch (r->route) {
     case PS_ROUTE_HEALTHZ:
         doc = cJSON_CreateObject();
         cJSON_AddStringToObject(doc, "status", "ok");
         return respond_json(r, 200, doc, NULL);
     case PS_ROUTE_READYZ:
-        if (ps_jobs_full(r->srv->jobs))
-            return ps_respond_problem(r, 503, ps_retry_after_header, "the job queue is full");
-        ps_jobs_get_stats(r->srv->jobs, &st);
-        doc = cJSON_CreateObject();
-        cJSON_AddStringToObject(doc, "status", "ready");
-        cJSON_AddNumberToObject(doc, "queued", (double)st.queued);
-        cJSON_AddNumberToObject(doc, "capacity", (double)st.capacity);
-        return respond_json(r, 200, doc, NULL);
+        return readyz_route(r);
     case PS_ROUTE_VERSION:
         doc = cJSON_CreateObject();
         cJSON_AddStringToObject(doc, "pointseg", PS_VERSION);
         cJSON_AddStringToObject(doc, "libmicrohttpd", MHD_get_version());
         return respond_json(r, 200, doc, NULL);
     case PS_ROUTE_METRICS:
-        ps_jobs_get_stats(r->srv->jobs, &st);
-        text = ps_metrics_render(&st, &len);
-        if (!text) return ps_respond_problem(r, 500, NULL, "out of memory");
-        return ps_respond(r, 200, "text/plain; version=0.0.4", text, len, NULL);
+        return metrics_route(r);
     default:
         return ps_respond_copy(r, 200, "application/json", r->srv->openapi,
                                r->srv->openapi_len, NULL);
@@ -269,17 +269,19 @@ static enum MHD_Result collect_query(void *cls, enum MHD_ValueKind kind, const c
     return MHD_YES;
 }
 
-/* Multipart fields, then the query string. */
-static int gather_params(ps_request *r, const ps_pointset *ps, ps_request_params *rp) {
-    query_params q = {.n = 0};
+/* Multipart fields, then the query string, into *q; then the parameters. */
+static int gather_params(ps_request *r, const ps_pointset *ps, query_params *q, const char **accept,
+                         ps_request_params *rp) {
     size_t n_fields;
     const ps_body_field *fields = ps_body_fields(r->body, &n_fields);
-    for (size_t i = 0; i < n_fields && q.n < MAX_QUERY_PARAMS; i++)
-        q.items[q.n++] = (ps_text_param){fields[i].name, fields[i].value};
-    MHD_get_connection_values(r->conn, MHD_GET_ARGUMENT_KIND, collect_query, &q);
-    if (q.overflow) return ps_api_fail(&r->error, 400, "more than %d parameters", MAX_QUERY_PARAMS);
-    const char *accept = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT);
-    return ps_intake_params(ps, accept, q.items, q.n, rp, &r->error);
+    q->n = 0;
+    q->overflow = 0;
+    for (size_t i = 0; i < n_fields && q->n < MAX_QUERY_PARAMS; i++)
+        q->items[q->n++] = (ps_text_param){fields[i].name, fields[i].value};
+    MHD_get_connection_values(r->conn, MHD_GET_ARGUMENT_KIND, collect_query, q);
+    if (q->overflow) return ps_api_fail(&r->error, 400, "more than %d parameters", MAX_QUERY_PARAMS);
+    *accept = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT);
+    return ps_intake_params(ps, *accept, q->items, q->n, rp, &r->error);
 }
 
 static void job_ended(void *user) {
@@ -322,17 +324,11 @@ static enum MHD_Result wait_for_job(ps_request *r, ps_pointset *ps, const ps_req
     return MHD_YES;
 }
 
-static enum MHD_Result submit_async(ps_request *r, ps_pointset *ps, const ps_request_params *rp) {
-    ps_job *job;
-    int rc = ps_jobs_submit(r->srv->jobs, ps, rp, NULL, NULL, &job);
-    if (rc == 503)
-        return ps_respond_problem(r, 503, ps_retry_after_header, "the job queue is full (%d waiting)",
-                                  r->srv->cfg->queue_size);
-    if (rc) return ps_respond_problem(r, 500, NULL, "out of memory");
+static enum MHD_Result submit_async(ps_request *r, const ps_job_upload *up) {
+    if (ps_jobstore_submit(r->srv->store, up, r->job_id, sizeof r->job_id, &r->error))
+        return ps_respond_error(r, &r->error);
     char location[128];
-    snprintf(r->job_id, sizeof r->job_id, "%s", ps_job_id(job));
     snprintf(location, sizeof location, "/jobs/%s", r->job_id);
-    ps_job_release(job);
     const char *const headers[] = {MHD_HTTP_HEADER_LOCATION, location, NULL};
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddStringToObject(doc, "id", r->job_id);
@@ -343,22 +339,29 @@ static enum MHD_Result submit_async(ps_request *r, ps_pointset *ps, const ps_req
 enum MHD_Result ps_routes_upload_done(ps_request *r) {
     ps_pointset ps;
     ps_request_params rp;
+    query_params q;
+    const char *accept = NULL;
     size_t len;
     if (r->failed || ps_body_finish(r->body, &r->error)) return ps_respond_error(r, &r->error);
     const char *bytes = ps_body_data(r->body, &len);
     if (ps_intake_decode(bytes, len, r->media, r->srv->cfg->max_points, &ps, &r->error))
         return ps_respond_error(r, &r->error);
-    if (gather_params(r, &ps, &rp)) {
+    if (gather_params(r, &ps, &q, &accept, &rp)) {
         ps_pointset_free(&ps);
         return ps_respond_error(r, &r->error);
     }
-    ps_body_free(r->body);
-    r->body = NULL;
-    if (r->route == PS_ROUTE_JOBS) return submit_async(r, &ps, &rp);
-    return wait_for_job(r, &ps, &rp);
+    if (r->route == PS_ROUTE_SEGMENT) {
+        ps_body_free(r->body);
+        r->body = NULL;
+        return wait_for_job(r, &ps, &rp);
+    }
+    ps_job_upload up = {&ps, &rp, bytes, len, r->media, accept, q.items, q.n};
+    enum MHD_Result rc = submit_async(r, &up);
+    ps_pointset_free(&ps);
+    return rc;
 }
 
 enum MHD_Result ps_routes_resumed(ps_request *r) {
     if (!r->job) return ps_respond_error(r, &r->error);
-    return answer_from_job(r, r->job, 503);
+    return answer_from_job(r, r->job);
 }

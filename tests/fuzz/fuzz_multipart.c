@@ -27,6 +27,7 @@
 #include "config.h"
 #include "http.h"
 #include "jobs.h"
+#include "jobstore.h"
 
 #define BOUNDARY "psfuzzboundary"
 #define ANSWER_TIMEOUT_S 8 /* under run.sh's -timeout=10 */
@@ -44,7 +45,8 @@ static int server_port(void) {
     if (ps_config_load(&cfg, 10, argv, stdout, stderr)) abort();
     ps_jobs_config jc = {cfg.threads, cfg.queue_size, cfg.job_ttl, cfg.max_jobs_kept, NULL};
     ps_jobs *jobs = ps_jobs_start(&jc);
-    ps_http *http = jobs ? ps_http_start(&cfg, jobs, why, sizeof why) : NULL;
+    ps_jobstore *store = jobs ? ps_jobstore_memory_new(jobs) : NULL;
+    ps_http *http = store ? ps_http_start(&cfg, jobs, store, why, sizeof why) : NULL;
     if (!http) {
         fprintf(stderr, "fuzz_multipart: cannot start the server\n");
         abort();

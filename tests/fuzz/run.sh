@@ -1,6 +1,6 @@
 #!/bin/sh
-# run.sh: builds the fuzz targets (the decoders, and the daemon's multipart
-# path) with libFuzzer + ASan + UBSan and runs each on a copy of its seed
+# run.sh: builds the fuzz targets (the decoders, the daemon's multipart
+# path, and the --redis URL parser) with libFuzzer + ASan + UBSan and runs each on a copy of its seed
 # corpus.
 #   tests/fuzz/run.sh BUILD [short|long]   20 s per target (short) or 600 s
 # Prints "PASS fuzz:<target>", "FAIL fuzz:<target>: <reason>" or
@@ -9,7 +9,7 @@
 set -u
 BUILD=${1:-build}
 MODE=${2:-short}
-TARGETS="ply json text multipart"
+TARGETS="ply json text multipart redis_url"
 case "$MODE" in
 short) SECONDS_EACH=20 ;;
 long) SECONDS_EACH=600 ;;
@@ -27,7 +27,10 @@ DECODER_SOURCES="api/api_error.c api/pointset.c $(ls api/decode*.c)"
 DECODER_LIBS="$(pkg-config --cflags --libs libcjson) -lm"
 # multipart: the daemon's HTTP layer in-process, so everything but its main.
 DAEMON_SOURCES="$(ls core/*.c api/*.c server/*.c | grep -v '^server/main\.c$')"
-DAEMON_LIBS="-lflann $(pkg-config --cflags --libs lapacke libmicrohttpd libcjson zlib) -lopenblas -lm -pthread"
+DAEMON_LIBS="-lflann $(pkg-config --cflags --libs lapacke libmicrohttpd libcjson zlib hiredis) -lopenblas -lm -pthread"
+# redis_url: the URL parser and the connection code it lives with.
+REDIS_SOURCES="server/redis_link.c"
+REDIS_LIBS="$(pkg-config --cflags --libs hiredis) -pthread"
 OUT="$BUILD/fuzz"
 mkdir -p "$OUT"
 failed=0
@@ -36,6 +39,7 @@ for t in $TARGETS; do
     log="$OUT/fuzz_$t.log"
     case "$t" in
     multipart) sources=$DAEMON_SOURCES libs=$DAEMON_LIBS ;;
+    redis_url) sources=$REDIS_SOURCES libs=$REDIS_LIBS ;;
     *) sources=$DECODER_SOURCES libs=$DECODER_LIBS ;;
     esac
     # shellcheck disable=SC2086

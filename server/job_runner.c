@@ -1,0 +1,52 @@
+/* job_runner.c: one job: ps_segment, then its document in the requested format. */
+#include "job_runner.h"
+
+#include "encode.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static int status_of(ps_status s) {
+    return s == PS_ERR_INVALID ? 422 : 500;
+}
+
+static char *encode_result(const ps_pointset *points, const ps_request_params *params,
+                           const ps_result *r, size_t *len, const char **media) {
+    switch (params->output) {
+    case PS_OUTPUT_PLY:
+        *media = "application/ply";
+        return ps_encode_ply(points, r, len);
+    case PS_OUTPUT_LABELS:
+        *media = "text/plain; charset=utf-8";
+        return ps_encode_labels(r, len);
+    default:
+        *media = "application/json";
+        return ps_encode_json(r, params->include, len);
+    }
+}
+
+void ps_job_run(const ps_pointset *points, const ps_request_params *params,
+                const ps_control *ctl, ps_run_outcome *out) {
+    ps_input in = {points->points, points->n, points->dim, points->normals};
+    ps_result *r = NULL;
+    ps_error err = {0};
+    memset(out, 0, sizeof *out);
+    ps_status s = ps_segment(&in, &params->core, ctl, &r, &err);
+    if (s == PS_ERR_CANCELLED) {
+        out->state = PS_RUN_CANCELLED;
+        return;
+    }
+    if (s != PS_OK) {
+        out->state = PS_RUN_FAILED;
+        out->error_status = status_of(s);
+        snprintf(out->error, sizeof out->error, "%s", err.message);
+        return;
+    }
+    out->doc = encode_result(points, params, r, &out->doc_len, &out->media_type);
+    ps_result_free(r);
+    out->state = out->doc ? PS_RUN_DONE : PS_RUN_FAILED;
+    if (!out->doc) {
+        out->error_status = 500;
+        snprintf(out->error, sizeof out->error, "out of memory encoding the result");
+    }
+}

@@ -1,0 +1,140 @@
+# run.sh: make test-docker: builds docker/Dockerfile, runs the image and
+# segments the horse through it, then brings up docker/compose.yaml (redis,
+# 3 pointsegd replicas, nginx) and runs compose_driver.py's checks on it,
+# `docker kill` included.
+#   sh tests/docker/run.sh BUILD
+# Needs root: installs docker.io, docker-compose and debootstrap with
+# apt-get when missing and starts dockerd when it is not running (and
+# leaves it running).  No image registry is reachable, so the Debian base
+# images come from debootstrap and the redis and nginx images from Debian's
+# packages (base-images.sh; made once, then cached in Docker's image store:
+# the first run takes about 4 minutes more).  Prints PASS/FAIL/SKIP lines
+# and "N passed, N failed, N skipped"; a SKIP says what stopped it.
+set -u
+BUILD=${1:-build}
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+tmp=$(mktemp -d)
+project=pointsegtest$$
+passed=0 failed=0 skipped=0
+single=""
+COMPOSE_FILES="-f $ROOT/docker/compose.yaml -f $ROOT/tests/docker/compose.test.yaml"
+# Debian's client first: its BuildKit reads docker/Dockerfile.dockerignore.
+PATH=/usr/bin:/usr/sbin:$PATH
+
+cleanup() {
+    [ -n "$single" ] && docker rm -f "$single" >/dev/null 2>&1
+    # shellcheck disable=SC2086
+    command -v docker-compose >/dev/null &&
+        docker-compose -p "$project" $COMPOSE_FILES down -v -t 5 >/dev/null 2>&1
+    rm -rf "$tmp"
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM
+
+pass() { echo "PASS docker:$1"; passed=$((passed + 1)); }
+fail() { echo "FAIL docker:$1: $2"; failed=$((failed + 1)); }
+finish() {
+    echo "$passed passed, $failed failed, $skipped skipped"
+    [ "$failed" -eq 0 ]
+    exit
+}
+skip_rest() { echo "SKIP docker:$1: $2"; skipped=$((skipped + 1)); finish; }
+
+install_missing() {
+    missing=""
+    command -v dockerd >/dev/null || missing="$missing docker.io"
+    command -v docker-compose >/dev/null || missing="$missing docker-compose"
+    command -v debootstrap >/dev/null || missing="$missing debootstrap"
+    [ -z "$missing" ] && return 0
+    echo "docker: installing$missing (apt-get)" >&2
+    # shellcheck disable=SC2086
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing \
+        >"$tmp/apt.log" 2>&1 ||
+        { apt-get update -qq >/dev/null 2>&1 &&
+          DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing \
+              >"$tmp/apt.log" 2>&1; } ||
+        skip_rest install "apt-get install$missing failed: $(tail -c 300 "$tmp/apt.log")"
+}
+
+start_dockerd() {
+    docker info >/dev/null 2>&1 && return 0
+    echo "docker: starting dockerd (log /var/log/pointseg-dockerd.log)" >&2
+    nohup dockerd >/var/log/pointseg-dockerd.log 2>&1 &
+    for _ in $(seq 60); do
+        docker info >/dev/null 2>&1 && return 0
+        sleep 0.5
+    done
+    skip_rest dockerd "dockerd does not start here: $(tail -n 3 /var/log/pointseg-dockerd.log | tr '\n' ' ')"
+}
+
+free_port() {
+    python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'
+}
+
+wait_http() { # URL SECONDS
+    end=$(($(date +%s) + $2))
+    while [ "$(date +%s)" -lt "$end" ]; do
+        curl -fsS "$1" >/dev/null 2>&1 && return 0
+        sleep 0.5
+    done
+    return 1
+}
+
+# The image alone: the horse (or the sample) through it, labels as local.
+run_single() {
+    input=${POINTSEG_SHARED:-$ROOT/../shared/data}/models/horse.ply
+    [ -f "$input" ] || input=$ROOT/clients/curl/sample.xyz
+    single=$(docker run -d -p 127.0.0.1::8080 pointseg:latest) || { fail run "docker run failed"; return; }
+    port=$(docker port "$single" 8080 | head -n 1 | sed 's/.*://')
+    wait_http "http://127.0.0.1:$port/healthz" 30 || { fail run "no /healthz: $(docker logs "$single" 2>&1 | tail -n 3)"; return; }
+    [ "$(docker exec "$single" id -u)" = 10001 ] && pass runs-as-non-root || fail runs-as-non-root "uid $(docker exec "$single" id -u)"
+    curl -fsS -X POST -H 'Content-Type: application/octet-stream' --data-binary "@$input" \
+        "http://127.0.0.1:$port/segment?output=labels" >"$tmp/docker.labels" 2>"$tmp/curl.err"
+    "$BUILD/pointseg" segment "$input" --output labels >"$tmp/local.labels"
+    if [ -s "$tmp/docker.labels" ] && cmp -s "$tmp/docker.labels" "$tmp/local.labels"; then
+        pass "run-segments-$(basename "$input")"
+    else
+        fail "run-segments-$(basename "$input")" "labels differ from the local run ($(cat "$tmp/curl.err"))"
+    fi
+    docker rm -f "$single" >/dev/null 2>&1
+    single=""
+}
+
+run_compose() {
+    port=$(free_port)
+    # shellcheck disable=SC2086
+    PUBLISH=127.0.0.1:$port docker-compose -p "$project" $COMPOSE_FILES up -d --no-build \
+        --scale pointsegd=3 >"$tmp/up.log" 2>&1 ||
+        { fail compose-up "$(tail -c 400 "$tmp/up.log")"; return; }
+    wait_http "http://127.0.0.1:$port/readyz" 120 ||
+        { fail compose-up "nginx not ready: $(tail -c 400 "$tmp/up.log")"; return; }
+    pass compose-up
+    # shellcheck disable=SC2086
+    timeout 600 python3 "$ROOT/tests/docker/compose_driver.py" "$project" $COMPOSE_FILES -- \
+        "http://127.0.0.1:$port" "$tmp" "$BUILD/pointseg" >"$tmp/driver.out"
+    rc=$?
+    cat "$tmp/driver.out"
+    passed=$((passed + $(grep -c '^PASS ' "$tmp/driver.out")))
+    failed=$((failed + $(grep -c '^FAIL ' "$tmp/driver.out")))
+    [ "$rc" -eq 0 ] || fail compose-driver "exit status $rc"
+}
+
+[ "$(id -u)" = 0 ] || skip_rest setup "needs root (dockerd, apt-get, debootstrap)"
+[ -x "$BUILD/pointseg" ] || { fail setup "$BUILD/pointseg is not built"; finish; }
+install_missing
+start_dockerd
+. "$ROOT/tests/docker/base-images.sh"
+make_debian_base 2>"$tmp/base.err" ||
+    skip_rest base-images "no debian:bookworm image: $(tail -c 300 "$tmp/base.err")"
+make_stand_ins >"$tmp/stand-ins.log" 2>&1 ||
+    skip_rest base-images "stand-in redis/nginx images: $(tail -c 300 "$tmp/stand-ins.log")"
+if DOCKER_BUILDKIT=1 docker build -q -f "$ROOT/docker/Dockerfile" -t pointseg:latest "$ROOT" \
+        >"$tmp/build.log" 2>&1; then
+    pass build
+else
+    fail build "$(tail -c 400 "$tmp/build.log")"
+    finish
+fi
+run_single
+run_compose
+finish

@@ -1,0 +1,355 @@
+/* test_jobstore_redis.c: the Redis job store against a real redis-server
+ * (started by the test on a free loopback port): any store reads any job,
+ * cancels reach the worker running the job, lapsed leases are taken over,
+ * the third loss fails a job, Redis going away gives 503s and coming back
+ * heals by itself, shutdown hands running jobs back. */
+#include "job_runner.h"
+#include "jobstore_redis.h"
+#include "daemon_proc.h"
+#include "redis_proc.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define LEASE_S 2
+#define SMALL_POINTS 400
+#define SLOW_POINTS 6000 /* exact centrality: seconds of work */
+
+static ps_test_redis server;
+static int server_up;
+static char skip_why[256];
+
+static void stop_server(void) { ps_test_redis_cleanup(&server); }
+
+/* Starts the one redis-server of this file on first use; stopped at exit. */
+static int need_server(void) {
+    if (server_up) return 1;
+    if (skip_why[0]) return 0;
+    server_up = ps_test_redis_start(&server, skip_why, sizeof skip_why) == 0;
+    if (server_up) atexit(stop_server);
+    return server_up;
+}
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* m points on a sphere (golden spiral) as XYZ text. */
+static char *sphere_text(int m, size_t *len) {
+    size_t cap = (size_t)m * 40 + 1, n = 0;
+    char *text = malloc(cap);
+    double golden = atan2(0, -1) * (3 - sqrt(5));
+    for (int i = 0; text && i < m; i++) {
+        double y = 1 - 2 * (i + 0.5) / m, r = sqrt(1 - y * y), t = golden * i;
+        n += (size_t)snprintf(text + n, cap - n, "%.6f %.6f %.6f\n", r * cos(t), y, r * sin(t));
+    }
+    *len = n;
+    return text;
+}
+
+typedef struct upload {
+    char *text;
+    ps_pointset points;
+    ps_request_params params;
+    ps_text_param extra[2];
+    ps_job_upload up;
+} upload;
+
+/* An upload of m sphere points with output=labels (and centrality=exact
+ * when slow), as the HTTP layer hands it over. */
+static int make_upload(upload *u, int m, int slow) {
+    ps_api_error err;
+    size_t len;
+    memset(u, 0, sizeof *u);
+    u->text = sphere_text(m, &len);
+    u->extra[0] = (ps_text_param){"output", "labels"};
+    u->extra[1] = (ps_text_param){"centrality", slow ? "exact" : "auto"};
+    if (ps_intake_decode(u->text, len, PS_MEDIA_POINTS, 10000000, &u->points, &err)) return -1;
+    if (ps_intake_params(&u->points, NULL, u->extra, 2, &u->params, &err)) return -1;
+    u->up = (ps_job_upload){&u->points, &u->params, u->text, len, PS_MEDIA_POINTS, NULL, u->extra, 2};
+    return 0;
+}
+
+static void free_upload(upload *u) {
+    ps_pointset_free(&u->points);
+    free(u->text);
+}
+
+static ps_jobstore *open_store(int workers) {
+    char why[256];
+    ps_redis_store_config cfg = {.workers = workers, .job_ttl = 60, .lease_seconds = LEASE_S,
+                                 .max_losses = 3, .max_points = 10000000, .name = "test"};
+    snprintf(cfg.url.host, sizeof cfg.url.host, "127.0.0.1");
+    cfg.url.port = server.port;
+    ps_jobstore *s = ps_jobstore_redis_new(&cfg, why, sizeof why);
+    if (!s) fprintf(stderr, "store: %s\n", why);
+    return s;
+}
+
+/* Polls until the job is in one of the final states or `seconds` pass. */
+static ps_job_state wait_state(ps_jobstore *s, const char *id, ps_job_state want, double seconds) {
+    ps_job_status st = {.state = PS_JOB_QUEUED};
+    ps_api_error err;
+    for (double end = now_s() + seconds; now_s() < end; ps_test_sleep_ms(50))
+        if (ps_jobstore_status(s, id, &st, &err) == 0 && (st.state == want || st.state >= PS_JOB_DONE))
+            return st.state;
+    return st.state;
+}
+
+/* The labels a local run gives for the upload. */
+static char *local_labels(upload *u, size_t *len) {
+    ps_run_outcome out;
+    ps_control ctl = {0};
+    ps_job_run(&u->points, &u->params, &ctl, &out);
+    *len = out.doc_len;
+    return out.doc;
+}
+
+static long long hash_integer(const char *id, const char *field) {
+    redisContext *c = ps_test_redis_connect(&server);
+    redisReply *r = c ? redisCommand(c, "HGET pointseg:job:%s %s", id, field) : NULL;
+    long long v = r && r->type == REDIS_REPLY_STRING ? atoll(r->str) : -1;
+    if (r) freeReplyObject(r);
+    if (c) redisFree(c);
+    return v;
+}
+
+static void test_url_parse(void) {
+    ps_redis_url u;
+    char why[256];
+    CHECK(ps_redis_url_parse("redis://cache", &u, why, sizeof why) == 0);
+    CHECK(!strcmp(u.host, "cache") && u.port == 6379 && u.db == 0 && !u.password[0]);
+    CHECK(ps_redis_url_parse("redis://:s3cr@t@10.0.0.2:6380/2", &u, why, sizeof why) == 0);
+    CHECK(!strcmp(u.host, "10.0.0.2") && u.port == 6380 && u.db == 2 && !strcmp(u.password, "s3cr@t"));
+    CHECK(ps_redis_url_parse("http://cache", &u, why, sizeof why) == -1 && strstr(why, "redis://"));
+    CHECK(ps_redis_url_parse("redis://cache:0", &u, why, sizeof why) == -1 && strstr(why, "port"));
+    CHECK(ps_redis_url_parse("redis://cache:6379/x", &u, why, sizeof why) == -1);
+    CHECK(ps_redis_url_parse("redis://", &u, why, sizeof why) == -1 && strstr(why, "host"));
+    CHECK(ps_redis_url_parse("redis://user@cache", &u, why, sizeof why) == -1);
+}
+
+/* Submitted on a store without workers, run by another, read from both:
+ * the labels of a local run. */
+static void test_any_store_serves_any_job(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    upload u;
+    ps_api_error err;
+    char id[96];
+    size_t want_len;
+    REQUIRE(make_upload(&u, SMALL_POINTS, 0) == 0);
+    ps_jobstore *front = open_store(0), *worker = open_store(1);
+    REQUIRE(front && worker);
+    REQUIRE(ps_jobstore_submit(front, &u.up, id, sizeof id, &err) == 0);
+    CHECK(strlen(id) == 32);
+    CHECK(wait_state(front, id, PS_JOB_DONE, 30) == PS_JOB_DONE);
+    char *want = local_labels(&u, &want_len);
+    for (int i = 0; i < 2; i++) {
+        ps_job_doc doc;
+        REQUIRE(ps_jobstore_result(i ? worker : front, id, &doc, &err) == 0);
+        CHECK(doc.len == want_len && !memcmp(doc.doc, want, want_len));
+        CHECK(!strncmp(doc.media_type, "text/plain", 10));
+        free(doc.doc);
+    }
+    ps_job_status st;
+    CHECK(ps_jobstore_status(front, id, &st, &err) == 0 && st.n_points == SMALL_POINTS);
+    CHECK(ps_jobstore_status(front, "0123", &st, &err) == -1 && err.http_status == 404);
+    ps_job_doc none;
+    CHECK(ps_jobstore_result(front, "0123", &none, &err) == -1 && err.http_status == 404);
+    free(want);
+    ps_jobstore_free(front);
+    ps_jobstore_free(worker);
+    free_upload(&u);
+}
+
+/* A cancel on one store stops the job the other store's worker runs; a
+ * queued job is cancelled at once. */
+static void test_cancel_reaches_worker(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    upload slow;
+    ps_api_error err;
+    ps_job_status st;
+    char id[96], queued[96];
+    REQUIRE(make_upload(&slow, SLOW_POINTS, 1) == 0);
+    ps_jobstore *front = open_store(0), *worker = open_store(1);
+    REQUIRE(front && worker);
+    REQUIRE(ps_jobstore_submit(front, &slow.up, id, sizeof id, &err) == 0);
+    REQUIRE(ps_jobstore_submit(front, &slow.up, queued, sizeof queued, &err) == 0);
+    REQUIRE(wait_state(front, id, PS_JOB_RUNNING, 20) == PS_JOB_RUNNING);
+    CHECK(ps_jobstore_cancel(front, queued, &st, &err) == 0 && st.state == PS_JOB_CANCELLED);
+    double t0 = now_s();
+    CHECK(ps_jobstore_cancel(front, id, &st, &err) == 0);
+    CHECK(wait_state(front, id, PS_JOB_CANCELLED, 5) == PS_JOB_CANCELLED);
+    CHECK_MSG(now_s() - t0 < 3, "cancel took %.1f s", now_s() - t0);
+    ps_job_doc doc;
+    CHECK(ps_jobstore_result(worker, id, &doc, &err) == -1 && err.http_status == 409);
+    ps_jobstore_free(front);
+    ps_jobstore_free(worker);
+    free_upload(&slow);
+}
+
+/* Submits u on front, records prior_losses earlier losses, and lets a
+ * consumer that never renews ("ghost": a SIGKILLed replica) take it.
+ * Returns 0, or -1 when Redis refused. */
+static int submit_abandoned(ps_jobstore *front, upload *u, char *id, size_t cap, int prior_losses) {
+    ps_api_error err;
+    if (ps_jobstore_submit(front, &u->up, id, cap, &err)) return -1;
+    redisContext *c = ps_test_redis_connect(&server);
+    if (!c) return -1;
+    redisReply *r = redisCommand(c, "HSET pointseg:job:%s losses %d", id, prior_losses);
+    int ok = r && r->type == REDIS_REPLY_INTEGER;
+    if (r) freeReplyObject(r);
+    r = redisCommand(c, "XREADGROUP GROUP pointseg ghost COUNT 10 STREAMS pointseg:jobs >");
+    ok = ok && r && r->type == REDIS_REPLY_ARRAY;
+    if (r) freeReplyObject(r);
+    redisFree(c);
+    return ok ? 0 : -1;
+}
+
+/* What happened to an abandoned job once a store with a worker came up. */
+typedef struct abandoned {
+    char id[96];
+    ps_job_status status;      /* final (or last seen) */
+    ps_jobstore_stats stats;   /* of the store that took it over */
+    double seconds;            /* from the worker's start to the end */
+    long long losses;
+} abandoned;
+
+/* A job taken by a consumer that goes silent (a SIGKILLed replica) after
+ * prior_losses earlier losses; then a store with one worker starts. */
+static int run_abandoned(int prior_losses, ps_job_state want, abandoned *out) {
+    upload u;
+    ps_api_error err;
+    memset(out, 0, sizeof *out);
+    if (make_upload(&u, SMALL_POINTS, 0)) return -1;
+    ps_jobstore *front = open_store(0), *worker = NULL;
+    int rc = front && submit_abandoned(front, &u, out->id, sizeof out->id, prior_losses) == 0 ? 0 : -1;
+    double t0 = now_s();
+    if (rc == 0 && (worker = open_store(1))) {
+        wait_state(front, out->id, want, 30);
+        out->seconds = now_s() - t0;
+        rc = ps_jobstore_status(front, out->id, &out->status, &err);
+        ps_jobstore_get_stats(worker, &out->stats);
+        out->losses = hash_integer(out->id, "losses");
+    }
+    ps_jobstore_free(worker);
+    ps_jobstore_free(front);
+    free_upload(&u);
+    return worker ? rc : -1;
+}
+
+/* The store's worker takes the job over once the lease lapses, and
+ * finishes it. */
+static void test_lapsed_lease_is_taken_over(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    abandoned a;
+    REQUIRE(run_abandoned(0, PS_JOB_DONE, &a) == 0);
+    CHECK(a.status.state == PS_JOB_DONE);
+    CHECK_MSG(a.seconds >= LEASE_S - 0.5, "taken over after %.1f s, before the lease lapsed", a.seconds);
+    CHECK(a.losses == 1);
+    CHECK(a.stats.shared && a.stats.reachable && a.stats.reclaimed >= 1 && a.stats.pending == 0);
+}
+
+/* A job that already lost two workers and loses a third is failed, saying
+ * why, and not run again. */
+static void test_third_loss_fails_job(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    abandoned a;
+    REQUIRE(run_abandoned(2, PS_JOB_FAILED, &a) == 0);
+    CHECK(a.status.state == PS_JOB_FAILED && a.status.started == 0 && a.status.error_status == 500);
+    CHECK_MSG(strstr(a.status.error, "lost its worker 3 times") != NULL, "error: %s", a.status.error);
+    CHECK(a.losses == 3 && a.stats.lost_failed == 1);
+    ps_jobstore *front = open_store(0);
+    REQUIRE(front);
+    ps_job_doc doc;
+    ps_api_error err;
+    CHECK(ps_jobstore_result(front, a.id, &doc, &err) == -1 && err.http_status == 500 &&
+          strstr(err.message, "lost its worker"));
+    ps_jobstore_free(front);
+}
+
+/* Redis stops: every call is a prompt 503; it comes back (same data, it
+ * keeps an append-only file): the stores recover alone and run new jobs. */
+static void test_redis_down_then_back(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    upload u;
+    ps_api_error err;
+    ps_job_status st;
+    char id[96], before[96];
+    REQUIRE(make_upload(&u, SMALL_POINTS, 0) == 0);
+    ps_jobstore *store = open_store(1);
+    REQUIRE(store);
+    REQUIRE(ps_jobstore_submit(store, &u.up, before, sizeof before, &err) == 0);
+    REQUIRE(wait_state(store, before, PS_JOB_DONE, 30) == PS_JOB_DONE);
+    ps_test_redis_stop(&server);
+    double t0 = now_s();
+    CHECK(ps_jobstore_ready(store, &err) == -1 && err.http_status == 503);
+    CHECK(ps_jobstore_submit(store, &u.up, id, sizeof id, &err) == -1 && err.http_status == 503);
+    CHECK(strstr(err.message, "unreachable") != NULL);
+    CHECK(ps_jobstore_status(store, before, &st, &err) == -1 && err.http_status == 503);
+    CHECK_MSG(now_s() - t0 < 3, "the 503s took %.1f s", now_s() - t0);
+    ps_jobstore_stats stats;
+    ps_jobstore_get_stats(store, &stats);
+    CHECK(stats.shared && !stats.reachable);
+    REQUIRE(ps_test_redis_restart(&server) == 0);
+    int ready = 0;
+    for (double end = now_s() + 5; !ready && now_s() < end; ps_test_sleep_ms(100))
+        ready = ps_jobstore_ready(store, &err) == 0;
+    CHECK(ready);
+    CHECK(ps_jobstore_status(store, before, &st, &err) == 0 && st.state == PS_JOB_DONE);
+    REQUIRE(ps_jobstore_submit(store, &u.up, id, sizeof id, &err) == 0);
+    CHECK(wait_state(store, id, PS_JOB_DONE, 30) == PS_JOB_DONE);
+    ps_jobstore_free(store);
+    free_upload(&u);
+}
+
+/* A Redis restart between two calls breaks the pooled connection: the next
+ * call reconnects and succeeds instead of answering 503. */
+static void test_restart_between_calls(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    ps_api_error err;
+    ps_jobstore *store = open_store(0);
+    REQUIRE(store);
+    CHECK(ps_jobstore_ready(store, &err) == 0);
+    REQUIRE(ps_test_redis_restart(&server) == 0);
+    CHECK_MSG(ps_jobstore_ready(store, &err) == 0, "first call after the restart: %d %s",
+              err.http_status, err.message);
+    ps_jobstore_free(store);
+}
+
+/* Shutdown with a job running past the drain time: the job goes back to the
+ * queue (not counted as a loss) and another store's worker finishes it. */
+static void test_drain_hands_back(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    upload slow;
+    ps_api_error err;
+    char id[96];
+    REQUIRE(make_upload(&slow, SLOW_POINTS, 1) == 0);
+    ps_jobstore *leaving = open_store(1);
+    REQUIRE(leaving);
+    REQUIRE(ps_jobstore_submit(leaving, &slow.up, id, sizeof id, &err) == 0);
+    REQUIRE(wait_state(leaving, id, PS_JOB_RUNNING, 20) == PS_JOB_RUNNING);
+    ps_jobstore_drain(leaving, 0.2);
+    ps_job_status st;
+    CHECK(ps_jobstore_status(leaving, id, &st, &err) == 0 && st.state == PS_JOB_QUEUED);
+    ps_jobstore_stats stats;
+    ps_jobstore_get_stats(leaving, &stats);
+    CHECK(stats.handed_back == 1 && stats.queue_length == 1);
+    ps_jobstore *staying = open_store(1);
+    REQUIRE(staying);
+    CHECK(wait_state(staying, id, PS_JOB_DONE, 120) == PS_JOB_DONE);
+    CHECK(hash_integer(id, "losses") == 0);
+    ps_jobstore_free(staying);
+    ps_jobstore_free(leaving);
+    free_upload(&slow);
+}
+
+PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(test_cancel_reaches_worker),
+             TEST(test_lapsed_lease_is_taken_over), TEST(test_third_loss_fails_job),
+             TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
+             TEST(test_drain_hands_back))
