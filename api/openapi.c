@@ -91,8 +91,9 @@ static cJSON *request_body(void) {
     cJSON_AddBoolToObject(b, "required", 1);
     cJSON_AddStringToObject(b, "description",
                             "the points: PLY (ascii or binary), OFF, OBJ or XYZ recognized from the "
-                            "content, a JSON document, or a form with a `file` part; any of them "
-                            "may be sent with Content-Encoding: gzip");
+                            "content (application/ply: PLY only), a JSON document, or a form "
+                            "with a `file` part; any of them may be sent with Content-Encoding: "
+                            "gzip.  Bytes that are not what the type says are a 400");
     cJSON_AddItemToObject(c, "application/ply", media(binary_schema()));
     cJSON_AddItemToObject(c, "application/octet-stream", media(binary_schema()));
     cJSON_AddItemToObject(c, "text/plain", media(binary_schema()));
@@ -152,9 +153,10 @@ static cJSON *segment_responses(int async) {
         cJSON_AddItemToObject(ok, "content", c);
         cJSON_AddItemToObject(r, "200", ok);
     }
-    add_problem(r, 400, "malformed body or unknown parameter");
+    add_problem(r, 400, "malformed body (bytes in no known format, not PLY for application/ply, "
+                        "not JSON for application/json) or unknown parameter");
     add_problem(r, 413, "body, inflated body or point count over the limit");
-    add_problem(r, 415, "unsupported Content-Type or format");
+    add_problem(r, 415, "a Content-Type or Content-Encoding the service does not take");
     add_problem(r, 422, "well-formed but unusable input, or a parameter out of range");
     add_problem(r, 503, "queue full (see Retry-After) or shutting down");
     return r;

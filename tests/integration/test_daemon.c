@@ -439,6 +439,36 @@ static void test_bad_inputs_get_problems(void) {
     CHECK(ps_daemon_stop(&d, 10) == 0);
 }
 
+/* The media type is one the service takes but the bytes are not what it
+ * says: a 400 naming what was expected, not a 415. */
+static void test_bad_bodies_of_taken_types_are_400(void) {
+    static const char random_bytes[] = "\x8f\x02\xd1 q\x7f\x1b\xee\x93~\x04\x99\xc3";
+    static const char form[] = "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"; "
+                               "filename=\"x.bin\"\r\n\r\n\x8f\x02\xd1 q\x7f\x1b\r\n--" BOUNDARY "--\r\n";
+    const struct {
+        const char *body, *content_type, *words;
+    } cases[] = {
+        {random_bytes, "application/ply", "not a PLY file"},
+        {"0 0 0\n1 0 0\n0 1 0\n", "application/ply", "not a PLY file"},
+        {random_bytes, "application/octet-stream", "unrecognized format (expected PLY"},
+        {random_bytes, NULL, "unrecognized format (expected PLY"},
+        {random_bytes, "text/plain", "unrecognized format (expected PLY"},
+        {random_bytes, "application/json", "malformed JSON"},
+        {form, "multipart/form-data; boundary=" BOUNDARY, "unrecognized format (expected PLY"},
+    };
+    ps_daemon d;
+    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        ps_client_body body = {cases[i].body, strlen(cases[i].body), cases[i].content_type, NULL};
+        ps_client_response r;
+        ps_client_segment(&d.client, &body, NULL, &r);
+        CHECK_MSG(is_problem(&r, 400) && strstr(r.body, cases[i].words), "case %zu (%s): status %ld: %.200s",
+                  i, cases[i].content_type ? cases[i].content_type : "no type", r.status, r.body ? r.body : "");
+        ps_client_response_free(&r);
+    }
+    CHECK(ps_daemon_stop(&d, 10) == 0);
+}
+
 static void test_size_limits(void) {
     ps_daemon d;
     ps_client_response r;
@@ -633,7 +663,7 @@ int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
-        TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
+        TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);
