@@ -265,7 +265,8 @@ static cJSON *components(void) {
     cJSON_ReplaceItemInObject(cJSON_GetObjectItem(points, "properties"), "params", params_object_schema());
     cJSON_AddItemToObject(s, "PointsRequest", points);
     cJSON *seg = type_schema("object");
-    cJSON_AddStringToObject(seg, "description", "the document of `pointseg --output json` (see the README)");
+    cJSON_AddStringToObject(seg, "description", "the document of `pointseg --output json` (see the README); "
+                            "`warnings` lists what the reader tolerated in the input");
     cJSON_AddItemToObject(s, "Segmentation", seg);
     cJSON_AddItemToObject(c, "schemas", s);
     cJSON *sec = cJSON_CreateObject(), *bearer = type_schema("http");

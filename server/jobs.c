@@ -161,7 +161,7 @@ static char *encode_result(ps_job *job, const ps_result *r, size_t *len, const c
         return ps_encode_labels(r, len);
     default:
         *media = "application/json";
-        return ps_encode_json(r, job->params.include, len);
+        return ps_encode_json(&job->points, r, job->params.include, len);
     }
 }
 

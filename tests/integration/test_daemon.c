@@ -469,6 +469,36 @@ static void test_bad_bodies_of_taken_types_are_400(void) {
     CHECK(ps_daemon_stop(&d, 10) == 0);
 }
 
+/* A PLY header line without a keyword (Blender 2.4x) is skipped; the
+ * document says so in "warnings" and has the labels of the clean file. */
+static void test_ply_header_warning_in_document(void) {
+    ps_daemon d;
+    ps_client_response r;
+    size_t ply_len;
+    REQUIRE(need_small());
+    char *ply = binary_ply(&small, &ply_len);
+    static const char banner[] = "Created by Blender3D 247 - www.blender.org\n";
+    const char *format_end = strstr(ply, "1.0\n") + 4;
+    size_t head = (size_t)(format_end - ply);
+    char *old = malloc(ply_len + sizeof banner);
+    REQUIRE(ply && old);
+    memcpy(old, ply, head);
+    memcpy(old + head, banner, sizeof banner - 1);
+    memcpy(old + head + sizeof banner - 1, ply + head, ply_len - head);
+    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    ps_client_body body = {old, ply_len + sizeof banner - 1, "application/ply", NULL};
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && r.status == 200 && same_labels(&r, &small));
+    cJSON *doc = r.body ? cJSON_Parse(r.body) : NULL;
+    const cJSON *w = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "warnings"), 0);
+    CHECK_MSG(cJSON_IsString(w) && !strcmp(w->valuestring, "PLY header line 3 skipped: no keyword in "
+                                                           "\"Created by Blender3D 247 - www.blender.org\""),
+              "warnings: %s", w && cJSON_IsString(w) ? w->valuestring : "(none)");
+    cJSON_Delete(doc);
+    ps_client_response_free(&r);
+    free(ply), free(old);
+    CHECK(ps_daemon_stop(&d, 10) == 0);
+}
+
 static void test_size_limits(void) {
     ps_daemon d;
     ps_client_response r;
@@ -663,7 +693,8 @@ int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
-        TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
+        TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_ply_header_warning_in_document),
+        TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);
