@@ -22,7 +22,8 @@ static cJSON *choices_array(const char *const *choices) {
     return a;
 }
 
-static cJSON *param_schema(const ps_param_spec *p) {
+/* The schema of parameter p; description may be NULL. */
+static cJSON *param_schema(const ps_param_spec *p, const char *description) {
     static const char *const types[] = {"integer", "number", "boolean", "string", "string"};
     cJSON *s = cJSON_CreateObject();
     cJSON_AddStringToObject(s, "type", types[p->type]);
@@ -36,8 +37,8 @@ static cJSON *param_schema(const ps_param_spec *p) {
         ps_params_join_choices(p->choices, "|", alternatives, sizeof alternatives);
         snprintf(pattern, sizeof pattern, "^$|^(%s)(,(%s))*$", alternatives, alternatives);
         cJSON_AddStringToObject(s, "pattern", pattern);
-        cJSON_AddStringToObject(s, "description", "comma-separated list");
     }
+    if (description) cJSON_AddStringToObject(s, "description", description);
     cJSON_AddStringToObject(s, "default", p->default_text);
     return s;
 }
@@ -52,7 +53,9 @@ static cJSON *query_parameters(void) {
         cJSON_AddStringToObject(p, "in", "query");
         cJSON_AddBoolToObject(p, "required", 0);
         cJSON_AddStringToObject(p, "description", table[i].help);
-        cJSON_AddItemToObject(p, "schema", param_schema(&table[i]));
+        cJSON_AddItemToObject(p, "schema", param_schema(&table[i], table[i].type == PS_PT_LIST
+                                                                       ? "comma-separated list"
+                                                                       : NULL));
         cJSON_AddItemToArray(a, p);
     }
     return a;
@@ -64,9 +67,7 @@ static cJSON *params_object_schema(void) {
     cJSON *s = cJSON_CreateObject(), *props = cJSON_CreateObject();
     cJSON_AddStringToObject(s, "type", "object");
     for (size_t i = 0; i < n; i++) {
-        cJSON *ps = param_schema(&table[i]);
-        cJSON_AddStringToObject(ps, "description", table[i].help);
-        cJSON_AddItemToObject(props, table[i].name, ps);
+        cJSON_AddItemToObject(props, table[i].name, param_schema(&table[i], table[i].help));
     }
     cJSON_AddItemToObject(s, "properties", props);
     cJSON_AddBoolToObject(s, "additionalProperties", 0);
@@ -283,7 +284,14 @@ char *ps_openapi_json(size_t *len) {
     cJSON_AddStringToObject(info, "version", PS_VERSION);
     cJSON_AddStringToObject(info, "description", "Segments point-sampled surfaces into parts "
                             "(Yamazaki et al., Segmenting Point Sets). Errors are RFC 9457 problem+json.");
+    cJSON *license = cJSON_AddObjectToObject(info, "license");
+    cJSON_AddStringToObject(license, "name", "MIT");
+    cJSON_AddStringToObject(license, "identifier", "MIT");
     cJSON_AddItemToObject(doc, "info", info);
+    cJSON *servers = cJSON_AddArrayToObject(doc, "servers"), *here = cJSON_CreateObject();
+    cJSON_AddStringToObject(here, "url", "/");
+    cJSON_AddStringToObject(here, "description", "the pointsegd that serves this document");
+    cJSON_AddItemToArray(servers, here);
     cJSON_AddItemToObject(doc, "paths", paths());
     cJSON_AddItemToObject(doc, "components", components());
     cJSON *security = cJSON_CreateArray(), *req = cJSON_CreateObject();
