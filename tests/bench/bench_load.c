@@ -236,7 +236,12 @@ static void exec_daemon(const char *path, int port) {
     _exit(127);
 }
 
-static int daemon_stop(daemon_proc *d) { return ps_test_daemon_stop(&d->pid, 10.0); }
+static int daemon_stop(daemon_proc *d) {
+    char how[128];
+    int status = ps_test_daemon_stop(&d->pid, 10.0, how, sizeof how);
+    if (status) fprintf(stderr, "bench_load: pointsegd %s\n", how);
+    return status;
+}
 
 static int daemon_start(daemon_proc *d) {
     char path[4200], health[96];
