@@ -23,7 +23,6 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <sys/time.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -233,11 +232,9 @@ static void test_fields_split_after_their_value(void) {
 }
 
 static void test_zz_stop_daemon(void) {
-    int status = -1;
+    char how[128];
     REQUIRE(daemon_pid > 0);
-    kill(daemon_pid, SIGTERM);
-    CHECK(waitpid(daemon_pid, &status, 0) == daemon_pid && WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    daemon_pid = 0;
+    CHECK_MSG(ps_test_daemon_stop(&daemon_pid, 10, how, sizeof how) == 0, "pointsegd %s", how);
 }
 
 int main(int argc, char **argv) {
