@@ -8,8 +8,9 @@
 #define PS_API_ERROR_H
 
 typedef struct ps_api_error {
-    int http_status;   /* 400 malformed, 413 too large, 415 unknown format,
-                          422 well-formed but unusable, 500 internal */
+    int http_status;   /* 400 malformed (bytes in no known format included),
+                          413 too large, 422 well-formed but unusable,
+                          500 internal */
     char message[512];
 } ps_api_error;
 

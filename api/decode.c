@@ -110,7 +110,7 @@ int ps_decode(const char *bytes, size_t len, const ps_decode_limits *lim,
     case PS_FORMAT_XYZ: return ps_decode_text(bytes, len, f, lim, out, err);
     case PS_FORMAT_UNKNOWN: break;
     }
-    return ps_api_fail(err, 415, "unrecognized format (expected PLY, OFF, OBJ, XYZ/CSV or JSON)");
+    return ps_api_fail(err, 400, "unrecognized format (expected PLY, OFF, OBJ, XYZ/CSV or JSON)");
 }
 
 static int read_stream(FILE *in, const char *path, char **bytes, size_t *len,

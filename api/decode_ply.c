@@ -275,6 +275,12 @@ static int read_elements(const ps_ply_header *h, const ps_ply_element *vertex, p
     return 0;
 }
 
+static void warn_skipped(const ps_ply_header *h, ps_pointset *out) {
+    for (int i = 0; i < h->n_skipped; i++)
+        ps_pointset_warn(out, "PLY header line %zu skipped: no keyword in \"%s\"", h->skipped[i].line,
+                         h->skipped[i].preview);
+}
+
 int ps_decode_ply(const char *bytes, size_t len, const ps_decode_limits *lim,
                   ps_pointset *out, ps_api_error *err) {
     ps_ply_header h;
@@ -285,5 +291,7 @@ int ps_decode_ply(const char *bytes, size_t len, const ps_decode_limits *lim,
     if (!vertex) return ps_api_fail(err, 422, "PLY file has no vertex element");
     ply_reader r = {bytes, bytes + h.data_offset, bytes + len, h.format};
     int failed = read_elements(&h, vertex, &r, lim, out, &tris, err);
-    return ps_decode_finish_mesh(failed, &tris, out, lim, err);
+    if (ps_decode_finish_mesh(failed, &tris, out, lim, err)) return -1;
+    warn_skipped(&h, out);
+    return 0;
 }

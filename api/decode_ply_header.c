@@ -127,7 +127,24 @@ static int parse_property(const header_line *l, ps_ply_header *h, ps_api_error *
     return 0;
 }
 
-static int parse_line(const header_line *l, ps_ply_header *h, int *done, ps_api_error *err) {
+/* A line without a known keyword: listed in h->skipped, or refused when
+ * too many were (a file that is no PLY but starts with "ply"). */
+static int skip_line(const header_line *l, const char *s, const char *e, ps_ply_header *h,
+                     ps_api_error *err) {
+    char shown[PS_PLY_PREVIEW_MAX];
+    if (h->n_skipped == PS_PLY_MAX_SKIPPED || word_is(l, 0, "end_header")) {
+        ps_preview(l->word[0], l->word_len[0], shown, sizeof shown);
+        return ps_api_fail(err, 400, "PLY header line %zu: unknown keyword \"%s\"%s", l->number, shown,
+                           word_is(l, 0, "end_header") ? "" : " (too many lines without a keyword)");
+    }
+    ps_ply_skipped *k = &h->skipped[h->n_skipped++];
+    k->line = l->number;
+    ps_preview(s, (size_t)(e - s), k->preview, sizeof k->preview);
+    return 0;
+}
+
+static int parse_line(const header_line *l, const char *s, const char *e, ps_ply_header *h,
+                      int *done, ps_api_error *err) {
     if (l->n_words == 0 || word_is(l, 0, "comment") || word_is(l, 0, "obj_info")) return 0;
     if (word_is(l, 0, "format")) return parse_format(l, h, err);
     if (word_is(l, 0, "element")) return parse_element(l, h, err);
@@ -136,9 +153,7 @@ static int parse_line(const header_line *l, ps_ply_header *h, int *done, ps_api_
         *done = 1;
         return 0;
     }
-    char shown[41];
-    ps_preview(l->word[0], l->word_len[0], shown, sizeof shown);
-    return ps_api_fail(err, 400, "PLY header line %zu: unknown keyword \"%s\"", l->number, shown);
+    return skip_line(l, s, e, h, err);
 }
 
 int ps_ply_parse_header(const char *bytes, size_t len, ps_ply_header *h, ps_api_error *err) {
@@ -154,7 +169,7 @@ int ps_ply_parse_header(const char *bytes, size_t len, ps_ply_header *h, ps_api_
         l.number = lines.line;
         split_words(&l, s, e);
         have_format |= word_is(&l, 0, "format");
-        if (parse_line(&l, h, &done, err)) return -1;
+        if (parse_line(&l, s, e, h, &done, err)) return -1;
     }
     if (!done) return ps_api_fail(err, 400, "PLY header has no end_header line");
     if (!have_format) return ps_api_fail(err, 400, "PLY header has no format line");

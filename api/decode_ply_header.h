@@ -13,7 +13,11 @@
 
 #include "api_error.h"
 
-enum { PS_PLY_MAX_ELEMENTS = 32, PS_PLY_MAX_PROPERTIES = 256, PS_PLY_NAME_MAX = 32 };
+enum {
+    PS_PLY_MAX_ELEMENTS = 32, PS_PLY_MAX_PROPERTIES = 256, PS_PLY_NAME_MAX = 32,
+    PS_PLY_MAX_SKIPPED = 4,   /* header lines without a known keyword, skipped */
+    PS_PLY_PREVIEW_MAX = 64   /* bytes kept of a skipped line, NUL included */
+};
 
 typedef enum ps_ply_format { PS_PLY_ASCII, PS_PLY_BINARY_LE, PS_PLY_BINARY_BE } ps_ply_format;
 
@@ -36,6 +40,13 @@ typedef struct ps_ply_element {
     int n_properties;
 } ps_ply_element;
 
+/* A header line that old exporters write without a keyword (Blender 2.4x:
+ * "Created by Blender3D 247 - www.blender.org, source file: ..."). */
+typedef struct ps_ply_skipped {
+    size_t line;
+    char preview[PS_PLY_PREVIEW_MAX]; /* its start, control bytes shown as '?' */
+} ps_ply_skipped;
+
 typedef struct ps_ply_header {
     ps_ply_format format;
     size_t data_offset;         /* first byte after "end_header\n" */
@@ -43,10 +54,15 @@ typedef struct ps_ply_header {
     ps_ply_element elements[PS_PLY_MAX_ELEMENTS];
     int n_properties;
     ps_ply_property properties[PS_PLY_MAX_PROPERTIES];
+    int n_skipped;
+    ps_ply_skipped skipped[PS_PLY_MAX_SKIPPED];
 } ps_ply_header;
 
-/* Parses the header of bytes (#len, starting "ply").  Returns 0, or -1 with
- * a 400 naming the header line. */
+/* Parses the header of bytes (#len, starting "ply").  A line whose first
+ * word is none of format, element, property, comment, obj_info and
+ * end_header is skipped and listed in h->skipped (at most
+ * PS_PLY_MAX_SKIPPED; one more is refused).  Returns 0, or -1 with a 400
+ * naming the header line. */
 int ps_ply_parse_header(const char *bytes, size_t len, ps_ply_header *h, ps_api_error *err);
 
 /* Bytes of one value of type t (1, 2, 4 or 8). */

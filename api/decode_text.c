@@ -21,7 +21,7 @@ int ps_decode_text(const char *bytes, size_t len, ps_format fmt,
     default: break;
     }
     memset(out, 0, sizeof *out);
-    return ps_api_fail(err, 415, "%s is not a text format", ps_format_name(fmt));
+    return ps_api_fail(err, 400, "%s is not a text format", ps_format_name(fmt));
 }
 
 /* 1 when the line's first field is not a number (a column header). */

@@ -10,7 +10,8 @@
 #include "params_table.h"
 #include "pointset.h"
 
-char *ps_encode_json(const ps_result *r, unsigned include, size_t *len);
+/* in (may be NULL) gives the document its "warnings". */
+char *ps_encode_json(const ps_pointset *in, const ps_result *r, unsigned include, size_t *len);
 char *ps_encode_labels(const ps_result *r, size_t *len);
 char *ps_encode_ply(const ps_pointset *in, const ps_result *r, size_t *len);
 

@@ -170,6 +170,16 @@ static int add_timings(cJSON *doc, const ps_timings *t) {
     return add_number(o, "total", t->total_ms);
 }
 
+static int add_warnings(cJSON *doc, const ps_pointset *in) {
+    cJSON *arr = cJSON_AddArrayToObject(doc, "warnings");
+    if (!arr) return -1;
+    for (int i = 0; in && i < in->n_warnings; i++) {
+        cJSON *w = cJSON_CreateString(in->warnings[i]);
+        if (!w || !cJSON_AddItemToArray(arr, w)) return cJSON_Delete(w), -1;
+    }
+    return 0;
+}
+
 /* Per-point arrays the caller asked for (and the result has). */
 static int add_included(cJSON *doc, const ps_result *r, unsigned include) {
     if ((include & PS_INCLUDE_POINT_SUPERNODE) && r->point_supernode &&
@@ -181,7 +191,7 @@ static int add_included(cJSON *doc, const ps_result *r, unsigned include) {
     return 0;
 }
 
-static int fill_document(cJSON *doc, const ps_result *r, unsigned include) {
+static int fill_document(cJSON *doc, const ps_pointset *in, const ps_result *r, unsigned include) {
     size_t n_labels = r->labels ? r->n_points : 0;
     if (add_number(doc, "n_points", (double)r->n_points) || add_number(doc, "dimension", r->dim) ||
         add_number(doc, "n_components", r->n_components) ||
@@ -191,15 +201,16 @@ static int fill_document(cJSON *doc, const ps_result *r, unsigned include) {
         add_number(doc, "n_segments", r->n_segments))
         return -1;
     if (add_segments(doc, r) || add_supernodes(doc, r) || add_hierarchy(doc, r) ||
-        add_merges(doc, r) || add_params(doc, &r->params) || add_timings(doc, &r->timings))
+        add_merges(doc, r) || add_params(doc, &r->params) || add_timings(doc, &r->timings) ||
+        add_warnings(doc, in))
         return -1;
     return add_included(doc, r, include);
 }
 
-char *ps_encode_json(const ps_result *r, unsigned include, size_t *len) {
+char *ps_encode_json(const ps_pointset *in, const ps_result *r, unsigned include, size_t *len) {
     cJSON *doc = cJSON_CreateObject();
     char *text = NULL;
-    if (doc && fill_document(doc, r, include) == 0) text = cJSON_PrintUnformatted(doc);
+    if (doc && fill_document(doc, in, r, include) == 0) text = cJSON_PrintUnformatted(doc);
     cJSON_Delete(doc);
     if (text && len) *len = strlen(text);
     return text;

@@ -22,7 +22,8 @@ static cJSON *choices_array(const char *const *choices) {
     return a;
 }
 
-static cJSON *param_schema(const ps_param_spec *p) {
+/* The schema of parameter p; description may be NULL. */
+static cJSON *param_schema(const ps_param_spec *p, const char *description) {
     static const char *const types[] = {"integer", "number", "boolean", "string", "string"};
     cJSON *s = cJSON_CreateObject();
     cJSON_AddStringToObject(s, "type", types[p->type]);
@@ -36,8 +37,8 @@ static cJSON *param_schema(const ps_param_spec *p) {
         ps_params_join_choices(p->choices, "|", alternatives, sizeof alternatives);
         snprintf(pattern, sizeof pattern, "^$|^(%s)(,(%s))*$", alternatives, alternatives);
         cJSON_AddStringToObject(s, "pattern", pattern);
-        cJSON_AddStringToObject(s, "description", "comma-separated list");
     }
+    if (description) cJSON_AddStringToObject(s, "description", description);
     cJSON_AddStringToObject(s, "default", p->default_text);
     return s;
 }
@@ -52,7 +53,9 @@ static cJSON *query_parameters(void) {
         cJSON_AddStringToObject(p, "in", "query");
         cJSON_AddBoolToObject(p, "required", 0);
         cJSON_AddStringToObject(p, "description", table[i].help);
-        cJSON_AddItemToObject(p, "schema", param_schema(&table[i]));
+        cJSON_AddItemToObject(p, "schema", param_schema(&table[i], table[i].type == PS_PT_LIST
+                                                                       ? "comma-separated list"
+                                                                       : NULL));
         cJSON_AddItemToArray(a, p);
     }
     return a;
@@ -64,9 +67,7 @@ static cJSON *params_object_schema(void) {
     cJSON *s = cJSON_CreateObject(), *props = cJSON_CreateObject();
     cJSON_AddStringToObject(s, "type", "object");
     for (size_t i = 0; i < n; i++) {
-        cJSON *ps = param_schema(&table[i]);
-        cJSON_AddStringToObject(ps, "description", table[i].help);
-        cJSON_AddItemToObject(props, table[i].name, ps);
+        cJSON_AddItemToObject(props, table[i].name, param_schema(&table[i], table[i].help));
     }
     cJSON_AddItemToObject(s, "properties", props);
     cJSON_AddBoolToObject(s, "additionalProperties", 0);
@@ -91,8 +92,9 @@ static cJSON *request_body(void) {
     cJSON_AddBoolToObject(b, "required", 1);
     cJSON_AddStringToObject(b, "description",
                             "the points: PLY (ascii or binary), OFF, OBJ or XYZ recognized from the "
-                            "content, a JSON document, or a form with a `file` part; any of them "
-                            "may be sent with Content-Encoding: gzip");
+                            "content (application/ply: PLY only), a JSON document, or a form "
+                            "with a `file` part; any of them may be sent with Content-Encoding: "
+                            "gzip.  Bytes that are not what the type says are a 400");
     cJSON_AddItemToObject(c, "application/ply", media(binary_schema()));
     cJSON_AddItemToObject(c, "application/octet-stream", media(binary_schema()));
     cJSON_AddItemToObject(c, "text/plain", media(binary_schema()));
@@ -154,9 +156,10 @@ static cJSON *segment_responses(int async) {
         cJSON_AddItemToObject(ok, "content", c);
         cJSON_AddItemToObject(r, "200", ok);
     }
-    add_problem(r, 400, "malformed body or unknown parameter");
+    add_problem(r, 400, "malformed body (bytes in no known format, not PLY for application/ply, "
+                        "not JSON for application/json) or unknown parameter");
     add_problem(r, 413, "body, inflated body or point count over the limit");
-    add_problem(r, 415, "unsupported Content-Type or format");
+    add_problem(r, 415, "a Content-Type or Content-Encoding the service does not take");
     add_problem(r, 422, "well-formed but unusable input, or a parameter out of range");
     add_problem(r, 503, async ? "queue full, shutting down, or " SHARED_QUEUE_DOWN
                               : "queue full (see Retry-After) or shutting down");
@@ -272,7 +275,8 @@ static cJSON *components(void) {
     cJSON_ReplaceItemInObject(cJSON_GetObjectItem(points, "properties"), "params", params_object_schema());
     cJSON_AddItemToObject(s, "PointsRequest", points);
     cJSON *seg = type_schema("object");
-    cJSON_AddStringToObject(seg, "description", "the document of `pointseg --output json` (see the README)");
+    cJSON_AddStringToObject(seg, "description", "the document of `pointseg --output json` (see the README); "
+                            "`warnings` lists what the reader tolerated in the input");
     cJSON_AddItemToObject(s, "Segmentation", seg);
     cJSON_AddItemToObject(c, "schemas", s);
     cJSON *sec = cJSON_CreateObject(), *bearer = type_schema("http");
@@ -289,7 +293,14 @@ char *ps_openapi_json(size_t *len) {
     cJSON_AddStringToObject(info, "version", PS_VERSION);
     cJSON_AddStringToObject(info, "description", "Segments point-sampled surfaces into parts "
                             "(Yamazaki et al., Segmenting Point Sets). Errors are RFC 9457 problem+json.");
+    cJSON *license = cJSON_AddObjectToObject(info, "license");
+    cJSON_AddStringToObject(license, "name", "MIT");
+    cJSON_AddStringToObject(license, "identifier", "MIT");
     cJSON_AddItemToObject(doc, "info", info);
+    cJSON *servers = cJSON_AddArrayToObject(doc, "servers"), *here = cJSON_CreateObject();
+    cJSON_AddStringToObject(here, "url", "/");
+    cJSON_AddStringToObject(here, "description", "the pointsegd that serves this document");
+    cJSON_AddItemToArray(servers, here);
     cJSON_AddItemToObject(doc, "paths", paths());
     cJSON_AddItemToObject(doc, "components", components());
     cJSON *security = cJSON_CreateArray(), *req = cJSON_CreateObject();

@@ -1,8 +1,18 @@
-/* pointset.c: releasing a decoded ps_pointset. */
+/* pointset.c: a decoded ps_pointset's warnings and its release. */
 #include "pointset.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+void ps_pointset_warn(ps_pointset *ps, const char *fmt, ...) {
+    if (ps->n_warnings == PS_MAX_WARNINGS) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(ps->warnings[ps->n_warnings++], PS_WARNING_MAX, fmt, ap);
+    va_end(ap);
+}
 
 void ps_pointset_free(ps_pointset *ps) {
     if (!ps) return;

@@ -49,9 +49,17 @@ static int append_data(ps_body *b, const char *src, size_t n, ps_api_error *err)
     return 0;
 }
 
+/* A call at offset 0 begins a field, except that libmicrohttpd, when a read
+ * ends right after a short value, first calls with no bytes at offset 0 and
+ * then again at offset 0 with the value: that second call continues the
+ * field.  (An empty field followed by one of the same name reads as one.) */
+static int begins_field(const ps_body_field *f, const char *key, uint64_t off) {
+    return !f || strcmp(f->name, key) || (off == 0 && f->value[0]);
+}
+
 static int append_field(ps_body *b, const char *key, const char *src, uint64_t off, size_t n) {
     ps_body_field *f = b->n_fields ? &b->fields[b->n_fields - 1] : NULL;
-    if (off == 0 || !f || strcmp(f->name, key)) {
+    if (begins_field(f, key, off)) {
         if (b->n_fields == MAX_FIELDS)
             return ps_api_fail(&b->error, 400, "more than %d multipart fields", MAX_FIELDS);
         f = &b->fields[b->n_fields];

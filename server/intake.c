@@ -17,8 +17,8 @@ ps_media ps_intake_media(const char *ct) {
     while (*ct == ' ') ct++;
     if (media_is(ct, "application/json")) return PS_MEDIA_JSON;
     if (media_is(ct, "multipart/form-data")) return PS_MEDIA_MULTIPART;
-    if (media_is(ct, "application/ply") || media_is(ct, "application/octet-stream") ||
-        media_is(ct, "text/plain"))
+    if (media_is(ct, "application/ply")) return PS_MEDIA_PLY;
+    if (media_is(ct, "application/octet-stream") || media_is(ct, "text/plain"))
         return PS_MEDIA_POINTS;
     return PS_MEDIA_UNSUPPORTED;
 }
@@ -29,6 +29,8 @@ int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_p
     memset(out, 0, sizeof *out);
     if (len == 0) return ps_api_fail(err, 400, "the request body is empty");
     if (media == PS_MEDIA_JSON) return ps_decode_json(bytes, len, &lim, out, err);
+    if (media == PS_MEDIA_PLY && ps_detect_format(bytes, len) != PS_FORMAT_PLY)
+        return ps_api_fail(err, 400, "not a PLY file: an application/ply body begins with the line \"ply\"");
     return ps_decode(bytes, len, &lim, out, err);
 }
 

@@ -13,7 +13,8 @@
 #include "pointset.h"
 
 typedef enum ps_media {
-    PS_MEDIA_POINTS = 0,  /* application/ply, application/octet-stream, text/plain */
+    PS_MEDIA_POINTS = 0,  /* application/octet-stream, text/plain: any format, by content */
+    PS_MEDIA_PLY,         /* application/ply: a PLY file */
     PS_MEDIA_JSON,        /* application/json */
     PS_MEDIA_MULTIPART,   /* multipart/form-data */
     PS_MEDIA_UNSUPPORTED
@@ -28,7 +29,9 @@ typedef struct ps_text_param {
 } ps_text_param;
 
 /* Decodes len bytes (multipart: the `file` part, recognized by content) into
- * *out, at most max_points points.  Returns 0 or -1 with err. */
+ * *out, at most max_points points.  Returns 0 or -1 with err: bytes that
+ * are not what the media type says (no known format; not PLY for
+ * application/ply; not JSON) are a 400, as any other malformed body. */
 int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,
                      ps_pointset *out, ps_api_error *err);
 

@@ -21,7 +21,7 @@ static char *encode_result(const ps_pointset *points, const ps_request_params *p
         return ps_encode_labels(r, len);
     default:
         *media = "application/json";
-        return ps_encode_json(r, params->include, len);
+        return ps_encode_json(points, r, params->include, len);
     }
 }
 

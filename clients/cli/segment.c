@@ -181,7 +181,9 @@ static int read_input(const char *path, const char *what, ps_pointset *ps) {
     if (ps_read_file(path, &bytes, &len, &err) != 0) return api_exit(what, &err);
     int rc = ps_decode(bytes, len, NULL, ps, &err);
     free(bytes);
-    return rc == 0 ? 0 : api_exit(what, &err);
+    if (rc) return api_exit(what, &err);
+    for (int i = 0; i < ps->n_warnings; i++) fprintf(stderr, "pointseg: warning: %s: %s\n", what, ps->warnings[i]);
+    return 0;
 }
 
 static int run_segment(const ps_pointset *ps, const ps_params *params, const char *what,
@@ -201,7 +203,7 @@ static char *encode(const ps_request_params *rp, const ps_pointset *ps, const ps
     case PS_OUTPUT_PLY: return ps_encode_ply(ps, r, len);
     case PS_OUTPUT_JSON: break;
     }
-    return ps_encode_json(r, rp->include, len);
+    return ps_encode_json(ps, r, rp->include, len);
 }
 
 /* Writes bytes to path (NULL or "-" = stdout); 0 or an exit status. */

@@ -67,7 +67,7 @@ function colourSource() {
 
 function repaint() {
   const viewer = state.viewer;
-  if (!viewer || !state.doc) return;
+  if (!viewer || !viewer.colors || !state.doc) return;
   const { index, table } = colourSource();
   paint(viewer.colors, index, table, state.doc.labels, state.highlight);
   viewer.colorsChanged();
@@ -202,6 +202,16 @@ async function run() {
   }
 }
 
+// Gives the input's shape to the 3D view, grey (a result recolours it),
+// once both are there: a file may be chosen before three.js has loaded.
+function shapeToViewer() {
+  const { viewer, input } = state;
+  if (!viewer || !input) return;
+  viewer.setShape(input.positions, input.faces).fill(170);
+  viewer.colorsChanged();
+  $('surface-toggle').hidden = !input.faces;
+}
+
 // Shows the new input at once (grey), then segments it.  gzip: blob is
 // gzip-compressed (parsed from its decompressed bytes).
 function useInput(name, blob, parsed, gzip = false) {
@@ -215,11 +225,7 @@ function useInput(name, blob, parsed, gzip = false) {
   $('placeholder').hidden = true;
   for (const id of ['view-box', 'legend-box', 'download-box']) $(id).hidden = true;
   $('summary').textContent = '';
-  if (state.viewer) {
-    state.viewer.setShape(parsed.positions, parsed.faces).fill(170);
-    state.viewer.colorsChanged();
-    $('surface-toggle').hidden = !parsed.faces;
-  }
+  shapeToViewer();
   $('run').disabled = false;
   return run();
 }
@@ -307,8 +313,15 @@ async function loadViewer() {
   try {
     return new module.Viewer($('canvas'));
   } catch (err) {
-    throw { title: 'WebGL is not available', detail: err.message };
+    throw { title: 'WebGL is not available', detail: err.message, noWebgl: true };
   }
+}
+
+// Without WebGL the page still segments: the legend, hierarchy and
+// downloads work; the stage says why there is no 3D view.
+function showNoView(err) {
+  $('no-view-detail').textContent = err.detail;
+  $('no-view').hidden = false;
 }
 
 async function start() {
@@ -321,14 +334,20 @@ async function start() {
   } catch (err) {
     showError({ title: 'Cannot read the parameters from /openapi.json', detail: err.message });
   }
+  // Ready, unless a file chosen meanwhile is already being read or segmented.
+  const settle = () => state.input || document.body.dataset.state === 'reading' || setState('ready');
   try {
     state.viewer = await loadViewer();
   } catch (err) {
-    showError(err);
+    if (!err.noWebgl) return showError(err);
+    showNoView(err);
+    settle();
     return;
   }
   wireCanvasHover(state.viewer);
-  setState('ready');
+  shapeToViewer();
+  repaint();
+  settle();
 }
 
 start();

@@ -236,7 +236,12 @@ static void exec_daemon(const char *path, int port) {
     _exit(127);
 }
 
-static int daemon_stop(daemon_proc *d) { return ps_test_daemon_stop(&d->pid, 10.0); }
+static int daemon_stop(daemon_proc *d) {
+    char how[128];
+    int status = ps_test_daemon_stop(&d->pid, 10.0, how, sizeof how);
+    if (status) fprintf(stderr, "bench_load: pointsegd %s\n", how);
+    return status;
+}
 
 static int daemon_start(daemon_proc *d) {
     char path[4200], health[96];
@@ -501,7 +506,7 @@ static double horse_library_ms(const char *bytes, size_t len, size_t *n_points) 
     double start = now_s();
     if (ps_decode(bytes, len, NULL, &ps, &api_err)) return -1;
     ps_input in = {ps.points, ps.n, ps.dim, ps.normals};
-    if (ps_segment(&in, &rp.core, NULL, &r, &err) == PS_OK) doc = ps_encode_json(r, rp.include, &doc_len);
+    if (ps_segment(&in, &rp.core, NULL, &r, &err) == PS_OK) doc = ps_encode_json(&ps, r, rp.include, &doc_len);
     double ms = (now_s() - start) * 1e3;
     *n_points = ps.n;
     free(doc);

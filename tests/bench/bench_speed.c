@@ -106,7 +106,7 @@ static int segment_and_encode(const ps_pointset *ps, const speed_case *c, run_ti
     }
     double segmented = now_ms();
     size_t len = 0;
-    char *json = ps_encode_json(r, 0, &len);
+    char *json = ps_encode_json(ps, r, 0, &len);
     t->v[COL_ENCODE] = now_ms() - segmented;
     t->v[COL_SEGMENT] = segmented - start;
     for (int p = 0; p < PS_PHASE_COUNT; p++) t->v[COL_PHASE0 + p] = r->timings.ms[p];

@@ -2,7 +2,8 @@
 # run.sh: what `make test-browser` runs after `make web`: makes sure
 # Chromium is there (installs it as root, else SKIPs), installs
 # playwright-core (pinned in tests/browser/package-lock.json), and runs
-# viewer.test.mjs against BUILD/pointsegd.  Last line "N passed, N failed".
+# every tests/browser/*.test.mjs against BUILD/pointsegd.  Last line
+# "N passed, N failed", the sum over the files.
 #   tests/browser/run.sh BUILD
 set -eu
 BUILD=${1:-build}
@@ -15,4 +16,19 @@ if [ "$rc" = 3 ]; then
 fi
 [ "$rc" = 0 ] || exit "$rc"
 npm ci --prefix tests/browser --no-audit --no-fund --loglevel=error
-exec timeout 170 node tests/browser/viewer.test.mjs "$BUILD"
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+passed=0 failed=0
+for t in tests/browser/*.test.mjs; do
+    timeout 170 node "$t" "$BUILD" | tee "$out"
+    counts=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$out" | tail -n 1)
+    if [ -z "$counts" ]; then
+        echo "FAIL browser:$(basename "$t"): ended without a count (timed out or crashed)"
+        failed=$((failed + 1))
+        continue
+    fi
+    passed=$((passed + ${counts%% passed*}))
+    failed=$((failed + $(echo "$counts" | sed -E 's/.* ([0-9]+) failed$/\1/')))
+done
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

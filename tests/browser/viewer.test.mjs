@@ -8,91 +8,15 @@
 //   node tests/browser/viewer.test.mjs BUILD    (pointsegd in BUILD,
 //   screenshots in BUILD/browser-artifacts)
 
-import { spawn } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { existsSync, readFileSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
-import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { join } from 'node:path';
 import { gunzip, parsePointFile } from '../../clients/web/formats.js';
-import { makeHand } from '../../clients/web/shapes.js';
+import {
+  ARTIFACTS, LONG, SHARED, assert, check, colourDigest, finish, handXyz, launchChromium, shot, startDaemon,
+} from './harness.mjs';
 
-const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const BUILD = resolve(ROOT, process.argv[2] || 'build');
-const ARTIFACTS = join(BUILD, 'browser-artifacts');
-const SHARED = process.env.POINTSEG_SHARED || resolve(ROOT, '../shared/data');
 const HORSE = join(SHARED, 'models/horse.ply');
-const CHROMIUM_ARGS = [
-  '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-];
-const LONG = 60000;
-
-let passed = 0, failed = 0;
-
-async function check(name, fn) {
-  try {
-    await fn();
-    console.log(`PASS browser:${name}`);
-    passed++;
-  } catch (err) {
-    console.log(`FAIL browser:${name}: ${String(err.message || err).split('\n')[0]}`);
-    failed++;
-  }
-}
-
-function assert(cond, why) {
-  if (!cond) throw new Error(why);
-}
-
-// Starts pointsegd on a free port; resolves {proc, base}.
-function startDaemon() {
-  const proc = spawn(join(BUILD, 'pointsegd'),
-    ['--port', '0', '--static-dir', join(ROOT, 'clients/web'), '--quiet', '--threads', '1'],
-    { stdio: ['ignore', 'inherit', 'pipe'] });
-  process.on('exit', () => proc.kill('SIGKILL'));
-  return new Promise((ok, fail) => {
-    const timer = setTimeout(() => fail(new Error('pointsegd did not say where it listens')), 10000);
-    let out = '';
-    proc.stderr.on('data', (chunk) => {
-      out += chunk;
-      const m = out.match(/listening on (http:\/\/[\d.]+:\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        ok({ proc, base: m[1] });
-      }
-    });
-    proc.on('exit', (code) => fail(new Error(`pointsegd exited with ${code}`)));
-  });
-}
-
-async function shot(page, name) {
-  await page.screenshot({ path: join(ARTIFACTS, `${name}.png`) });
-}
-
-// Digest of the colours the app computed and of the canvas pixels, and the
-// count of pixels unlike the corner one (the background).
-function colourDigest(page) {
-  return page.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => {
-    const c = window.pointseg.state.viewer.colors;
-    let h = 0;
-    for (let i = 0; i < c.length; i++) h = (h * 31 + c[i]) >>> 0;
-    const gl = document.querySelector('#canvas canvas');
-    const probe = document.createElement('canvas');
-    probe.width = gl.width;
-    probe.height = gl.height;
-    const g = probe.getContext('2d');
-    g.drawImage(gl, 0, 0);
-    const px = g.getImageData(0, 0, probe.width, probe.height).data;
-    let p = 0, drawn = 0;
-    for (let i = 0; i < px.length; i += 4) {
-      p = (p * 31 + px[i] + 7 * px[i + 1] + 13 * px[i + 2]) >>> 0;
-      if (Math.abs(px[i] - px[0]) + Math.abs(px[i + 1] - px[1]) + Math.abs(px[i + 2] - px[2]) > 12) drawn++;
-    }
-    ok({ colours: h, pixels: p, drawn });
-  }))));
-}
 
 // The point nearest the camera (so nothing is drawn over it): {index, x,
 // y} with x, y where it is drawn, CSS pixels from the canvas's top left.
@@ -167,14 +91,6 @@ async function pageParsers() {
       assert(first.every((v, c) => p.positions[c] === v), `first point ${Array.from(p.positions.slice(0, 3))}`);
     });
   }
-}
-
-// The synthetic hand as XYZ text (one point a line).
-function handXyz() {
-  const p = makeHand();
-  const lines = [];
-  for (let i = 0; i < p.length; i += 3) lines.push(`${p[i]} ${p[i + 1]} ${p[i + 2]}`);
-  return lines.join('\n') + '\n';
 }
 
 // A gzip file has the 1f 8b magic and a trailer; this has the magic only.
@@ -464,31 +380,19 @@ async function millionPoints(context, base) {
 }
 
 async function main() {
-  mkdirSync(ARTIFACTS, { recursive: true });
   await pageParsers();
   await gzipParsers();
   const { proc, base } = await startDaemon();
-  const profile = mkdtempSync(join(tmpdir(), 'pointseg-chromium-'));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: CHROMIUM_ARGS,
-    acceptDownloads: true,
-  });
+  const { context, close } = await launchChromium();
   try {
     await mainFlow(context, base);
     await missingVendor(context, base);
     await millionPoints(context, base);
   } finally {
-    await context.close();
+    await close();
     proc.kill('SIGTERM');
-    rmSync(profile, { recursive: true, force: true });
   }
   console.log(`screenshots in ${ARTIFACTS}`);
-  console.log(`${passed} passed, ${failed} failed`);
-  process.exit(failed ? 1 : 0);
 }
 
-main().catch((err) => {
-  console.log(`FAIL browser:setup: ${err.message}`);
-  console.log(`${passed} passed, ${failed + 1} failed`);
-  process.exit(1);
-});
+finish(main);

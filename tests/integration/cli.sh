@@ -184,6 +184,36 @@ test_stdin_and_body_params() {
     fi
 }
 
+# A PLY header line without a keyword, as Blender 2.4x writes, is skipped
+# with a warning on stderr and in the JSON document; the labels are those
+# of the same file without that line.
+test_header_line_without_keyword() {
+    {
+        printf 'ply\nformat ascii 1.0\n'
+        printf 'Created by Blender3D 247 - www.blender.org, source file: spheres.blend\n'
+        printf 'element vertex %d\nproperty float x\nproperty float y\nproperty float z\n' "$N"
+        printf 'end_header\n'
+        cat "$tmp/spheres.xyz"
+    } >"$tmp/blender.ply"
+    run blender "$PS" segment "$tmp/blender.ply"
+    if [ "$rc" -ne 0 ]; then
+        fail "ply_header_warning" "exit status $rc: $(head -c 200 "$tmp/blender.err")"
+    elif ! grep -q "^pointseg: warning: .*blender.ply: PLY header line 3 skipped: no keyword in \"Created by Blender3D 247" \
+        "$tmp/blender.err"; then
+        fail "ply_header_warning" "no warning on stderr: $(head -c 200 "$tmp/blender.err")"
+    elif ! python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+labels = [int(l) for l in open(sys.argv[2])]
+assert len(d["warnings"]) == 1 and d["warnings"][0].startswith("PLY header line 3 skipped"), d["warnings"]
+assert d["labels"] == labels, "labels differ from the XYZ file without the header"
+' "$tmp/blender.out" "$tmp/labels.out" 2>"$tmp/blender.py"; then
+        fail "ply_header_warning" "$(tail -1 "$tmp/blender.py")"
+    else
+        pass "ply_header_warning"
+    fi
+}
+
 test_errors() {
     printf 'this is not a point set\n' >"$tmp/bad.txt"
     expect_usage_error bad_input "bad.txt: " "$PS" segment "$tmp/bad.txt"
@@ -203,5 +233,6 @@ test_labels
 test_json
 test_ply
 test_stdin_and_body_params
+test_header_line_without_keyword
 test_errors
 [ "$failures" -eq 0 ]

@@ -15,6 +15,7 @@
 
 #include <arpa/inet.h>
 #include <cJSON.h>
+#include <dirent.h>
 #include <fcntl.h>
 #include <libgen.h>
 #include <netinet/in.h>
@@ -38,11 +39,25 @@ typedef struct ps_daemon {
     int port;
     char base_url[64];
     ps_client client;
+    char log[64];    /* its stderr; removed when it stops well */
+    char why[1024];  /* how it ended and its last log lines, when not well */
 } ps_daemon;
 
 #define MAX_ARGS 32
 
 static int ps_daemon_stop(ps_daemon *d, double timeout_s);
+
+/* Stops d and checks that it exited 0; the failure says how it ended. */
+#define CHECK_STOPS(d, timeout_s) CHECK_MSG(ps_daemon_stop(&(d), timeout_s) == 0, "%s", (d).why)
+
+/* Starts d with the NULL-terminated args, or fails the test saying why. */
+#define REQUIRE_STARTS(d, ...)                                                   \
+    do {                                                                         \
+        if (ps_daemon_start(&(d), (const char *const[]){__VA_ARGS__}) != 0) {    \
+            ps_test_fail(__FILE__, __LINE__, "pointsegd did not start: %s", (d).why); \
+            return;                                                              \
+        }                                                                        \
+    } while (0)
 
 
 static int ps_daemon_healthy(const ps_daemon *d) {
@@ -52,42 +67,73 @@ static int ps_daemon_healthy(const ps_daemon *d) {
     return ok;
 }
 
-static void exec_daemon(const char *path, int port, const char *const *args) {
-    char port_text[16], log[64];
-    const char *argv[MAX_ARGS + 8] = {path, "--port", port_text, "--bind", "127.0.0.1"};
+/* In the child: pointsegd on a port the kernel picks (--port 0), stderr to
+ * the log file open as log_fd. */
+static void exec_daemon(const char *path, int log_fd, const char *const *args) {
+    const char *argv[MAX_ARGS + 8] = {path, "--port", "0", "--bind", "127.0.0.1"};
     size_t n = 5;
-    snprintf(port_text, sizeof port_text, "%d", port);
     for (; args && *args && n < MAX_ARGS; args++) argv[n++] = *args;
     argv[n] = NULL;
-    snprintf(log, sizeof log, "/tmp/pointsegd-itest-%d.log", (int)getpid());
-    int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) dup2(fd, 2);
+    dup2(log_fd, 2);
     execv(path, (char *const *)(uintptr_t)argv);
     _exit(127);
 }
 
+/* 1 when the child has exited (it stays waitable for ps_daemon_stop). */
+static int has_exited(pid_t pid) {
+    siginfo_t info;
+    memset(&info, 0, sizeof info);
+    return waitid(P_PID, (id_t)pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+}
+
+/* The port the daemon says it listens on (its log's "listening on" line),
+ * or 0 when it has not said so yet. */
+static int announced_port(const char *log) {
+    char text[4096];
+    ps_test_log_tail(log, 20, text, sizeof text);
+    const char *at = strstr(text, "listening on http://127.0.0.1:");
+    return at ? atoi(at + strlen("listening on http://127.0.0.1:")) : 0;
+}
+
+/* Starts pointsegd with args, its stderr to a new log file; its port is the
+ * one it announces there, so no other process can be answering in its
+ * place.  0, or -1 (d->why says why). */
 static int ps_daemon_start(ps_daemon *d, const char *const *args) {
     char path[4200];
     memset(d, 0, sizeof *d);
-    if (ps_test_daemon_path(path, sizeof path) || access(path, X_OK)) return -1;
-    d->port = ps_test_free_port();
-    if (d->port <= 0) return -1;
+    snprintf(d->log, sizeof d->log, "/tmp/pointsegd-itest-XXXXXX");
+    int log_fd = mkstemp(d->log);
+    if (ps_test_daemon_path(path, sizeof path) || access(path, X_OK) || log_fd < 0) {
+        snprintf(d->why, sizeof d->why, "no %.900s, or no log file", path);
+        return -1;
+    }
+    d->pid = fork();
+    if (d->pid == 0) exec_daemon(path, log_fd, args);
+    close(log_fd);
+    if (d->pid < 0) return -1;
+    for (int i = 0; i < 800 && !d->port && !has_exited(d->pid); i++) {
+        d->port = announced_port(d->log);
+        if (!d->port) ps_test_sleep_ms(25);
+    }
     snprintf(d->base_url, sizeof d->base_url, "http://127.0.0.1:%d", d->port);
     d->client = (ps_client){d->base_url, NULL, 60000};
-    d->pid = fork();
-    if (d->pid < 0) return -1;
-    if (d->pid == 0) exec_daemon(path, d->port, args);
-    for (int i = 0; i < 200; i++) {
-        if (ps_daemon_healthy(d)) return 0;
-        if (waitpid(d->pid, NULL, WNOHANG) == d->pid) return d->pid = 0, -1;
-        ps_test_sleep_ms(25);
-    }
-    ps_daemon_stop(d, 1);
+    if (d->port && ps_daemon_healthy(d)) return 0;
+    const char *what = d->port ? "GET /healthz failed" : "it announced no port";
+    if (ps_daemon_stop(d, 1) == 0) snprintf(d->why, sizeof d->why, "%s", what);
     return -1;
 }
 
+/* 0 when d exited 0 after SIGTERM; else -1, with d->why. */
 static int ps_daemon_stop(ps_daemon *d, double timeout_s) {
-    return ps_test_daemon_stop(&d->pid, timeout_s);
+    char how[128], tail[768];
+    int status = ps_test_daemon_stop(&d->pid, timeout_s, how, sizeof how);
+    if (status == 0) {
+        remove(d->log);
+        return 0;
+    }
+    ps_test_log_tail(d->log, 8, tail, sizeof tail);
+    snprintf(d->why, sizeof d->why, "pointsegd %s; the end of %s:\n%s", how, d->log, tail);
+    return -1;
 }
 
 static char *ps_points_xyz(const double *pts, size_t n, size_t *len) {
@@ -238,6 +284,24 @@ static long get_status(const ps_daemon *d, const char *path, ps_client_response 
     return r->status;
 }
 
+static double seconds_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* 1 when /metrics shows `line` within timeout_s: a request's metrics are
+ * recorded when it completes, just after its answer has gone out. */
+static int metrics_show(const ps_daemon *d, const char *line, double timeout_s) {
+    int shown = 0;
+    for (double t0 = seconds_now(); !shown && seconds_now() - t0 < timeout_s; ps_test_sleep_ms(20)) {
+        ps_client_response r;
+        shown = get_status(d, "/metrics", &r) == 200 && strstr(r.body, line);
+        ps_client_response_free(&r);
+    }
+    return shown;
+}
+
 static sample small; /* shared by the tests: made once */
 
 static int need_small(void) {
@@ -249,7 +313,7 @@ static int need_small(void) {
 static void test_content_types_give_library_labels(void) {
     ps_daemon d;
     REQUIRE(need_small());
-    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    REQUIRE_STARTS(d, NULL);
     size_t json_len, ply_len, mp_len, gz_len;
     char *json = json_body(&small, &json_len), *ply = binary_ply(&small, &ply_len);
     char *mp = multipart_body(small.xyz, small.xyz_len, &mp_len);
@@ -269,7 +333,7 @@ static void test_content_types_give_library_labels(void) {
         ps_client_response_free(&r);
     }
     free(json), free(ply), free(mp), free(gz);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
 }
 
 static void test_jobs_api_matches_segment(void) {
@@ -277,7 +341,7 @@ static void test_jobs_api_matches_segment(void) {
     char id[128], state[32];
     ps_client_response r;
     REQUIRE(need_small());
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--replica-name", "east", NULL}) == 0);
+    REQUIRE_STARTS(d, "--replica-name", "east", NULL);
     ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
     REQUIRE(ps_client_submit(&d.client, &body, "k=7", id, sizeof id, &r) == 0);
     CHECK(r.status == 202);
@@ -295,14 +359,14 @@ static void test_jobs_api_matches_segment(void) {
     ps_client_response_free(&r);
     CHECK(ps_client_result(&d.client, "nope", &r) == 0 && is_problem(&r, 404));
     ps_client_response_free(&r);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
 }
 
 static void test_outputs_and_includes(void) {
     ps_daemon d;
     ps_client_response r;
     REQUIRE(need_small());
-    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    REQUIRE_STARTS(d, NULL);
     ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
     CHECK(ps_client_segment(&d.client, &body, "output=ply", &r) == 0 && r.status == 200 &&
           strstr(r.content_type, "application/ply") && r.len > 3 && !memcmp(r.body, "ply", 3));
@@ -318,21 +382,21 @@ static void test_outputs_and_includes(void) {
     CHECK(ps_client_segment(&d.client, &body, "output=labels", &r) == 0 && r.status == 200 &&
           strstr(r.content_type, "text/plain"));
     ps_client_response_free(&r);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
 }
 
 static void test_service_endpoints(void) {
     ps_daemon d;
     ps_client_response r;
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--cors-origin", "http://viewer.example", NULL}) == 0);
+    REQUIRE_STARTS(d, "--cors-origin", "http://viewer.example", NULL);
     CHECK(get_status(&d, "/readyz", &r) == 200 && strstr(r.body, "ready"));
     ps_client_response_free(&r);
     CHECK(get_status(&d, "/version", &r) == 200 && strstr(r.body, PS_VERSION));
     ps_client_response_free(&r);
     CHECK(get_status(&d, "/healthz", &r) == 200);
     ps_client_response_free(&r);
+    CHECK(metrics_show(&d, "pointseg_http_requests_total{route=\"/healthz\",status=\"200\"}", 5));
     CHECK(get_status(&d, "/metrics", &r) == 200 && strstr(r.body, "pointseg_queue_depth 0") &&
-          strstr(r.body, "pointseg_http_requests_total{route=\"/healthz\",status=\"200\"}") &&
           strstr(r.body, "pointseg_http_request_duration_seconds_bucket"));
     ps_client_response_free(&r);
     REQUIRE(get_status(&d, "/openapi.json", &r) == 200);
@@ -356,8 +420,7 @@ static void test_service_endpoints(void) {
     const char *const preflight[] = {"Origin: http://viewer.example", "Access-Control-Request-Method: POST", NULL};
     CHECK(ps_client_request(&d.client, "OPTIONS", "/segment", NULL, preflight, &r) == 0 && r.status == 204);
     ps_client_response_free(&r);
-    int exit_status = ps_daemon_stop(&d, 10);
-    CHECK_MSG(exit_status == 0, "pointsegd exited with %d", exit_status);
+    CHECK_STOPS(d, 10);
 }
 
 static void test_token_and_static_files(void) {
@@ -370,7 +433,7 @@ static void test_token_and_static_files(void) {
     REQUIRE(f);
     fputs("<html>viewer</html>", f);
     fclose(f);
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--token", "s3cret", "--static-dir", dir, NULL}) == 0);
+    REQUIRE_STARTS(d, "--token", "s3cret", "--static-dir", dir, NULL);
     CHECK(get_status(&d, "/healthz", &r) == 200);
     ps_client_response_free(&r);
     CHECK(get_status(&d, "/version", &r) == 401 && is_problem(&r, 401));
@@ -385,7 +448,7 @@ static void test_token_and_static_files(void) {
     ps_client_response_free(&r);
     CHECK(get_status(&d, "/../../etc/passwd", &r) == 404);
     ps_client_response_free(&r);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
     remove(path);
     rmdir(dir);
 }
@@ -422,7 +485,7 @@ static void test_bad_inputs_get_problems(void) {
         {"too many points", NULL, NULL, NULL, NULL, 413},
     };
     ps_daemon d;
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--max-points", "50", NULL}) == 0);
+    REQUIRE_STARTS(d, "--max-points", "50", NULL);
     char many[2000];
     size_t at = 0;
     for (int i = 0; i < 60; i++) at += (size_t)sprintf(many + at, "%d %d %d\n", i, i * i % 7, i % 3);
@@ -436,13 +499,73 @@ static void test_bad_inputs_get_problems(void) {
         ps_client_response_free(&r);
         CHECK_MSG(ps_daemon_healthy(&d), "unhealthy after %s", cases[i].what);
     }
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
+}
+
+/* The media type is one the service takes but the bytes are not what it
+ * says: a 400 naming what was expected, not a 415. */
+static void test_bad_bodies_of_taken_types_are_400(void) {
+    static const char random_bytes[] = "\x8f\x02\xd1 q\x7f\x1b\xee\x93~\x04\x99\xc3";
+    static const char form[] = "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"; "
+                               "filename=\"x.bin\"\r\n\r\n\x8f\x02\xd1 q\x7f\x1b\r\n--" BOUNDARY "--\r\n";
+    const struct {
+        const char *body, *content_type, *words;
+    } cases[] = {
+        {random_bytes, "application/ply", "not a PLY file"},
+        {"0 0 0\n1 0 0\n0 1 0\n", "application/ply", "not a PLY file"},
+        {random_bytes, "application/octet-stream", "unrecognized format (expected PLY"},
+        {random_bytes, NULL, "unrecognized format (expected PLY"},
+        {random_bytes, "text/plain", "unrecognized format (expected PLY"},
+        {random_bytes, "application/json", "malformed JSON"},
+        {form, "multipart/form-data; boundary=" BOUNDARY, "unrecognized format (expected PLY"},
+    };
+    ps_daemon d;
+    REQUIRE_STARTS(d, NULL);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        ps_client_body body = {cases[i].body, strlen(cases[i].body), cases[i].content_type, NULL};
+        ps_client_response r;
+        ps_client_segment(&d.client, &body, NULL, &r);
+        CHECK_MSG(is_problem(&r, 400) && strstr(r.body, cases[i].words), "case %zu (%s): status %ld: %.200s",
+                  i, cases[i].content_type ? cases[i].content_type : "no type", r.status, r.body ? r.body : "");
+        ps_client_response_free(&r);
+    }
+    CHECK_STOPS(d, 10);
+}
+
+/* A PLY header line without a keyword (Blender 2.4x) is skipped; the
+ * document says so in "warnings" and has the labels of the clean file. */
+static void test_ply_header_warning_in_document(void) {
+    ps_daemon d;
+    ps_client_response r;
+    size_t ply_len;
+    REQUIRE(need_small());
+    char *ply = binary_ply(&small, &ply_len);
+    static const char banner[] = "Created by Blender3D 247 - www.blender.org\n";
+    const char *format_end = strstr(ply, "1.0\n") + 4;
+    size_t head = (size_t)(format_end - ply);
+    char *old = malloc(ply_len + sizeof banner);
+    REQUIRE(ply && old);
+    memcpy(old, ply, head);
+    memcpy(old + head, banner, sizeof banner - 1);
+    memcpy(old + head + sizeof banner - 1, ply + head, ply_len - head);
+    REQUIRE_STARTS(d, NULL);
+    ps_client_body body = {old, ply_len + sizeof banner - 1, "application/ply", NULL};
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && r.status == 200 && same_labels(&r, &small));
+    cJSON *doc = r.body ? cJSON_Parse(r.body) : NULL;
+    const cJSON *w = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(doc, "warnings"), 0);
+    CHECK_MSG(cJSON_IsString(w) && !strcmp(w->valuestring, "PLY header line 3 skipped: no keyword in "
+                                                           "\"Created by Blender3D 247 - www.blender.org\""),
+              "warnings: %s", w && cJSON_IsString(w) ? w->valuestring : "(none)");
+    cJSON_Delete(doc);
+    ps_client_response_free(&r);
+    free(ply), free(old);
+    CHECK_STOPS(d, 10);
 }
 
 static void test_size_limits(void) {
     ps_daemon d;
     ps_client_response r;
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--max-body", "100000", NULL}) == 0);
+    REQUIRE_STARTS(d, "--max-body", "100000", NULL);
     static const char huge[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Type: application/ply\r\n"
                                "Content-Length: 99999999999\r\n\r\nply\n";
     CHECK(ps_raw_status(&d, huge, sizeof huge - 1) == 413);
@@ -455,7 +578,7 @@ static void test_size_limits(void) {
     ps_client_response_free(&r);
     CHECK(ps_daemon_healthy(&d));
     free(zeros), free(gz);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
 }
 
 typedef struct client_run {
@@ -478,7 +601,7 @@ static void test_32_concurrent_clients(void) {
     pthread_t threads[N];
     client_run runs[N];
     REQUIRE(need_small());
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--threads", "2", NULL}) == 0);
+    REQUIRE_STARTS(d, "--threads", "2", NULL);
     for (int i = 0; i < N; i++) {
         runs[i] = (client_run){&d, 0};
         pthread_create(&threads[i], NULL, one_client, &runs[i]);
@@ -489,13 +612,7 @@ static void test_32_concurrent_clients(void) {
         ok += runs[i].ok;
     }
     CHECK_MSG(ok == N, "%d of %d clients got the right labels", ok, N);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
-}
-
-static double seconds_now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+    CHECK_STOPS(d, 10);
 }
 
 /* Waits until the job reports `state`; returns 1 when it did. */
@@ -520,7 +637,7 @@ static void test_full_queue_and_cancel(void) {
     REQUIRE(pts);
     char *xyz = ps_points_xyz(pts, n, &len);
     free(pts);
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--threads", "1", "--queue-size", "1", NULL}) == 0);
+    REQUIRE_STARTS(d, "--threads", "1", "--queue-size", "1", NULL);
     ps_client_body slow = {xyz, len, NULL, NULL};
     REQUIRE(ps_client_submit(&d.client, &slow, "centrality=exact", slow_id, sizeof slow_id, &r) == 0);
     ps_client_response_free(&r);
@@ -544,7 +661,7 @@ static void test_full_queue_and_cancel(void) {
     CHECK(get_status(&d, "/readyz", &r) == 200);
     ps_client_response_free(&r);
     free(xyz);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
 }
 
 static void test_client_going_away_cancels(void) {
@@ -555,21 +672,16 @@ static void test_client_going_away_cancels(void) {
     REQUIRE(pts);
     char *xyz = ps_points_xyz(pts, n, &len);
     free(pts);
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--threads", "1", NULL}) == 0);
+    REQUIRE_STARTS(d, "--threads", "1", NULL);
     ps_client impatient = d.client;
     impatient.timeout_ms = 500;
     ps_client_body body = {xyz, len, NULL, NULL};
     CHECK(ps_client_segment(&impatient, &body, "centrality=exact", &r) != 0);
     ps_client_response_free(&r);
-    int cancelled = 0;
-    for (double t0 = seconds_now(); !cancelled && seconds_now() - t0 < 5; ps_test_sleep_ms(50)) {
-        cancelled = get_status(&d, "/metrics", &r) == 200 &&
-                    strstr(r.body, "pointseg_jobs_finished_total{outcome=\"cancelled\"} 1");
-        ps_client_response_free(&r);
-    }
-    CHECK_MSG(cancelled, "the job of a client that went away was not cancelled");
+    CHECK_MSG(metrics_show(&d, "pointseg_jobs_finished_total{outcome=\"cancelled\"} 1", 5),
+              "the job of a client that went away was not cancelled");
     free(xyz);
-    CHECK(ps_daemon_stop(&d, 10) == 0);
+    CHECK_STOPS(d, 10);
 }
 
 static void *drained_client(void *arg) {
@@ -581,14 +693,72 @@ static void test_sigterm_drains(void) {
     ps_daemon d;
     pthread_t t;
     REQUIRE(need_small());
-    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--threads", "1", NULL}) == 0);
+    REQUIRE_STARTS(d, "--threads", "1", NULL);
     client_run run = {&d, 0};
     pthread_create(&t, NULL, drained_client, &run);
     ps_test_sleep_ms(60); /* the request is in: its job is queued or running */
-    int status = ps_daemon_stop(&d, 20);
+    int stopped = ps_daemon_stop(&d, 20);
     pthread_join(t, NULL);
-    CHECK_MSG(status == 0, "pointsegd exited with %d", status);
+    CHECK_MSG(stopped == 0, "%s", d.why);
     CHECK_MSG(run.ok, "the request under way at SIGTERM was not answered correctly");
+}
+
+/* 1 when process pid holds an epoll instance. */
+static int holds_epoll(pid_t pid) {
+    char dir[64], path[320], target[128];
+    snprintf(dir, sizeof dir, "/proc/%d/fd", (int)pid);
+    DIR *d = opendir(dir);
+    int found = 0;
+    for (struct dirent *e; d && !found && (e = readdir(d));) {
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        ssize_t n = readlink(path, target, sizeof target - 1);
+        found = n > 0 && (target[n] = 0, strstr(target, "eventpoll") != NULL);
+    }
+    if (d) closedir(d);
+    return found;
+}
+
+typedef struct hammer {
+    int port;
+    volatile int stop;
+} hammer;
+
+/* Opens and resets connections to the daemon until told to stop. */
+static void *hammer_main(void *arg) {
+    hammer *h = arg;
+    struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)h->port),
+                            .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
+    struct linger reset = {1, 0};
+    while (!h->stop) {
+        int fd = socket(AF_INET, SOCK_STREAM, 0);
+        if (fd < 0) continue;
+        setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
+        connect(fd, (struct sockaddr *)&a, sizeof a);
+        close(fd);
+    }
+    return NULL;
+}
+
+/* SIGTERM while connections keep arriving: every stop exits 0.  The epoll
+ * workers of libmicrohttpd raced MHD_quiesce_daemon and aborted the
+ * process (SIGABRT, about 1 stop in 300), so the daemon must not use
+ * epoll; the cycles catch a regression now and then, the check always. */
+static void test_sigterm_under_incoming_connections(void) {
+    enum { CYCLES = 40, HAMMERS = 3 };
+    for (int i = 0; i < CYCLES; i++) {
+        ps_daemon d;
+        pthread_t threads[HAMMERS];
+        REQUIRE_STARTS(d, "--quiet", NULL);
+        if (i == 0) CHECK_MSG(!holds_epoll(d.pid), "pointsegd %d uses epoll", (int)d.pid);
+        hammer h = {d.port, 0};
+        for (int k = 0; k < HAMMERS; k++) pthread_create(&threads[k], NULL, hammer_main, &h);
+        ps_test_sleep_ms(20 + i % 4 * 10);
+        int stopped = ps_daemon_stop(&d, 20);
+        h.stop = 1;
+        for (int k = 0; k < HAMMERS; k++) pthread_join(threads[k], NULL);
+        CHECK_MSG(stopped == 0, "cycle %d: %s", i, d.why);
+        if (stopped) return;
+    }
 }
 
 static void test_help_lists_flags(void) {
@@ -613,7 +783,7 @@ static void test_help_lists_flags(void) {
 static void test_port_in_use_refused(void) {
     ps_daemon d;
     char path[4200], cmd[4400];
-    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    REQUIRE_STARTS(d, NULL);
     REQUIRE(ps_test_daemon_path(path, sizeof path) == 0);
     snprintf(cmd, sizeof cmd, "timeout 10 %s --port %d --bind 127.0.0.1 --quiet 2>/dev/null",
              path, d.port);
@@ -621,7 +791,7 @@ static void test_port_in_use_refused(void) {
     CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 1,
               "second daemon on port %d: status %d", d.port, status);
     CHECK(ps_daemon_healthy(&d));
-    CHECK(ps_daemon_stop(&d, 20) == 0);
+    CHECK_STOPS(d, 20);
 }
 
 static void test_zz_cleanup(void) {
@@ -633,9 +803,11 @@ int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
+        TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_ply_header_warning_in_document),
         TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
-        TEST(test_sigterm_drains), TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
+        TEST(test_sigterm_drains), TEST(test_sigterm_under_incoming_connections),
+        TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);
     if (ps_client_global_init()) return 1;
     return ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);

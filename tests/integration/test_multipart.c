@@ -16,12 +16,13 @@
 #include <fcntl.h>
 #include <libgen.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
+#include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -134,19 +135,113 @@ static void test_empty_file_part_is_400(void) {
     check_form_is_400(form, sizeof form - 1, "empty");
 }
 
+/* Sends a POST /segment of the #len bytes of form over a raw socket in two
+ * writes, the second `split` bytes in and 50 ms after the first, so that
+ * the daemon reads the body in two pieces; the answer (malloc'ed, NUL
+ * terminated) in *reply, the status as the result (0: no answer). */
+static int post_in_two_writes(const char *form, size_t len, size_t split, char **reply) {
+    char head[256];
+    struct sockaddr_in a = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
+    int port = 0, status = 0, one = 1;
+    sscanf(base_url, "http://127.0.0.1:%d", &port);
+    a.sin_port = htons((uint16_t)port);
+    int head_len = snprintf(head, sizeof head, "POST /segment HTTP/1.1\r\nHost: x\r\nConnection: close\r\n"
+                            "Content-Type: multipart/form-data; boundary=" BOUNDARY "\r\n"
+                            "Content-Length: %zu\r\n\r\n", len);
+    struct timeval tv = {30, 0};
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    *reply = NULL;
+    if (fd < 0) return 0;
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    if (!connect(fd, (struct sockaddr *)&a, sizeof a) &&
+        send(fd, head, (size_t)head_len, MSG_NOSIGNAL) == head_len &&
+        send(fd, form, split, MSG_NOSIGNAL) == (ssize_t)split) {
+        ps_test_sleep_ms(50);
+        if (send(fd, form + split, len - split, MSG_NOSIGNAL) == (ssize_t)(len - split)) {
+            size_t cap = 1 << 16, at = 0;
+            ssize_t n = 1;
+            *reply = calloc(cap + 1, 1);
+            while (*reply && at < cap && (n = recv(fd, *reply + at, cap - at, 0)) > 0) at += (size_t)n;
+            if (*reply) sscanf(*reply, "HTTP/1.%*d %d", &status);
+        }
+    }
+    close(fd);
+    return status;
+}
+
+/* A form with parameter fields before and after the file part, numbers and
+ * text: k=6, centrality=exact, file, persistence=0.25, minima=false. */
+static const char *const split_fields[][2] = {
+    {"k", "6"}, {"centrality", "exact"}, {"persistence", "0.25"}, {"minima", "false"}};
+
+static char *make_fields_form(size_t *len, size_t value_end[4]) {
+    char *s = malloc(8192);
+    size_t at = 0;
+    if (!s) return NULL;
+    for (int i = 0; i < 4; i++) {
+        if (i == 2) {
+            at += (size_t)sprintf(s + at, "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"; "
+                                  "filename=\"p.xyz\"\r\nContent-Type: text/plain\r\n\r\n");
+            for (int p = 0; p < N_POINTS; p++)
+                at += (size_t)sprintf(s + at, "%d %d %d\n", p % 7, (p * 3) % 11, (p * 5) % 13);
+            at += (size_t)sprintf(s + at, "\r\n");
+        }
+        at += (size_t)sprintf(s + at, "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"%s\"\r\n\r\n%s",
+                              split_fields[i][0], split_fields[i][1]);
+        value_end[i] = at;
+        at += (size_t)sprintf(s + at, "\r\n");
+    }
+    at += (size_t)sprintf(s + at, "--" BOUNDARY "--\r\n");
+    *len = at;
+    return s;
+}
+
+/* The JSON answer's "params" has the four fields' values. */
+static int params_are_the_fields(const char *reply) {
+    const char *body = reply ? strstr(reply, "\r\n\r\n") : NULL;
+    cJSON *doc = body ? cJSON_Parse(body + 4) : NULL;
+    const cJSON *params = cJSON_GetObjectItemCaseSensitive(doc, "params");
+    const cJSON *k = cJSON_GetObjectItemCaseSensitive(params, "k");
+    const cJSON *c = cJSON_GetObjectItemCaseSensitive(params, "centrality");
+    const cJSON *p = cJSON_GetObjectItemCaseSensitive(params, "persistence");
+    const cJSON *m = cJSON_GetObjectItemCaseSensitive(params, "minima");
+    int ok = cJSON_IsNumber(k) && k->valueint == 6 && cJSON_IsString(c) && !strcmp(c->valuestring, "exact") &&
+             cJSON_IsNumber(p) && p->valuedouble == 0.25 && cJSON_IsFalse(m);
+    cJSON_Delete(doc);
+    return ok;
+}
+
+/* A browser's FormData upload arrives in pieces; a piece that ends right
+ * after a field's value must not cut the field in two (libmicrohttpd then
+ * calls back twice at offset 0: empty, then the value). */
+static void test_fields_split_after_their_value(void) {
+    size_t len, value_end[4];
+    char *form = make_fields_form(&len, value_end);
+    REQUIRE(form && need_daemon() == 0);
+    size_t splits[] = {0, value_end[0], value_end[1], value_end[2], value_end[3],
+                       value_end[0] - 1, value_end[3] + 2};
+    for (size_t i = 0; i < sizeof splits / sizeof splits[0]; i++) {
+        char *reply;
+        int status = post_in_two_writes(form, len, splits[i], &reply);
+        CHECK_MSG(status == 200 && params_are_the_fields(reply), "split at %zu of %zu: status %d, %.300s",
+                  splits[i], len, status, reply ? reply : "(no answer)");
+        free(reply);
+    }
+    free(form);
+}
+
 static void test_zz_stop_daemon(void) {
-    int status = -1;
+    char how[128];
     REQUIRE(daemon_pid > 0);
-    kill(daemon_pid, SIGTERM);
-    CHECK(waitpid(daemon_pid, &status, 0) == daemon_pid && WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    daemon_pid = 0;
+    CHECK_MSG(ps_test_daemon_stop(&daemon_pid, 10, how, sizeof how) == 0, "pointsegd %s", how);
 }
 
 int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_complete_form_is_segmented), TEST(test_form_cut_before_closing_boundary_is_400),
         TEST(test_form_without_file_is_400), TEST(test_empty_file_part_is_400),
-        TEST(test_zz_stop_daemon)};
+        TEST(test_fields_split_after_their_value), TEST(test_zz_stop_daemon)};
     if (ps_client_global_init()) return 1;
     int rc = ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
     if (daemon_pid > 0) kill(daemon_pid, SIGKILL);

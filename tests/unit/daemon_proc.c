@@ -6,6 +6,7 @@
 #include <netinet/in.h>
 #include <signal.h>
 #include <stdio.h>
+#include <string.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -35,23 +36,53 @@ int ps_test_daemon_path(char *out, size_t cap) {
     return snprintf(out, cap, "%s/../pointsegd", dirname(self)) < (int)cap ? 0 : -1;
 }
 
-int ps_test_daemon_stop(pid_t *pid, double timeout_s) {
+/* The result of a stop, described in how (may be NULL). */
+static int ended(int status, char *how, size_t cap) {
+    char scratch[8];
+    if (!how) how = scratch, cap = sizeof scratch;
+    if (WIFEXITED(status)) {
+        snprintf(how, cap, "exited with status %d", WEXITSTATUS(status));
+        return WEXITSTATUS(status);
+    }
+    if (WIFSIGNALED(status))
+        snprintf(how, cap, "was killed by signal %d (%s)", WTERMSIG(status), strsignal(WTERMSIG(status)));
+    else
+        snprintf(how, cap, "ended with wait status %#x", (unsigned)status);
+    return -1;
+}
+
+int ps_test_daemon_stop(pid_t *pid, double timeout_s, char *how, size_t how_cap) {
     int status = 0;
+    if (how) snprintf(how, how_cap, "was not running (no process)");
     if (*pid <= 0) return -1;
     kill(*pid, SIGTERM);
     for (double waited = 0; waited < timeout_s; waited += 0.02) {
         if (waitpid(*pid, &status, WNOHANG) == *pid) {
             *pid = 0;
-            if (WIFEXITED(status)) return WEXITSTATUS(status);
-            fprintf(stderr, "pointsegd was killed by signal %d after SIGTERM\n",
-                    WIFSIGNALED(status) ? WTERMSIG(status) : -1);
-            return -1;
+            return ended(status, how, how_cap);
         }
         ps_test_sleep_ms(20);
     }
-    fprintf(stderr, "pointsegd still running %.0f s after SIGTERM; SIGKILL\n", timeout_s);
     kill(*pid, SIGKILL);
     waitpid(*pid, &status, 0);
     *pid = 0;
+    if (how) snprintf(how, how_cap, "was still running %.0f s after SIGTERM (killed)", timeout_s);
     return -1;
+}
+
+void ps_test_log_tail(const char *path, int lines, char *out, size_t cap) {
+    FILE *f = fopen(path, "rb");
+    long size = f && !fseek(f, 0, SEEK_END) ? ftell(f) : -1;
+    size_t n = 0;
+    out[0] = 0;
+    if (size > 0) {
+        long from = size > (long)cap - 1 ? size - (long)cap + 1 : 0;
+        if (!fseek(f, from, SEEK_SET)) n = fread(out, 1, cap - 1, f);
+    }
+    if (f) fclose(f);
+    out[n] = 0;
+    size_t start = n && out[n - 1] == '\n' ? n - 1 : n;
+    int seen = 0;
+    while (start > 0 && !(out[start - 1] == '\n' && ++seen == lines)) start--;
+    memmove(out, out + start, n - start + 1);
 }

@@ -284,8 +284,37 @@ static void test_limits_and_garbage(void) {
                      400, "line 4"));
     CHECK(text_fails("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
                      "property float y\nend_header\n", 422, "no points"));
-    CHECK(text_fails("ply\nformat ascii 1.0\nwhatever\x01\nend_header\n", 400,
-                     "unknown keyword \"whatever?\""));
+    CHECK(text_fails("ply\nformat ascii 1.0\nend_header now\n", 400, "line 3: unknown keyword \"end_header\""));
+    CHECK(text_fails("ply\nformat ascii 1.0\na\nb\nc\nd\nwhatever\x01\nend_header\n", 400,
+                     "line 7: unknown keyword \"whatever?\" (too many lines without a keyword)"));
+}
+
+/* Blender 2.4x writes a line without a keyword between format and the
+ * elements: skipped, with a warning naming it; the data still has to
+ * match the header. */
+static void test_header_line_without_keyword(void) {
+    static const char blender[] = "ply\nformat ascii 1.0\n"
+                                  "Created by Blender3D 247 - www.blender.org, source file: 'hand.blend'\n"
+                                  "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                  "element face 1\nproperty list uchar uint vertex_indices\nend_header\n"
+                                  "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    ps_pointset ps;
+    ps_api_error err;
+    REQUIRE(ps_decode(blender, sizeof blender - 1, NULL, &ps, &err) == 0);
+    CHECK(ps.n == 3 && ps.n_faces == 1 && ps.points[3] == 1 && ps.points[7] == 1);
+    CHECK(ps.n_warnings == 1 &&
+          !strcmp(ps.warnings[0], "PLY header line 3 skipped: no keyword in "
+                                  "\"Created by Blender3D 247 - www.blender.org, source file: 'hand.\""));
+    ps_pointset_free(&ps);
+    char cut[sizeof blender];
+    memcpy(cut, blender, sizeof blender);
+    CHECK(ps_check_decode_fails(ps_decode, cut, sizeof blender - 1 - 2, NULL, 400,
+                                "PLY data truncated at byte offset 249"));
+    static const char clean[] = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "end_header\n0 0\n1 0\n0 1\n";
+    REQUIRE(ps_decode(clean, sizeof clean - 1, NULL, &ps, &err) == 0);
+    CHECK(ps.n_warnings == 0);
+    ps_pointset_free(&ps);
 }
 
 static void check_model(const char *name, size_t n, size_t n_faces, int normals) {
@@ -332,4 +361,5 @@ PS_TEST_MAIN(TEST(test_ascii_crlf_any_order), TEST(test_binary_every_type_both_e
              TEST(test_two_dimensional), TEST(test_missing_coordinate),
              TEST(test_huge_declared_count), TEST(test_truncated_and_lying),
              TEST(test_non_finite_and_bad_index), TEST(test_limits_and_garbage),
+             TEST(test_header_line_without_keyword),
              TEST(test_horse), TEST(test_bunny), TEST(test_shared_value_reader))

@@ -123,7 +123,7 @@ static void test_xyz_errors(void) {
     CHECK(fails("1 2 3\n4 5 nan\n", NULL, 422, "line 2: non-finite"));
     CHECK(fails("1\n2\n", NULL, 422, "line 1: 1 column"));
     CHECK(fails("1,2,3\n1,,2\n", NULL, 400, "line 2: empty field"));
-    CHECK(fails("x y\na b\n", NULL, 415, "unrecognized format"));
+    CHECK(fails("x y\na b\n", NULL, 400, "unrecognized format"));
     ps_decode_limits lim = {0, 3};
     CHECK(fails("1 2 3 4\n", &lim, 422, "dimension 4 is outside [2, 3]"));
     CHECK(fails("1 2 3 4 5 6 7\n", &lim, 422, "line 1: more than 6 columns"));
@@ -134,12 +134,12 @@ static void test_xyz_errors(void) {
 static void test_decode_checks(void) {
     CHECK(fails("", NULL, 400, "empty input"));
     CHECK(fails(" \n\t\n", NULL, 400, "empty input"));
-    CHECK(fails("\x01\x02garbage", NULL, 415, "unrecognized format"));
-    CHECK(fails("# only a comment\n", NULL, 415, "unrecognized format"));
+    CHECK(fails("\x01\x02garbage", NULL, 400, "unrecognized format"));
+    CHECK(fails("# only a comment\n", NULL, 400, "unrecognized format"));
     ps_pointset ps;
     ps_api_error err;
     CHECK(ps_decode_text("1 2", 3, PS_FORMAT_JSON, NULL, &ps, &err) == -1 &&
-          err.http_status == 415);
+          err.http_status == 400);
 }
 
 static void test_not_nul_terminated(void) {

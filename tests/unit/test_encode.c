@@ -65,13 +65,17 @@ static ps_result small_result(void) {
 
 /* ---- JSON helpers ------------------------------------------------------- */
 
-static cJSON *encode_and_parse(const ps_result *r, unsigned include) {
+static cJSON *encode_and_parse_with(const ps_pointset *in, const ps_result *r, unsigned include) {
     size_t len = 0;
-    char *text = ps_encode_json(r, include, &len);
+    char *text = ps_encode_json(in, r, include, &len);
     if (!text) return NULL;
     cJSON *doc = len == strlen(text) ? cJSON_ParseWithLength(text, len) : NULL;
     free(text);
     return doc;
+}
+
+static cJSON *encode_and_parse(const ps_result *r, unsigned include) {
+    return encode_and_parse_with(NULL, r, include);
 }
 
 static double num(const cJSON *obj, const char *name) {
@@ -109,7 +113,8 @@ static void test_json_top_level(void) {
     CHECK(num(doc, "n_segments") == 2);
     CHECK(cJSON_GetObjectItemCaseSensitive(doc, "point_supernode") == NULL);
     CHECK(cJSON_GetObjectItemCaseSensitive(doc, "centrality") == NULL);
-    CHECK(cJSON_GetArraySize(doc) == 13);
+    CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(doc, "warnings")) == 0);
+    CHECK(cJSON_GetArraySize(doc) == 14);
     cJSON_Delete(doc);
 }
 
@@ -211,7 +216,7 @@ static void test_json_non_finite_is_null(void) {
     r.centrality = f;
     r.timings.total_ms = INFINITY;
     size_t len;
-    char *text = ps_encode_json(&r, PS_INCLUDE_CENTRALITY, &len);
+    char *text = ps_encode_json(NULL, &r, PS_INCLUDE_CENTRALITY, &len);
     REQUIRE(text != NULL);
     CHECK(strstr(text, "nan") == NULL && strstr(text, "inf") == NULL);
     cJSON *doc = cJSON_Parse(text);
@@ -225,6 +230,28 @@ static void test_json_non_finite_is_null(void) {
                                                         "centrality")));
     CHECK(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(
         cJSON_GetObjectItemCaseSensitive(doc, "timings_ms"), "total")));
+    cJSON_Delete(doc);
+}
+
+/* The input's warnings (what the decoder tolerated) are the document's, in
+ * order; more than PS_MAX_WARNINGS are dropped, a long one is cut. */
+static void test_json_warnings(void) {
+    ps_result r = small_result();
+    ps_pointset in;
+    char long_text[400];
+    memset(&in, 0, sizeof in);
+    memset(long_text, 'w', sizeof long_text - 1);
+    long_text[sizeof long_text - 1] = 0;
+    ps_pointset_warn(&in, "first %d", 1);
+    ps_pointset_warn(&in, "%s", long_text);
+    for (int i = 0; i < PS_MAX_WARNINGS; i++) ps_pointset_warn(&in, "more");
+    cJSON *doc = encode_and_parse_with(&in, &r, 0);
+    REQUIRE(doc != NULL);
+    const cJSON *w = cJSON_GetObjectItemCaseSensitive(doc, "warnings");
+    CHECK(cJSON_GetArraySize(w) == PS_MAX_WARNINGS);
+    CHECK(!strcmp(cJSON_GetArrayItem(w, 0)->valuestring, "first 1"));
+    CHECK(strlen(cJSON_GetArrayItem(w, 1)->valuestring) == PS_WARNING_MAX - 1);
+    CHECK(!strcmp(cJSON_GetArrayItem(w, PS_MAX_WARNINGS - 1)->valuestring, "more"));
     cJSON_Delete(doc);
 }
 
@@ -371,7 +398,7 @@ static void test_ply_vertices_and_colours(void) {
     ps_result r = small_result();
     double pts[N * 3];
     for (int i = 0; i < N * 3; i++) pts[i] = i * 0.5 - 1;
-    ps_pointset in = {N, 3, pts, NULL, 0, NULL, 0, NULL};
+    ps_pointset in = {.n = N, .dim = 3, .points = pts};
     size_t len;
     char *text = ps_encode_ply(&in, &r, &len);
     REQUIRE(text != NULL);
@@ -391,7 +418,7 @@ static void test_ply_faces_and_2d(void) {
     double pts[N * 2];
     for (int i = 0; i < N * 2; i++) pts[i] = i + 0.25;
     uint32_t faces[6] = {0, 1, 2, 3, 4, 5};
-    ps_pointset in = {N, 2, pts, NULL, 2, faces, 0, NULL};
+    ps_pointset in = {.n = N, .dim = 2, .points = pts, .n_faces = 2, .faces = faces};
     size_t len;
     char *text = ps_encode_ply(&in, &r, &len);
     REQUIRE(text != NULL);
@@ -414,7 +441,7 @@ static void test_ply_decodes_back(void) {
     double pts[N * 3];
     for (int i = 0; i < N * 3; i++) pts[i] = (i % 5) * 0.3 - (i % 2);
     uint32_t faces[6] = {0, 1, 2, 5, 4, 3};
-    ps_pointset in = {N, 3, pts, NULL, 2, faces, 0, NULL};
+    ps_pointset in = {.n = N, .dim = 3, .points = pts, .n_faces = 2, .faces = faces};
     size_t len;
     char *text = ps_encode_ply(&in, &r, &len);
     REQUIRE(text != NULL);
@@ -454,7 +481,7 @@ static void test_palette_distinct_and_cycling(void) {
 PS_TEST_MAIN(TEST(test_json_top_level), TEST(test_json_segments_and_supernodes),
              TEST(test_json_hierarchy_and_merges), TEST(test_json_params_and_timings),
              TEST(test_json_included_arrays), TEST(test_json_non_finite_is_null),
-             TEST(test_json_empty_result), TEST(test_json_large_labels), TEST(test_put_int),
+             TEST(test_json_warnings), TEST(test_json_empty_result), TEST(test_json_large_labels), TEST(test_put_int),
              TEST(test_put_double_matches_printf), TEST(test_labels_text),
              TEST(test_ply_vertices_and_colours), TEST(test_ply_faces_and_2d),
              TEST(test_ply_decodes_back),

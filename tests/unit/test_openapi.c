@@ -1,0 +1,94 @@
+/* test_openapi.c: the OpenAPI document (api/openapi.c) as strict tools read
+ * it: no object repeats a key (JSON allows parsers to refuse that, and
+ * YAML-based linters do), it names a server and a licence, and every
+ * parameter schema has one description.  The full lint is
+ * tests/integration/openapi_lint.sh (Redocly). */
+#include "openapi.h"
+#include "params_table.h"
+#include "testlib.h"
+
+#include <cJSON.h>
+#include <stdlib.h>
+#include <string.h>
+
+static cJSON *document(void) {
+    size_t len = 0;
+    char *text = ps_openapi_json(&len);
+    cJSON *doc = text && len == strlen(text) ? cJSON_ParseWithLength(text, len) : NULL;
+    free(text);
+    return doc;
+}
+
+/* The first key that an object under node (node included) repeats, with
+ * where; cJSON keeps repeated keys as separate children. */
+static const char *repeated_key(const cJSON *node, const char **where) {
+    for (const cJSON *c = node ? node->child : NULL; c; c = c->next) {
+        if (cJSON_IsObject(node))
+            for (const cJSON *d = c->next; d; d = d->next)
+                if (!strcmp(c->string, d->string)) return *where = node->string, c->string;
+        const char *inner = repeated_key(c, where);
+        if (inner) return inner;
+    }
+    return NULL;
+}
+
+static void test_no_object_repeats_a_key(void) {
+    cJSON *doc = document();
+    REQUIRE(doc != NULL);
+    const char *where = NULL, *key = repeated_key(doc, &where);
+    CHECK_MSG(key == NULL, "key \"%s\" repeated in \"%s\"", key, where ? where : "(top)");
+    cJSON_Delete(doc);
+}
+
+/* The checker itself finds a repeat, nested in an array. */
+static void test_repeat_is_found(void) {
+    cJSON *doc = cJSON_Parse("{\"a\": [{\"x\": 1}, {\"s\": {\"d\": 1, \"e\": 2, \"d\": 3}}]}");
+    const char *where = NULL;
+    REQUIRE(doc != NULL);
+    const char *key = repeated_key(doc, &where);
+    CHECK(key && !strcmp(key, "d") && where && !strcmp(where, "s"));
+    cJSON_Delete(doc);
+}
+
+static void test_servers_and_license(void) {
+    cJSON *doc = document();
+    REQUIRE(doc != NULL);
+    const cJSON *servers = cJSON_GetObjectItemCaseSensitive(doc, "servers");
+    const cJSON *url = cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(servers, 0), "url");
+    CHECK(cJSON_IsString(url) && url->valuestring[0]);
+    const cJSON *info = cJSON_GetObjectItemCaseSensitive(doc, "info");
+    const cJSON *name = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(info, "license"), "name");
+    CHECK(cJSON_IsString(name) && name->valuestring[0]);
+    cJSON_Delete(doc);
+}
+
+/* The multipart form's schema: each parameter with its help as description. */
+static void test_form_fields_described_by_their_help(void) {
+    cJSON *doc = document();
+    REQUIRE(doc != NULL);
+    const cJSON *form = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(
+            cJSON_GetObjectItemCaseSensitive(
+                cJSON_GetObjectItemCaseSensitive(
+                    cJSON_GetObjectItemCaseSensitive(
+                        cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(doc, "paths"), "/segment"),
+                        "post"),
+                    "requestBody"),
+                "content"),
+            "multipart/form-data"),
+        "schema");
+    const cJSON *props = cJSON_GetObjectItemCaseSensitive(form, "properties");
+    size_t n;
+    const ps_param_spec *table = ps_param_table(&n);
+    REQUIRE(props != NULL);
+    for (size_t i = 0; i < n; i++) {
+        const cJSON *d = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(props, table[i].name),
+                                                          "description");
+        CHECK_MSG(cJSON_IsString(d) && !strcmp(d->valuestring, table[i].help), "%s: %s", table[i].name,
+                  cJSON_IsString(d) ? d->valuestring : "(no description)");
+    }
+    cJSON_Delete(doc);
+}
+
+PS_TEST_MAIN(TEST(test_no_object_repeats_a_key), TEST(test_repeat_is_found), TEST(test_servers_and_license),
+             TEST(test_form_fields_described_by_their_help))
