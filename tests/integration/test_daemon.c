@@ -10,85 +10,23 @@
 #include "pointseg.h"
 #include "pointseg_client.h"
 #include "shapes.h"
-#include "daemon_proc.h"
+#include "daemon_run.h"
+#include "gzip_body.h"
 #include "testlib.h"
 
-#include <arpa/inet.h>
 #include <cJSON.h>
-#include <fcntl.h>
 #include <libgen.h>
-#include <netinet/in.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
 #include <sys/stat.h>
-#include <sys/time.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
-#include <zlib.h>
-
-typedef struct ps_daemon {
-    pid_t pid;
-    int port;
-    char base_url[64];
-    ps_client client;
-} ps_daemon;
-
-#define MAX_ARGS 32
-
-static int ps_daemon_stop(ps_daemon *d, double timeout_s);
-
-
-static int ps_daemon_healthy(const ps_daemon *d) {
-    ps_client_response r;
-    int ok = ps_client_request(&d->client, "GET", "/healthz", NULL, NULL, &r) == 0 && r.status == 200;
-    ps_client_response_free(&r);
-    return ok;
-}
-
-static void exec_daemon(const char *path, int port, const char *const *args) {
-    char port_text[16], log[64];
-    const char *argv[MAX_ARGS + 8] = {path, "--port", port_text, "--bind", "127.0.0.1"};
-    size_t n = 5;
-    snprintf(port_text, sizeof port_text, "%d", port);
-    for (; args && *args && n < MAX_ARGS; args++) argv[n++] = *args;
-    argv[n] = NULL;
-    snprintf(log, sizeof log, "/tmp/pointsegd-itest-%d.log", (int)getpid());
-    int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) dup2(fd, 2);
-    execv(path, (char *const *)(uintptr_t)argv);
-    _exit(127);
-}
-
-static int ps_daemon_start(ps_daemon *d, const char *const *args) {
-    char path[4200];
-    memset(d, 0, sizeof *d);
-    if (ps_test_daemon_path(path, sizeof path) || access(path, X_OK)) return -1;
-    d->port = ps_test_free_port();
-    if (d->port <= 0) return -1;
-    snprintf(d->base_url, sizeof d->base_url, "http://127.0.0.1:%d", d->port);
-    d->client = (ps_client){d->base_url, NULL, 60000};
-    d->pid = fork();
-    if (d->pid < 0) return -1;
-    if (d->pid == 0) exec_daemon(path, d->port, args);
-    for (int i = 0; i < 200; i++) {
-        if (ps_daemon_healthy(d)) return 0;
-        if (waitpid(d->pid, NULL, WNOHANG) == d->pid) return d->pid = 0, -1;
-        ps_test_sleep_ms(25);
-    }
-    ps_daemon_stop(d, 1);
-    return -1;
-}
-
-static int ps_daemon_stop(ps_daemon *d, double timeout_s) {
-    return ps_test_daemon_stop(&d->pid, timeout_s);
-}
 
 static char *ps_points_xyz(const double *pts, size_t n, size_t *len) {
     char *text = malloc(n * 3 * 26 + 1);
@@ -111,21 +49,6 @@ static int *ps_json_labels(const char *doc, size_t *n) {
     }
     cJSON_Delete(root);
     return out;
-}
-
-static int ps_raw_status(const ps_daemon *d, const char *request, size_t len) {
-    struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)d->port),
-                            .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
-    char reply[256] = {0};
-    int code = 0, fd = socket(AF_INET, SOCK_STREAM, 0);
-    if (fd < 0) return 0;
-    struct timeval tv = {5, 0};
-    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    if (!connect(fd, (struct sockaddr *)&a, sizeof a) && send(fd, request, len, MSG_NOSIGNAL) == (ssize_t)len &&
-        recv(fd, reply, sizeof reply - 1, 0) > 0)
-        sscanf(reply, "HTTP/1.%*d %d", &code);
-    close(fd);
-    return code;
 }
 
 /* ---- request bodies ------------------------------------------------------ */
@@ -198,21 +121,6 @@ static char *multipart_body(const char *file, size_t file_len, size_t *len) {
     return out;
 }
 
-static char *gzip_bytes(const char *data, size_t n, size_t *len) {
-    z_stream z = {0};
-    uLong cap = compressBound((uLong)n) + 64;
-    char *out = malloc(cap);
-    deflateInit2(&z, 6, Z_DEFLATED, 31, 8, Z_DEFAULT_STRATEGY);
-    z.next_in = (unsigned char *)(uintptr_t)data;
-    z.avail_in = (uInt)n;
-    z.next_out = (unsigned char *)out;
-    z.avail_out = (uInt)cap;
-    deflate(&z, Z_FINISH);
-    *len = z.total_out;
-    deflateEnd(&z);
-    return out;
-}
-
 /* ---- checks -------------------------------------------------------------- */
 
 static int same_labels(const ps_client_response *r, const sample *s) {
@@ -253,7 +161,7 @@ static void test_content_types_give_library_labels(void) {
     size_t json_len, ply_len, mp_len, gz_len;
     char *json = json_body(&small, &json_len), *ply = binary_ply(&small, &ply_len);
     char *mp = multipart_body(small.xyz, small.xyz_len, &mp_len);
-    char *gz = gzip_bytes(mp, mp_len, &gz_len);
+    char *gz = ps_test_gzip(mp, mp_len, &gz_len);
     const ps_client_body bodies[] = {
         {small.xyz, small.xyz_len, "application/octet-stream", NULL},
         {small.xyz, small.xyz_len, "text/plain", NULL},
@@ -447,7 +355,7 @@ static void test_size_limits(void) {
                                "Content-Length: 99999999999\r\n\r\nply\n";
     CHECK(ps_raw_status(&d, huge, sizeof huge - 1) == 413);
     size_t n = 300000, gz_len;
-    char *zeros = calloc(n, 1), *gz = gzip_bytes(zeros, n, &gz_len);
+    char *zeros = calloc(n, 1), *gz = ps_test_gzip(zeros, n, &gz_len);
     ps_client_body plain = {zeros, n, NULL, NULL}, bomb = {gz, gz_len, NULL, "gzip"};
     CHECK(ps_client_segment(&d.client, &plain, NULL, &r) == 0 && is_problem(&r, 413));
     ps_client_response_free(&r);
