@@ -48,7 +48,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "pointsegd: cannot install the SIGTERM handler\n");
         return 1;
     }
-    ps_jobs_config jc = {cfg.threads, cfg.queue_size, cfg.job_ttl, cfg.max_jobs_kept, cfg.replica_name};
+    ps_jobs_config jc = {cfg.threads, cfg.queue_size, cfg.job_ttl, cfg.max_jobs_kept, cfg.max_kept_bytes, cfg.replica_name};
     ps_jobs *jobs = ps_jobs_start(&jc);
     if (!jobs) {
         fprintf(stderr, "pointsegd: cannot start %d worker threads\n", cfg.threads);

@@ -108,8 +108,11 @@ static void render_jobs(text *t, const ps_jobs_stats *j) {
            "# HELP pointseg_jobs_running Jobs being segmented.\n# TYPE pointseg_jobs_running gauge\n"
            "pointseg_jobs_running %zu\n"
            "# HELP pointseg_jobs_kept Jobs in the registry.\n# TYPE pointseg_jobs_kept gauge\n"
-           "pointseg_jobs_kept %zu\n",
-        j->queued, j->capacity, j->running, j->kept);
+           "pointseg_jobs_kept %zu\n"
+           "# HELP pointseg_jobs_kept_bytes Result bytes held by kept jobs.\n"
+           "# TYPE pointseg_jobs_kept_bytes gauge\n"
+           "pointseg_jobs_kept_bytes %zu\n",
+        j->queued, j->capacity, j->running, j->kept, j->kept_bytes);
     put(t, "# HELP pointseg_jobs_finished_total Jobs finished, by outcome.\n"
            "# TYPE pointseg_jobs_finished_total counter\n"
            "pointseg_jobs_finished_total{outcome=\"done\"} %llu\n"

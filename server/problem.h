@@ -1,6 +1,7 @@
 /*
  * problem.h: error documents in the RFC 9457 problem+json format
- * ({"type", "title", "status", "detail"}), the body of every error answer.
+ * ({"type", "title", "status", "detail"}), the body of every error answer;
+ * bytes of the detail that are not UTF-8 become U+FFFD.
  */
 #ifndef PS_PROBLEM_H
 #define PS_PROBLEM_H

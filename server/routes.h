@@ -11,7 +11,10 @@
 
 #include "request.h"
 
-/* Answers at once, or (POST /segment, /jobs) sets r->body for the upload. */
+/* Sets r->route and, for /jobs/{id}..., r->job_id (from r->path). */
+void ps_routes_match(ps_request *r);
+
+/* After ps_routes_match: answers at once, or (POST /segment, /jobs) sets r->body for the upload. */
 enum MHD_Result ps_routes_begin(ps_request *r);
 
 /* Decodes, then answers 202 (/jobs) or suspends the connection until the

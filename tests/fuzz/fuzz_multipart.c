@@ -42,7 +42,7 @@ static int server_port(void) {
                     "--threads", "1", NULL};
     char why[256];
     if (ps_config_load(&cfg, 10, argv, stdout, stderr)) abort();
-    ps_jobs_config jc = {cfg.threads, cfg.queue_size, cfg.job_ttl, cfg.max_jobs_kept, NULL};
+    ps_jobs_config jc = {cfg.threads, cfg.queue_size, cfg.job_ttl, cfg.max_jobs_kept, cfg.max_kept_bytes, NULL};
     ps_jobs *jobs = ps_jobs_start(&jc);
     ps_http *http = jobs ? ps_http_start(&cfg, jobs, why, sizeof why) : NULL;
     if (!http) {
