@@ -113,7 +113,15 @@ static void add_problem(cJSON *responses, int status, const char *description) {
     cJSON_AddStringToObject(r, "description", description);
     cJSON_AddItemToObject(c, "application/problem+json", media(ref(problem_ref)));
     cJSON_AddItemToObject(r, "content", c);
-    cJSON_AddItemToObject(responses, code, r);
+    if (cJSON_GetObjectItem(responses, code)) cJSON_ReplaceItemInObject(responses, code, r);
+    else cJSON_AddItemToObject(responses, code, r);
+}
+
+/* An answer every route may give, unless the route describes its own. */
+static void add_common_problem(cJSON *responses, int status, const char *description) {
+    char code[8];
+    snprintf(code, sizeof code, "%d", status);
+    if (!cJSON_GetObjectItem(responses, code)) add_problem(responses, status, description);
 }
 
 static void add_response(cJSON *responses, const char *code, const char *description,
@@ -134,6 +142,12 @@ static cJSON *operation(const char *summary, const char *id, cJSON *responses) {
     cJSON_AddStringToObject(op, "operationId", id);
     add_problem(responses, 401, "a bearer token is configured and missing or wrong");
     add_problem(responses, 405, "method not allowed (see the Allow header)");
+    add_common_problem(responses, 400, "malformed request head: HTTP/1.1 without Host, conflicting "
+                       "Content-Length headers, more than 64 query parameters, a NUL byte in one");
+    add_common_problem(responses, 414, "URL path longer than 255 bytes");
+    add_common_problem(responses, 501, "a Transfer-Encoding other than chunked");
+    add_common_problem(responses, 503, "over --max-connections: only /healthz, /readyz and /metrics "
+                       "are served (see Retry-After)");
     cJSON_AddItemToObject(op, "responses", responses);
     return op;
 }
@@ -152,11 +166,12 @@ static cJSON *segment_responses(int async) {
         cJSON_AddItemToObject(ok, "content", c);
         cJSON_AddItemToObject(r, "200", ok);
     }
-    add_problem(r, 400, "malformed body or unknown parameter");
+    add_problem(r, 400, "malformed body or request head, unknown parameter, two multipart file parts, "
+                "a NUL byte in a parameter");
     add_problem(r, 413, "body, inflated body or point count over the limit");
     add_problem(r, 415, "unsupported Content-Type or format");
     add_problem(r, 422, "well-formed but unusable input, or a parameter out of range");
-    add_problem(r, 503, "queue full (see Retry-After) or shutting down");
+    add_problem(r, 503, "queue full, shutting down, or over --max-connections (see Retry-After)");
     return r;
 }
 
