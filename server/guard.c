@@ -7,6 +7,7 @@
 #include <time.h>
 
 #define HEALTH_ROOM_IDLE_SECONDS 1.0
+#define EOF_GRACE_SECONDS 0.2 /* a phase change may still be on its way */
 
 typedef enum conn_phase { PHASE_IDLE, PHASE_UPLOAD, PHASE_BUSY } conn_phase;
 
@@ -15,6 +16,7 @@ struct ps_guard_conn {
     conn_phase phase;
     double since;        /* monotonic seconds the phase began */
     size_t received;     /* PHASE_UPLOAD: body bytes so far */
+    double eof_since;    /* the peer's end of input was first seen in this phase; 0 = not */
     int health_room;
     ps_guard_conn *prev, *next;
 };
@@ -85,6 +87,7 @@ static void enter(ps_guard *g, ps_guard_conn *c, conn_phase phase) {
     c->phase = phase;
     c->since = monotonic_seconds();
     c->received = 0;
+    c->eof_since = 0;
     pthread_mutex_unlock(&g->lock);
 }
 
@@ -99,13 +102,30 @@ void ps_guard_received(ps_guard *g, ps_guard_conn *c, size_t n) {
     pthread_mutex_unlock(&g->lock);
 }
 
-static int past_deadline(const ps_guard *g, const ps_guard_conn *c, double now) {
+/* 1 when the peer ended its input and nothing is left to read. */
+static int at_eof(int fd) {
+    char c;
+    return recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT) == 0;
+}
+
+/* A connection waiting for a request head or a body whose peer has ended
+ * its input can never complete one: libmicrohttpd would wait for its own
+ * timeout. */
+static int abandoned(ps_guard_conn *c, double now) {
+    if (!at_eof(c->fd)) return c->eof_since = 0, 0;
+    if (!c->eof_since) c->eof_since = now;
+    return now - c->eof_since > EOF_GRACE_SECONDS;
+}
+
+static int past_deadline(const ps_guard *g, ps_guard_conn *c, double now) {
     double waited = now - c->since;
     switch (c->phase) {
     case PHASE_IDLE:
-        return waited > (c->health_room ? HEALTH_ROOM_IDLE_SECONDS : g->header_timeout);
+        return waited > (c->health_room ? HEALTH_ROOM_IDLE_SECONDS : g->header_timeout) || abandoned(c, now);
     case PHASE_UPLOAD:
-        return g->min_upload_rate > 0 && waited > g->header_timeout + (double)c->received / g->min_upload_rate;
+        return (g->min_upload_rate > 0 &&
+                waited > g->header_timeout + (double)c->received / g->min_upload_rate) ||
+               abandoned(c, now);
     default:
         return 0;
     }

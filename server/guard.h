@@ -8,7 +8,8 @@
  *   - has not sent a whole request head within header_timeout seconds of
  *     connecting or of its previous answer, or
  *   - uploads a body slower than min_upload_rate bytes a second, counted
- *     from the request's start with header_timeout seconds of grace.
+ *     from the request's start with header_timeout seconds of grace, or
+ *   - ended its input (EOF) while a head or a body is still due.
  * Connections opened while max_connections are already open are the health
  * room: they may only ask the health routes, and are cut after a second
  * idle.  Connections waiting for their job or being answered are never cut.

@@ -273,6 +273,24 @@ static void test_refused_requests_answered_promptly(void) {
     CHECK(ps_daemon_stop(&d, 10) == 0);
 }
 
+/* A body cut short by the end of the client's input can never complete:
+ * the connection is closed at once, not after a timeout. */
+static void test_truncated_body_closed_promptly(void) {
+    ps_daemon d;
+    reply r;
+    static const char cut[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 7\r\n\r\n0 0 0\n";
+    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    int fd = ps_daemon_connect(&d, 5);
+    REQUIRE(fd >= 0);
+    CHECK(send(fd, cut, sizeof cut - 1, MSG_NOSIGNAL) == (ssize_t)(sizeof cut - 1));
+    shutdown(fd, SHUT_WR);
+    read_reply(fd, 3, &r);
+    close(fd);
+    CHECK_MSG(r.closed && r.seconds < 1.5, "a truncated body kept its connection %.1f s", r.seconds);
+    CHECK(ps_daemon_healthy(&d));
+    CHECK(ps_daemon_stop(&d, 10) == 0);
+}
+
 /* ---- 4: static files ------------------------------------------------------ */
 
 static void test_static_files_stay_inside(void) {
@@ -474,6 +492,7 @@ int main(int argc, char **argv) {
         TEST(test_sync_results_freed_once_sent), TEST(test_kept_results_byte_budget),
         TEST(test_per_ip_connection_limit), TEST(test_health_checks_get_room),
         TEST(test_slow_headers_and_bodies_cut), TEST(test_refused_requests_answered_promptly),
+        TEST(test_truncated_body_closed_promptly),
         TEST(test_static_files_stay_inside), TEST(test_gzip_members_all_read), TEST(test_bom_keeps_first_point),
         TEST(test_two_file_parts_refused), TEST(test_strict_parameters_and_headers),
         TEST(test_problem_detail_valid_utf8), TEST(test_keep_alive_after_gets_and_errors),
