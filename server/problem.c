@@ -43,8 +43,7 @@ static size_t utf8_sequence(const unsigned char *p) {
     return n;
 }
 
-/* text with every byte that is not part of valid UTF-8 replaced by U+FFFD. */
-static char *utf8_sanitize(const char *text) {
+char *ps_problem_utf8(const char *text) {
     size_t len = strlen(text);
     char *out = malloc(3 * len + 1), *o = out;
     if (!out) return NULL;
@@ -66,7 +65,7 @@ static char *utf8_sanitize(const char *text) {
 
 char *ps_problem_json(int status, const char *detail, size_t *len) {
     cJSON *doc = cJSON_CreateObject();
-    char *clean = detail ? utf8_sanitize(detail) : NULL;
+    char *clean = detail ? ps_problem_utf8(detail) : NULL;
     if (!doc || (detail && !clean)) {
         cJSON_Delete(doc);
         free(clean);

@@ -13,6 +13,10 @@
 /* The reason phrase of an HTTP status ("Unprocessable Content"). */
 const char *ps_problem_title(int status);
 
+/* A malloc'ed copy of text with every byte that is not part of valid UTF-8
+ * replaced by U+FFFD; NULL when memory runs out. */
+char *ps_problem_utf8(const char *text);
+
 /* A malloc'ed problem+json document for status with detail (may be NULL);
  * *len receives its length.  NULL only when memory runs out. */
 char *ps_problem_json(int status, const char *detail, size_t *len);
