@@ -1,6 +1,7 @@
 /*
- * routes.h: what each route does.  The HTTP layer calls ps_routes_begin on a
- * request's first callback (headers known), ps_routes_upload_done once its
+ * routes.h: what each route does.  The HTTP layer calls ps_routes_match
+ * once a request's head is in, ps_routes_begin then (a request with a body)
+ * or on the next callback (one without), ps_routes_upload_done once its
  * body is in, and ps_routes_resumed when its synchronous job has ended.
  * Each returns the libmicrohttpd result to hand back.
  */
