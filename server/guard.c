@@ -7,7 +7,7 @@
 #include <time.h>
 
 #define HEALTH_ROOM_IDLE_SECONDS 1.0
-#define EOF_GRACE_SECONDS 0.2 /* a phase change may still be on its way */
+#define EOF_GRACE_SECONDS 0.5 /* a phase change may still be on its way (a loaded machine) */
 
 typedef enum conn_phase { PHASE_IDLE, PHASE_UPLOAD, PHASE_BUSY } conn_phase;
 
