@@ -206,7 +206,7 @@ static void *watch_main(void *arg) {
         pthread_cond_timedwait(&s->changed, &s->lock, &ts);
         if (s->stop_watch) break;
         pthread_mutex_unlock(&s->lock);
-        ps_guard_sweep(s->guard);
+        ps_metrics_connections_cut(ps_guard_sweep(s->guard));
         cancel_abandoned(s);
         pthread_mutex_lock(&s->lock);
     }

@@ -21,6 +21,7 @@ typedef struct histogram {
 static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static unsigned long long requests[PS_ROUTE_COUNT][N_STATUS];
 static histogram latency[PS_ROUTE_COUNT];
+static unsigned long long connections_cut;
 
 const char *ps_route_name(ps_route r) {
     static const char *const names[PS_ROUTE_COUNT] = {
@@ -39,6 +40,13 @@ void ps_metrics_observe(ps_route route, int status, double seconds) {
     if (b < N_BUCKETS) latency[route].bucket[b]++;
     latency[route].count++;
     latency[route].sum += seconds;
+    pthread_mutex_unlock(&lock);
+}
+
+void ps_metrics_connections_cut(size_t n) {
+    if (!n) return;
+    pthread_mutex_lock(&lock);
+    connections_cut += n;
     pthread_mutex_unlock(&lock);
 }
 
@@ -130,6 +138,9 @@ char *ps_metrics_render(const ps_jobs_stats *jobs, size_t *len) {
     pthread_mutex_lock(&lock);
     render_requests(&t);
     render_latency(&t);
+    put(&t, "# HELP pointseg_connections_cut_total Connections closed for a slow or missing request head "
+            "or body.\n# TYPE pointseg_connections_cut_total counter\npointseg_connections_cut_total %llu\n",
+        connections_cut);
     pthread_mutex_unlock(&lock);
     render_jobs(&t, jobs);
     if (t.failed) {

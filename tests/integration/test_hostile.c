@@ -248,6 +248,7 @@ static void test_slow_headers_and_bodies_cut(void) {
     double body = trickle_until_closed(&d, "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 100000\r\n\r\n",
                                        "0", 500, 8);
     CHECK_MSG(body > 1.5 && body < 4, "a body at 2 bytes/s went on for %.1f s (want a cut after 2 s)", body);
+    CHECK(metric(&d, "pointseg_connections_cut_total") == 2);
     CHECK(ps_daemon_healthy(&d));
     CHECK(ps_daemon_stop(&d, 10) == 0);
 }
