@@ -4,6 +4,7 @@
 #include <arpa/inet.h>
 #include <errno.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,6 +39,16 @@ int ps_fuzz_server_port(void) {
     return port;
 }
 
+/* A connect interrupted by libFuzzer's SIGALRM timer goes on in the
+ * background: 1 once it has succeeded. */
+static int connect_finished(int fd) {
+    struct pollfd p = {fd, POLLOUT, 0};
+    int error = 0;
+    socklen_t len = sizeof error;
+    while (poll(&p, 1, PS_FUZZ_ANSWER_TIMEOUT_S * 1000) < 0 && errno == EINTR) continue;
+    return (p.revents & POLLOUT) && getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &len) == 0 && error == 0;
+}
+
 int ps_fuzz_connect(int port) {
     struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)port),
                             .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
@@ -48,7 +59,7 @@ int ps_fuzz_connect(int port) {
     setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
     setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
     setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
-    if (connect(fd, (struct sockaddr *)&a, sizeof a)) {
+    if (connect(fd, (struct sockaddr *)&a, sizeof a) && !(errno == EINTR && connect_finished(fd))) {
         close(fd);
         return -1;
     }
