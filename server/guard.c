@@ -108,40 +108,40 @@ static int at_eof(int fd) {
     return recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT) == 0;
 }
 
-/* A connection waiting for a request head or a body whose peer has ended
- * its input can never complete one: libmicrohttpd would wait for its own
- * timeout. */
+/* A connection waiting for a request head or receiving a body whose peer
+ * has ended its input can never complete a request; libmicrohttpd would
+ * keep it until its own timeout (an idle one after pipelined requests, or
+ * one short of its Content-Length).  Closing it is no cut: the client left. */
 static int abandoned(ps_guard_conn *c, double now) {
-    if (!at_eof(c->fd)) return c->eof_since = 0, 0;
+    if (c->phase == PHASE_BUSY || !at_eof(c->fd)) return c->eof_since = 0, 0;
     if (!c->eof_since) c->eof_since = now;
     return now - c->eof_since > EOF_GRACE_SECONDS;
 }
 
-static int past_deadline(const ps_guard *g, ps_guard_conn *c, double now) {
+static int past_deadline(const ps_guard *g, const ps_guard_conn *c, double now) {
     double waited = now - c->since;
     switch (c->phase) {
     case PHASE_IDLE:
-        return waited > (c->health_room ? HEALTH_ROOM_IDLE_SECONDS : g->header_timeout) || abandoned(c, now);
+        return waited > (c->health_room ? HEALTH_ROOM_IDLE_SECONDS : g->header_timeout);
     case PHASE_UPLOAD:
-        return (g->min_upload_rate > 0 &&
-                waited > g->header_timeout + (double)c->received / g->min_upload_rate) ||
-               abandoned(c, now);
+        return g->min_upload_rate > 0 && waited > g->header_timeout + (double)c->received / g->min_upload_rate;
     default:
         return 0;
     }
 }
 
-/* The lock is held while cutting: a connection is only closed (its fd
+/* The lock is held while closing: a connection is only closed (its fd
  * released) after ps_guard_closed, so the fd is still its own. */
 size_t ps_guard_sweep(ps_guard *g) {
     size_t cut = 0;
     double now = monotonic_seconds();
     pthread_mutex_lock(&g->lock);
     for (ps_guard_conn *c = g->conns; c; c = c->next) {
-        if (!past_deadline(g, c, now)) continue;
+        int late = past_deadline(g, c, now);
+        if (!late && !abandoned(c, now)) continue;
         shutdown(c->fd, SHUT_RDWR);
-        c->phase = PHASE_BUSY; /* cut once */
-        cut++;
+        c->phase = PHASE_BUSY; /* once */
+        cut += (size_t)late;
     }
     pthread_mutex_unlock(&g->lock);
     return cut;

@@ -40,7 +40,8 @@ void ps_guard_received(ps_guard *g, ps_guard_conn *c, size_t n);
 void ps_guard_upload_done(ps_guard *g, ps_guard_conn *c);
 void ps_guard_answered(ps_guard *g, ps_guard_conn *c);
 
-/* Cuts every connection past its deadline; returns how many. */
+/* Cuts every connection past its deadline, and closes those whose client
+ * ended its input; returns how many were cut (the first kind). */
 size_t ps_guard_sweep(ps_guard *g);
 
 #endif

@@ -138,8 +138,8 @@ char *ps_metrics_render(const ps_jobs_stats *jobs, size_t *len) {
     pthread_mutex_lock(&lock);
     render_requests(&t);
     render_latency(&t);
-    put(&t, "# HELP pointseg_connections_cut_total Connections closed for a slow or missing request head "
-            "or body.\n# TYPE pointseg_connections_cut_total counter\npointseg_connections_cut_total %llu\n",
+    put(&t, "# HELP pointseg_connections_cut_total Connections closed for a slow request head or body, "
+            "or idle too long.\n# TYPE pointseg_connections_cut_total counter\npointseg_connections_cut_total %llu\n",
         connections_cut);
     pthread_mutex_unlock(&lock);
     render_jobs(&t, jobs);
