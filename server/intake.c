@@ -39,7 +39,6 @@ static int wants_ply(const char *accept) {
 int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
                      size_t n_extra, ps_request_params *rp, ps_api_error *err) {
     ps_request_params_default(rp);
-    rp->core.threads = 1;
     if (wants_ply(accept)) rp->output = PS_OUTPUT_PLY;
     for (size_t i = 0; body && i < body->n_params; i++)
         if (ps_request_param_set(rp, body->params[i].name, body->params[i].value, err)) return -1;

@@ -32,8 +32,9 @@ typedef struct ps_text_param {
 int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,
                      ps_pointset *out, ps_api_error *err);
 
-/* The parameters of a request, later sources winning: defaults (threads = 1
- * so jobs run side by side), the Accept header (application/ply: PLY
+/* The parameters of a request, later sources winning: defaults (threads =
+ * 0: the job runner gives the job the cores no other job holds,
+ * core_share.h), the Accept header (application/ply: PLY
  * output; may be NULL), the body's own params, then the extra pairs
  * (multipart fields, then the query string).  Returns 0 or -1 with err (400
  * unknown name, 422 bad value). */

@@ -1,7 +1,8 @@
 /*
  * test_daemon.c: pointsegd over HTTP: every endpoint and content type, the
  * same labels through /segment, /jobs and the library, bad inputs of every
- * kind (right status, problem+json, daemon healthy afterwards), 32
+ * kind (right status, problem+json, daemon healthy afterwards), every
+ * core for a job on an idle daemon, 32
  * concurrent clients, a full queue (503), DELETE of a running exact job,
  * token, CORS, static files, and SIGTERM draining.  Each test starts
  * pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
@@ -321,6 +322,34 @@ static void test_outputs_and_includes(void) {
     CHECK(ps_daemon_stop(&d, 10) == 0);
 }
 
+/* params.threads of a JSON document, or -1. */
+static int document_threads(const ps_client_response *r) {
+    cJSON *doc = r->body ? cJSON_Parse(r->body) : NULL;
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(doc, "params"), "threads");
+    int threads = cJSON_IsNumber(t) ? t->valueint : -1;
+    cJSON_Delete(doc);
+    return threads;
+}
+
+/* Alone on an idle daemon a job runs on every core, as the CLI does; an
+ * explicit threads parameter is kept. */
+static void test_idle_daemon_job_gets_every_core(void) {
+    ps_daemon d;
+    ps_client_response r;
+    REQUIRE(need_small());
+    REQUIRE(ps_daemon_start(&d, NULL) == 0);
+    ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && r.status == 200);
+    CHECK_MSG(document_threads(&r) == cores, "threads %d on %ld cores", document_threads(&r), cores);
+    ps_client_response_free(&r);
+    CHECK(ps_client_segment(&d.client, &body, "threads=1", &r) == 0 && r.status == 200 &&
+          document_threads(&r) == 1 && same_labels(&r, &small));
+    ps_client_response_free(&r);
+    CHECK(ps_daemon_stop(&d, 10) == 0);
+}
+
 static void test_service_endpoints(void) {
     ps_daemon d;
     ps_client_response r;
@@ -632,7 +661,8 @@ static void test_zz_cleanup(void) {
 int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
-        TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
+        TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes),
+        TEST(test_idle_daemon_job_gets_every_core), TEST(test_bad_inputs_get_problems),
         TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
