@@ -200,7 +200,7 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     if (p->centrality == PS_CENTRALITY_AUTO)
         p->centrality = u <= PS_EXACT_AUTO_LIMIT ? PS_CENTRALITY_EXACT : PS_CENTRALITY_APPROX;
     if (p->centrality == PS_CENTRALITY_APPROX && p->samples == 0)
-        p->samples = (int)ceil(sqrt((double)u));
+        p->samples = ps_centrality_default_samples(u);
     pl->f = malloc(u * sizeof *pl->f);
     if (!pl->f) return ps_fail(err, PS_ERR_NOMEM, "out of memory (centrality)");
     int used = 0;
