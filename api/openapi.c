@@ -155,7 +155,7 @@ static cJSON *segment_responses(int async) {
         cJSON_AddItemToObject(r, "200", ok);
     }
     add_problem(r, 400, "malformed body or unknown parameter");
-    add_problem(r, 413, "body, inflated body or point count over the limit");
+    add_problem(r, 413, "body, inflated body, point count or the job's memory estimate over the limit");
     add_problem(r, 415, "unsupported Content-Type or format");
     add_problem(r, 422, "well-formed but unusable input, or a parameter out of range");
     add_problem(r, 503, async ? "queue full, shutting down, or " SHARED_QUEUE_DOWN

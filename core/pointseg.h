@@ -213,6 +213,12 @@ ps_status ps_segment(const ps_input *in, const ps_params *params,
 
 void ps_result_free(ps_result *r);
 
+/* Bytes ps_segment is expected to take at its peak for n points of dim
+ * coordinates with params (the input's own arrays not included): an upper
+ * estimate from measured runs (memory_estimate.c), for a service to refuse
+ * a job that cannot fit before it starts. */
+size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params);
+
 /* ---- scoring (Princeton Segmentation Benchmark conventions) ------------ */
 
 /* Rand Index error 1 - RI between two labellings of the same n items.

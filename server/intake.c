@@ -46,3 +46,15 @@ int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_
         if (ps_request_param_set(rp, extra[i].name, extra[i].value ? extra[i].value : "", err)) return -1;
     return 0;
 }
+
+int ps_intake_check_memory(const ps_pointset *ps, const ps_request_params *rp, size_t max_memory,
+                           ps_api_error *err) {
+    size_t coordinates = ps->n * (size_t)ps->dim * sizeof(double);
+    size_t need = ps_segment_memory_estimate(ps->n, ps->dim, &rp->core) + coordinates +
+                  (ps->normals ? coordinates : 0);
+    if (need <= max_memory) return 0;
+    return ps_api_fail(err, 413,
+                       "%zu points need about %zu MiB by the service's estimate, over the limit of "
+                       "%zu MiB (--max-memory)",
+                       ps->n, need >> 20, max_memory >> 20);
+}

@@ -41,4 +41,10 @@ int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_p
 int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
                      size_t n_extra, ps_request_params *rp, ps_api_error *err);
 
+/* 0 when the job's memory estimate (ps_segment_memory_estimate, plus the
+ * decoded input) is within max_memory bytes; else -1 with a 413 naming the
+ * estimate and the limit. */
+int ps_intake_check_memory(const ps_pointset *ps, const ps_request_params *rp, size_t max_memory,
+                           ps_api_error *err);
+
 #endif

@@ -2,7 +2,7 @@
  * test_daemon.c: pointsegd over HTTP: every endpoint and content type, the
  * same labels through /segment, /jobs and the library, bad inputs of every
  * kind (right status, problem+json, daemon healthy afterwards), every
- * core for a job on an idle daemon, 32
+ * core for a job on an idle daemon, --max-memory, 32
  * concurrent clients, a full queue (503), DELETE of a running exact job,
  * token, CORS, static files, and SIGTERM draining.  Each test starts
  * pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
@@ -389,6 +389,24 @@ static void test_service_endpoints(void) {
     CHECK_MSG(exit_status == 0, "pointsegd exited with %d", exit_status);
 }
 
+/* A job whose memory estimate is over --max-memory is refused before it
+ * runs, on /segment and /jobs alike, with a 413 naming the limit. */
+static void test_memory_limit(void) {
+    ps_daemon d;
+    ps_client_response r;
+    char id[128];
+    REQUIRE(need_small());
+    REQUIRE(ps_daemon_start(&d, (const char *const[]){"--max-memory", "1000000", NULL}) == 0);
+    ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && is_problem(&r, 413) &&
+          strstr(r.body, "--max-memory") && strstr(r.body, "estimate"));
+    ps_client_response_free(&r);
+    CHECK(ps_client_submit(&d.client, &body, NULL, id, sizeof id, &r) == 0 && is_problem(&r, 413));
+    ps_client_response_free(&r);
+    CHECK(ps_daemon_healthy(&d));
+    CHECK(ps_daemon_stop(&d, 10) == 0);
+}
+
 static void test_token_and_static_files(void) {
     ps_daemon d;
     ps_client_response r;
@@ -631,7 +649,7 @@ static void test_help_lists_flags(void) {
     size_t len = fread(out, 1, sizeof out - 1, p);
     out[len] = 0;
     CHECK(pclose(p) == 0);
-    const char *flags[] = {"--port", "--bind", "--threads", "--queue-size", "--max-body", "--max-points",
+    const char *flags[] = {"--port", "--bind", "--threads", "--queue-size", "--max-body", "--max-points", "--max-memory",
                            "--job-ttl", "--token", "--cors-origin", "--static-dir", "POINTSEG_PORT"};
     for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
         CHECK_MSG(strstr(out, flags[i]), "--help lacks %s", flags[i]);
@@ -663,7 +681,7 @@ int main(int argc, char **argv) {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes),
         TEST(test_idle_daemon_job_gets_every_core), TEST(test_bad_inputs_get_problems),
-        TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
+        TEST(test_size_limits), TEST(test_memory_limit), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);
