@@ -5,11 +5,13 @@
  * arrays per point that grow with k (the kNN graph in CSR with its weights,
  * kept and scratch), the coordinates copied per dimension, and the
  * two-level centrality's table of cell-to-sample distances (a float per
- * sample for every cell of about CELL_POINTS points), over a fixed base.
+ * sample for every cell of about CELL_POINTS points; the cell count stops
+ * growing at PS_CELL_SCALE_POINTS, coarse_graph.h), over a fixed base.
  */
 #include "pointseg.h"
 
 #include "centrality.h"
+#include "coarse_graph.h"
 
 #define BASE_BYTES ((size_t)32 << 20) /* the process and small arrays */
 #define BYTES_PER_POINT 300           /* labels, f, flow, normals, creases, ... */
@@ -26,7 +28,8 @@ size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
     if (approx) {
         size_t samples = params->samples > 0 ? (size_t)params->samples
                                              : (size_t)ps_centrality_default_samples(n);
-        table = n / CELL_POINTS * samples * sizeof(float);
+        size_t cells = (n < PS_CELL_SCALE_POINTS ? n : PS_CELL_SCALE_POINTS) / CELL_POINTS;
+        table = cells * samples * sizeof(float);
     }
     return BASE_BYTES + n * per_point + table;
 }
