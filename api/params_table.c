@@ -52,8 +52,9 @@ static const ps_param_spec table[P_COUNT] = {
                    "approx centrality sample count; 0 = ceil(sqrt(n))"},
     [P_PERSISTENCE] = {"persistence", PS_PT_DOUBLE, "0.1", 0, 1, NULL,
                        "merge maxima less prominent than this fraction of f's range"},
-    [P_NCUT_THRESHOLD] = {"ncut_threshold", PS_PT_DOUBLE, "0.6", 0, 2, NULL,
-                          "stop bisecting when the normalized cut exceeds this"},
+    [P_NCUT_THRESHOLD] = {"ncut_threshold", PS_PT_DOUBLE, "0", 0, 2, NULL,
+                          "stop bisecting when the normalized cut exceeds this; "
+                          "0 = the method's own (auto: never, paper: 0.6)"},
     [P_FEATURE_THRESHOLD] = {"feature_threshold", PS_PT_DOUBLE, "0.1", 0, 1, NULL,
                              "merge segments whose feature size is below this fraction of f's range"},
     [P_MINIMA] = {"minima", PS_PT_BOOL, "true", 0, 1, NULL,

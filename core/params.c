@@ -34,7 +34,7 @@ void ps_params_default(ps_params *p) {
         .centrality = PS_CENTRALITY_AUTO,
         .samples = 0,
         .persistence = 0.1,
-        .ncut_threshold = 0.6,
+        .ncut_threshold = 0,
         .feature_threshold = 0.1,
         .use_minima = 1,
         .use_f2 = 0,

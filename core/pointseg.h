@@ -64,12 +64,17 @@ typedef enum ps_centrality_mode {
 
 #define PS_EXACT_AUTO_LIMIT 4096
 
+/* ncut_threshold = 0 resolves to one of these (ps_params). */
+#define PS_NCUT_PAPER 0.6
+#define PS_NCUT_NEVER_STOP 2.0
+
 typedef enum ps_method {
     PS_METHOD_AUTO = 0, /* the default: stray points left out, crease-aware
                            metric (3-D), persistence, minima, crease split
                            and merge, patch merge (docs/method.md) */
     PS_METHOD_PAPER     /* the published pipeline: Euclidean geodesics, every
-                           sink a supernode, no minima, no f2 */
+                           sink a supernode, no minima, no f2, NCut stop
+                           at PS_NCUT_PAPER */
 } ps_method;
 
 typedef struct ps_params {
@@ -79,7 +84,10 @@ typedef struct ps_params {
     int samples;              /* approx centrality samples; 0 = ceil(sqrt(n)) */
     double persistence;       /* merge sinks whose persistence is below this
                                  fraction of the range of f (persistence.h) */
-    double ncut_threshold;    /* stop bisecting when NCut exceeds this */
+    double ncut_threshold;    /* stop bisecting when NCut exceeds this; 0 = the
+                                 method's own: PS_NCUT_PAPER for paper, none
+                                 (PS_NCUT_NEVER_STOP) for auto, whose segments
+                                 come from refinement alone */
     double feature_threshold; /* merge segments whose feature size is below this
                                  fraction of the range of f */
     int use_minima;           /* also make supernodes of the minima of f, for

@@ -362,6 +362,14 @@ static ps_result_parts parts_of(const pipeline *pl) {
     };
 }
 
+/* The method's presets: paper has no persistence, minima or f2; an
+ * ncut_threshold of 0 becomes the method's own. */
+static void apply_method(ps_params *p) {
+    int paper = p->method == PS_METHOD_PAPER;
+    if (paper) p->persistence = 0, p->use_minima = p->use_f2 = 0;
+    if (p->ncut_threshold == 0) p->ncut_threshold = paper ? PS_NCUT_PAPER : PS_NCUT_NEVER_STOP;
+}
+
 ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,
                      ps_result **out, ps_error *err) {
     double start = now_ms();
@@ -369,8 +377,7 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     pipeline pl = {.in = in, .ctl = ctl};
     if (params) pl.params = *params;
     else ps_params_default(&pl.params);
-    if (pl.params.method == PS_METHOD_PAPER)
-        pl.params.persistence = 0, pl.params.use_minima = pl.params.use_f2 = 0;
+    apply_method(&pl.params);
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
     pl.points = (double *)in->points;

@@ -71,7 +71,7 @@ test_help() {
                 return
             fi
         done
-        if ! grep -A2 -- "--ncut-threshold" "$tmp/help.out" | grep -q "default 0.6"; then
+        if ! grep -A2 -- "--ncut-threshold" "$tmp/help.out" | grep -q "default 0)"; then
             fail "help" "'pointseg $cmd' does not show the ncut_threshold default"
             return
         fi

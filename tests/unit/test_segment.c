@@ -482,6 +482,32 @@ static void on_progress(void *user, ps_phase phase, double fraction) {
     progress_calls++;
 }
 
+/* ncut_threshold 0 is the method's own: auto bisects down to single
+ * supernodes, paper stops at PS_NCUT_PAPER exactly as when that is given. */
+static void test_ncut_threshold_method_default(void) {
+    size_t n;
+    double *pts = ps_shape_hand(0, &n, NULL);
+    ps_params p;
+    ps_params_default(&p);
+    ps_result *a = segment_with(pts, n, &p);
+    p.method = PS_METHOD_PAPER;
+    ps_result *paper = segment_with(pts, n, &p);
+    p.ncut_threshold = PS_NCUT_PAPER;
+    ps_result *paper_given = segment_with(pts, n, &p);
+    REQUIRE(a && paper && paper_given);
+    CHECK(a->params.ncut_threshold == PS_NCUT_NEVER_STOP);
+    for (int t = 0; t < a->n_tree_nodes; t++)
+        if (a->tree[t].children[0] < 0) CHECK(a->tree[t].n_supernodes == 1);
+    CHECK(paper->params.ncut_threshold == PS_NCUT_PAPER);
+    CHECK(paper->n_tree_nodes == paper_given->n_tree_nodes);
+    CHECK(paper->n_tree_nodes < 2 * paper->n_supernodes - 1);
+    CHECK(memcmp(paper->labels, paper_given->labels, n * sizeof *paper->labels) == 0);
+    ps_result_free(a);
+    ps_result_free(paper);
+    ps_result_free(paper_given);
+    free(pts);
+}
+
 static void test_progress_and_cancel(void) {
     size_t n;
     double *pts = ps_shape_sphere(0, &n, NULL);
@@ -508,4 +534,4 @@ PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
              TEST(test_disconnected_scans), TEST(test_bad_input), TEST(test_status_names),
-             TEST(test_progress_and_cancel))
+             TEST(test_ncut_threshold_method_default), TEST(test_progress_and_cancel))
