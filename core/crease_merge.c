@@ -65,12 +65,27 @@ static int creased_edge(void *context, const int *group, size_t p, size_t q) {
            strength_within(in, group, q, a, b, across) >= test->crease;
 }
 
+/* The smaller segment of record i. */
+static int smaller_of(const ps_segment_graph *sg, size_t i) {
+    int a = sg->list[i].a, b = sg->list[i].b;
+    return sg->size[b] <= sg->size[a] ? b : a;
+}
+
+/* Whether the smaller segment of record i protrudes: its feature size is
+ * over PS_CREASE_MERGE_PROTRUSION times the width of its boundary. */
+static int protrudes(const ps_segment_graph *sg, size_t i) {
+    int s = smaller_of(sg, i);
+    double width = ps_boundary_width(&sg->list[i]);
+    return sg->f_max[s] - sg->f_min[s] > PS_CREASE_MERGE_PROTRUSION * width;
+}
+
 /* The record with the smallest creased fraction, or -1 when none is below
- * the threshold. */
+ * the threshold; protruding parts stay. */
 static long weakest_boundary(const ps_segment_graph *sg, double threshold) {
     long best = -1;
     double best_fraction = threshold;
     for (size_t i = 0; i < sg->count; i++) {
+        if (protrudes(sg, i)) continue;
         double fraction = (double)sg->list[i].marked / (double)sg->list[i].edges;
         if (fraction < best_fraction) best = (long)i, best_fraction = fraction;
     }
@@ -80,8 +95,7 @@ static long weakest_boundary(const ps_segment_graph *sg, double threshold) {
 /* Merges the pair of record i: the smaller segment into the larger (ties:
  * the higher id into the lower). */
 static int merge_pair(ps_segment_graph *sg, size_t i, ps_merge **merges, int *n_merges) {
-    int a = sg->list[i].a, b = sg->list[i].b;
-    int loser = sg->size[b] <= sg->size[a] ? b : a, winner = loser == a ? b : a;
+    int loser = smaller_of(sg, i), winner = loser == sg->list[i].a ? sg->list[i].b : sg->list[i].a;
     return ps_segment_graph_merge(sg, loser, winner, merges, n_merges);
 }
 
@@ -91,8 +105,10 @@ ps_status ps_crease_merge(const ps_crease_merge_input *in, int *group_of_point,
     if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* no creases: no evidence */
     crease_test test = {in, PS_CREASE_MERGE_STRENGTH * in->mean_angular};
     ps_segment_graph sg;
-    ps_status st = ps_segment_graph_build(&sg, in->graph, in->f, group_of_point, in->n_groups,
-                                          creased_edge, &test, err);
+    ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .points = in->points,
+                                  .group = group_of_point, .n_groups = in->n_groups,
+                                  .mark = creased_edge, .context = &test};
+    ps_status st = ps_segment_graph_build(&sg, &sgi, err);
     for (long i; st == PS_OK && (i = weakest_boundary(&sg, in->threshold)) >= 0;)
         if (!merge_pair(&sg, (size_t)i, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");

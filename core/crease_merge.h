@@ -17,7 +17,12 @@
  * the fillet under a wing that the boundary crosses bends along it.  While some pair's creased fraction is below threshold, the
  * pair with the lowest (ties: lowest ids) merges: the segment with fewer
  * points goes into the other (ties: the higher id into the lower), its
- * boundaries adding up with the survivor's.  A flat surface (crease.h,
+ * boundaries adding up with the survivor's.  A pair whose smaller segment
+ * protrudes stays apart whatever its creases: people also cut off what
+ * sticks out (Hoffman and Singh, 1997), such as a limb joined to the body
+ * over smooth surface; a segment protrudes when its feature size (max f -
+ * min f) is over PS_CREASE_MERGE_PROTRUSION times the width of the
+ * boundary (ps_boundary_width).  A flat surface (crease.h,
  * PS_CREASE_FLAT) has no creases to judge by and is left alone.
  * Deterministic; no threads.
  */
@@ -43,6 +48,9 @@
  * merge (0.200 -> 0.167), Airplane 0.1735 -> 0.1570. */
 #define PS_CREASE_MERGE_CONE 0.5
 #define PS_CREASE_MERGE_FRACTION 0.5
+/* A part at least this many times longer (feature size, in f) than its
+ * boundary is wide (ps_boundary_width) stays without a crease. */
+#define PS_CREASE_MERGE_PROTRUSION 1.0
 
 typedef struct ps_crease_merge_input {
     const ps_graph *graph;   /* kNN graph on #P points (weights not used) */

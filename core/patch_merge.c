@@ -58,8 +58,9 @@ ps_status ps_patch_merge(const ps_patch_merge_input *in, int *group_of_point,
                          ps_error *err) {
     if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* flat input: one patch */
     ps_segment_graph sg;
-    ps_status st = ps_segment_graph_build(&sg, in->graph, in->f, group_of_point, in->n_groups,
-                                          NULL, NULL, err);
+    ps_segment_graph_input sgi = {
+        .graph = in->graph, .f = in->f, .group = group_of_point, .n_groups = in->n_groups};
+    ps_status st = ps_segment_graph_build(&sg, &sgi, err);
     size_t m = (size_t)(in->n_groups > 0 ? in->n_groups : 1);
     double *sum = st == PS_OK ? normal_sums(in, group_of_point) : NULL;
     int *widest = malloc(m * sizeof *widest);

@@ -4,8 +4,16 @@
  */
 #include "segment_graph.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+double ps_boundary_width(const ps_boundary *r) {
+    double n = (double)r->edges, centroid2 = 0;
+    for (int d = 0; d < 3; d++) centroid2 += (r->midpoint_sum[d] / n) * (r->midpoint_sum[d] / n);
+    double variance = r->norm2_sum / n - centroid2;
+    return variance > 0 ? 2 * sqrt(variance) : 0;
+}
 
 static int compare_boundary(const void *x, const void *y) {
     const ps_boundary *p = x, *q = y;
@@ -21,8 +29,11 @@ static void coalesce(ps_segment_graph *sg) {
     for (size_t i = 0; i < sg->count; i++) {
         if (sg->list[i].a == sg->list[i].b) continue;
         if (out > 0 && compare_boundary(&sg->list[out - 1], &sg->list[i]) == 0) {
-            sg->list[out - 1].marked += sg->list[i].marked;
-            sg->list[out - 1].edges += sg->list[i].edges;
+            ps_boundary *sum = &sg->list[out - 1];
+            sum->marked += sg->list[i].marked;
+            sum->edges += sg->list[i].edges;
+            for (int d = 0; d < 3; d++) sum->midpoint_sum[d] += sg->list[i].midpoint_sum[d];
+            sum->norm2_sum += sg->list[i].norm2_sum;
         } else {
             sg->list[out++] = sg->list[i];
         }
@@ -30,9 +41,26 @@ static void coalesce(ps_segment_graph *sg) {
     sg->count = out;
 }
 
+/* The record of edge p-q joining segments a and b.  Midpoints are taken
+ * relative to point 0, so that the sums keep their precision far from the
+ * origin. */
+static ps_boundary edge_record(const ps_segment_graph_input *in, size_t p, size_t q, int a,
+                               int b) {
+    ps_boundary r = {.a = a < b ? a : b, .b = a < b ? b : a, .edges = 1};
+    r.marked = in->mark ? in->mark(in->context, in->group, p, q) != 0 : 0;
+    if (in->points)
+        for (int d = 0; d < 3; d++) {
+            double mid = 0.5 * (in->points[3 * p + d] + in->points[3 * q + d]) - in->points[d];
+            r.midpoint_sum[d] = mid;
+            r.norm2_sum += mid * mid;
+        }
+    return r;
+}
+
 /* One record per edge p < q joining two segments. */
-static int gather_boundaries(ps_segment_graph *sg, const ps_graph *g, const int *group,
-                             ps_boundary_mark_fn mark, void *context) {
+static int gather_boundaries(ps_segment_graph *sg, const ps_segment_graph_input *in) {
+    const ps_graph *g = in->graph;
+    const int *group = in->group;
     size_t crossing = 0;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
@@ -43,9 +71,7 @@ static int gather_boundaries(ps_segment_graph *sg, const ps_graph *g, const int 
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             int a = group[p], b = group[q];
-            if (q <= p || a == b) continue;
-            long marked = mark ? mark(context, group, p, q) != 0 : 0;
-            sg->list[sg->count++] = (ps_boundary){a < b ? a : b, a < b ? b : a, marked, 1};
+            if (q > p && a != b) sg->list[sg->count++] = edge_record(in, p, q, a, b);
         }
     coalesce(sg);
     return 1;
@@ -61,9 +87,9 @@ static void measure_segments(ps_segment_graph *sg, const double *f, const int *g
     }
 }
 
-ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_graph *g, const double *f,
-                                 const int *group, int n_groups, ps_boundary_mark_fn mark,
-                                 void *context, ps_error *err) {
+ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_segment_graph_input *in,
+                                 ps_error *err) {
+    int n_groups = in->n_groups;
     size_t m = (size_t)(n_groups > 0 ? n_groups : 1);
     memset(sg, 0, sizeof *sg);
     sg->n_groups = n_groups;
@@ -73,8 +99,8 @@ ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_graph *g, const 
     sg->alias = malloc(m * sizeof *sg->alias);
     if (sg->size && sg->f_min && sg->f_max && sg->alias) {
         for (int i = 0; i < n_groups; i++) sg->alias[i] = i;
-        measure_segments(sg, f, group, g->n);
-        if (gather_boundaries(sg, g, group, mark, context)) return PS_OK;
+        measure_segments(sg, in->f, in->group, in->graph->n);
+        if (gather_boundaries(sg, in)) return PS_OK;
     }
     ps_segment_graph_free(sg);
     return ps_fail(err, PS_ERR_NOMEM, "out of memory (segment graph)");

@@ -9,7 +9,9 @@
  * adjacent pair.  A merge renames the loser in every record and sums the
  * records again; there are only as many records as adjacent pairs, so the
  * merges are cheap.  Each segment keeps its point count and f range, so
- * a merge can be recorded with its feature size (ps_merge).
+ * a merge can be recorded with its feature size (ps_merge).  Given the
+ * points, a boundary also keeps the sums that give its width
+ * (ps_boundary_width).
  */
 #ifndef PS_SEGMENT_GRAPH_H
 #define PS_SEGMENT_GRAPH_H
@@ -20,7 +22,14 @@ typedef struct ps_boundary {
     int a, b;     /* segment ids, a < b */
     long marked;  /* edges the caller's mark accepted */
     long edges;   /* kNN edges joining a and b */
+    double midpoint_sum[3]; /* sum of the edges' midpoints, relative to point
+                               0 (0 without points) */
+    double norm2_sum;       /* sum of their squared norms */
 } ps_boundary;
+
+/* Twice the RMS distance of the boundary's edge midpoints from their
+ * centroid: the diameter of a circular boundary.  0 without points. */
+double ps_boundary_width(const ps_boundary *r);
 
 typedef struct ps_segment_graph {
     int n_groups;          /* segment ids are in [0, n_groups) */
@@ -35,11 +44,19 @@ typedef struct ps_segment_graph {
  * marked. */
 typedef int (*ps_boundary_mark_fn)(void *context, const int *group, size_t p, size_t q);
 
-/* g: kNN graph on #P points; f #P; group #P segment ids in [0, n_groups).
- * mark may be NULL (nothing marked).  On failure sg is freed. */
-ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_graph *g, const double *f,
-                                 const int *group, int n_groups, ps_boundary_mark_fn mark,
-                                 void *context, ps_error *err);
+typedef struct ps_segment_graph_input {
+    const ps_graph *graph;    /* kNN graph on #P points */
+    const double *f;          /* #P centrality */
+    const double *points;     /* #P by 3, or NULL: no boundary widths */
+    const int *group;         /* #P segment ids in [0, n_groups) */
+    int n_groups;
+    ps_boundary_mark_fn mark; /* may be NULL: nothing marked */
+    void *context;            /* passed to mark */
+} ps_segment_graph_input;
+
+/* On failure sg is freed. */
+ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_segment_graph_input *in,
+                                 ps_error *err);
 
 /* Merges segment loser into winner (both surviving, adjacent or not) and
  * appends {loser, winner, loser's feature size} to the malloc'ed list

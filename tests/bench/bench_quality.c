@@ -17,12 +17,14 @@
  * below 0.99 or another segment count).  --noise and --strays make the
  * input a noisy or outlier-ridden scan.  See tests/bench/README.md.
  */
+#include <errno.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -198,6 +200,10 @@ static int parse_options(int argc, char **argv, quality_options *o) {
         }
     }
     if (o->n_modes == 0) add_mode(o, "vertices");
+    if (o->out_dir && mkdir(o->out_dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "bench_quality: --out %s: %s\n", o->out_dir, strerror(errno));
+        return -1;
+    }
     /* Models run in parallel; each one single-threaded unless asked. */
     if (o->params.core.threads == 0 && o->jobs > 1) o->params.core.threads = 1;
     return 0;

@@ -1,12 +1,14 @@
 /*
  * test_crease_merge.c: the crease merge (crease_merge.h) on the star of
  * star_fixture.h.  Its true parts meet along concave creases and stay
- * apart; the same parts cut once more across smooth surface (every arm
- * halfway along, the sphere through its equator) merge back into exactly
- * the true parts, with one merge per extra piece recorded (smaller piece
- * into larger, feature size from f), leaves renamed to their survivor, and
- * the same answer on every run.  On three hand-placed points, a concave
- * bend counts against a merge only when it runs across the boundary.
+ * apart; the same parts cut once more across smooth surface (the tip of
+ * every arm, the sphere through its equator) merge back into exactly the
+ * true parts, with one merge per extra piece recorded (smaller piece into
+ * larger, feature size from f), leaves renamed to their survivor, and the
+ * same answer on every run; but an arm cut halfway keeps its far half,
+ * which protrudes (longer than its boundary is wide).  On three
+ * hand-placed points, a concave bend counts against a merge only when it
+ * runs across the boundary.
  */
 #include "crease.h"
 #include "crease_merge.h"
@@ -14,17 +16,22 @@
 #include "star_fixture.h"
 #include "testlib.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define N_PIECES (2 * PS_STAR_PARTS) /* piece k + PS_STAR_PARTS: far half of part k */
 
-/* Each true part, its far half (arm beyond 2.3, sphere below z = 0) apart. */
-static void split_parts(const ps_star *s, int *group) {
+#define TIP_CUT 3.3  /* an arm's tip beyond this is shorter (0.55) than wide (0.7) */
+#define HALF_CUT 2.3 /* an arm's far half beyond this is longer (1.55) than wide */
+
+/* Each true part with its far piece (arm beyond arm_cut, sphere below z =
+ * 0) apart. */
+static void split_parts(const ps_star *s, double arm_cut, int *group) {
     for (size_t p = 0; p < s->n; p++) {
         const double *x = s->points + 3 * p;
         int part = s->part[p];
-        int far = part == 0 ? x[2] < 0 : ps_star_along_arm(x, part) > 2.3;
+        int far = part == 0 ? x[2] < 0 : ps_star_along_arm(x, part) > arm_cut;
         group[p] = part + (far ? PS_STAR_PARTS : 0);
     }
 }
@@ -49,7 +56,7 @@ static double *radius(const ps_star *s) {
     double *f = malloc(s->n * sizeof *f);
     for (size_t p = 0; f && p < s->n; p++) {
         const double *x = s->points + 3 * p;
-        f[p] = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        f[p] = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
     }
     return f;
 }
@@ -78,7 +85,7 @@ static void test_smooth_cuts_merge_back(void) {
     double *f = radius(&s);
     int *group = malloc(s.n * sizeof *group), leaf[N_PIECES];
     REQUIRE(f && group);
-    split_parts(&s, group);
+    split_parts(&s, TIP_CUT, group);
     ps_merge *merges;
     int n_merges;
     CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
@@ -106,6 +113,30 @@ static void test_smooth_cuts_merge_back(void) {
     ps_star_free(&s);
 }
 
+static void test_protruding_half_stays(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    double *f = radius(&s);
+    int *group = malloc(s.n * sizeof *group), *cut = malloc(s.n * sizeof *cut);
+    int leaf[N_PIECES];
+    REQUIRE(f && group && cut);
+    split_parts(&s, HALF_CUT, group);
+    memcpy(cut, group, s.n * sizeof *cut);
+    ps_merge *merges;
+    int n_merges;
+    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
+    CHECK_MSG(n_merges == 1, "%d merges", n_merges); /* the two hemispheres only */
+    size_t moved = 0;
+    for (size_t p = 0; p < s.n; p++)
+        if (s.part[p] != 0) moved += group[p] != cut[p];
+    CHECK_MSG(moved == 0, "%zu arm points changed segment", moved);
+    free(merges);
+    free(cut);
+    free(group);
+    free(f);
+    ps_star_free(&s);
+}
+
 static void test_deterministic(void) {
     ps_star s;
     REQUIRE(ps_star_build(&s));
@@ -113,8 +144,8 @@ static void test_deterministic(void) {
     int *first = malloc(s.n * sizeof *first), *again = malloc(s.n * sizeof *again);
     int leaf[N_PIECES], leaf_again[N_PIECES];
     REQUIRE(f && first && again);
-    split_parts(&s, first);
-    split_parts(&s, again);
+    split_parts(&s, HALF_CUT, first);
+    split_parts(&s, HALF_CUT, again);
     ps_merge *m1, *m2;
     int n1, n2;
     CHECK(run_merge(&s, f, first, leaf, &m1, &n1) == PS_OK);
@@ -167,5 +198,5 @@ static void test_bend_along_boundary_merges(void) {
 }
 
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_smooth_cuts_merge_back),
-             TEST(test_deterministic), TEST(test_bend_across_boundary_keeps_apart),
+             TEST(test_protruding_half_stays), TEST(test_deterministic), TEST(test_bend_across_boundary_keeps_apart),
              TEST(test_bend_along_boundary_merges))
