@@ -44,6 +44,10 @@ static enum MHD_Result queue(ps_request *r, int status, const char *media_type,
     add_cors(r, resp);
     r->status = status;
     r->bytes = len;
+    if (r->defer_answer) {
+        r->pending = resp;
+        return MHD_YES;
+    }
     enum MHD_Result rc = MHD_queue_response(r->conn, (unsigned)status, resp);
     MHD_destroy_response(resp);
     return rc;
