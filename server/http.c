@@ -6,6 +6,7 @@
 
 #include "admit.h"
 #include "deadline.h"
+#include "direct_answer.h"
 #include "openapi.h"
 #include "request.h"
 #include "respond.h"
@@ -119,6 +120,7 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *conn, const 
         r->routed = 1;
         return ps_routes_begin(r);
     }
+    if (r->answer_direct) return MHD_NO; /* answered on the socket: close */
     if (r->status) return MHD_YES;
     if (r->suspended) return ps_routes_resumed(r);
     if (r->body) return ps_routes_upload_done(r);
@@ -133,7 +135,7 @@ static void on_completed(void *cls, struct MHD_Connection *conn, void **state,
     if (!r) return;
     double seconds = monotonic_seconds() - r->t0;
     int status = r->status ? r->status : 499; /* answered nothing: the client went away */
-    if (toe != MHD_REQUEST_TERMINATED_COMPLETED_OK && status < 400) status = 499;
+    if (toe != MHD_REQUEST_TERMINATED_COMPLETED_OK && status < 400 && !r->sent_direct) status = 499;
     ps_metrics_observe(r->route, status, seconds);
     if (!s->cfg->quiet)
         fprintf(stderr, "%s %s %d %zu %.1fms%s%s\n", r->method, r->path, status, r->bytes,
@@ -148,11 +150,6 @@ static void on_completed(void *cls, struct MHD_Connection *conn, void **state,
     s->in_flight--;
     pthread_cond_broadcast(&s->changed);
     pthread_mutex_unlock(&s->lock);
-}
-
-static int connection_fd(struct MHD_Connection *conn) {
-    const union MHD_ConnectionInfo *info = MHD_get_connection_info(conn, MHD_CONNECTION_INFO_CONNECTION_FD);
-    return info ? info->connect_fd : -1;
 }
 
 /* 1 when the socket has a pending error (a reset after the peer's FIN is
@@ -170,7 +167,7 @@ static int socket_failed(int fd) {
  * error on a later call.  The caller holds the server lock. */
 static int client_gone(ps_request *r) {
     char c;
-    int fd = connection_fd(r->conn);
+    int fd = ps_connection_fd(r->conn);
     if (fd < 0) return 0;
     ssize_t n = recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
     if (n > 0 || (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))) return 0;
@@ -218,7 +215,7 @@ static void on_connection(void *cls, struct MHD_Connection *conn, void **socket_
                           enum MHD_ConnectionNotificationCode code) {
     ps_server *s = cls;
     if (code == MHD_CONNECTION_NOTIFY_STARTED) {
-        int fd = connection_fd(conn);
+        int fd = ps_connection_fd(conn);
         *socket_context = fd >= 0 ? ps_guard_opened(s->guard, fd) : NULL;
     } else {
         ps_guard_closed(s->guard, *socket_context);

@@ -297,10 +297,10 @@ int ps_jobs_submit(ps_jobs *q, ps_pointset *points, const ps_request_params *par
     q->last = job;
     q->registered++;
     purge_locked(q, &dead);
+    *out = job; /* before any worker can finish it and call on_done */
     pthread_cond_signal(&q->work);
     pthread_mutex_unlock(&q->lock);
     free_chain(dead);
-    *out = job;
     return 0;
 }
 

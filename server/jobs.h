@@ -72,8 +72,8 @@ typedef struct ps_jobs_stats {
 ps_jobs *ps_jobs_start(const ps_jobs_config *cfg);
 
 /* Queues a job on points (moved into the job: *points is zeroed) with params.
- * on_done (may be NULL) is called with user once the job is final.  Returns
- * 0 and a referenced *job, or 503 when the queue is full or stopping, 500
+ * on_done (may be NULL) is called with user once the job is final, and *job
+ * is set before it is.  Returns 0 and a referenced *job, or 503 when the queue is full or stopping, 500
  * when out of memory (points are then freed). */
 int ps_jobs_submit(ps_jobs *q, ps_pointset *points, const ps_request_params *params,
                    ps_job_done_fn on_done, void *user, ps_job **job);

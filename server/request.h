@@ -70,6 +70,8 @@ struct ps_request {
     int waiting;              /* linked in srv->waiting */
     int cancel_sent;
     int probed;               /* a 102 went out to test a half-closed peer */
+    int answer_direct;        /* the peer shut down its write side: answer on the socket */
+    int sent_direct;          /* and that answer went out whole (direct_answer.h) */
     ps_request *prev, *next;  /* srv->waiting */
 };
 

@@ -1,6 +1,7 @@
 /* routes.c: routing, authorization, and the handler of every route. */
 #include "routes.h"
 
+#include "direct_answer.h"
 #include "respond.h"
 #include "static_files.h"
 
@@ -286,6 +287,8 @@ static int gather_params(ps_request *r, const ps_pointset *ps, query_params *q, 
     return ps_intake_params(ps, *accept, q->items, q->n, rp, &r->error);
 }
 
+/* Resumes the request; a client that shut down its write side is answered
+ * first, on its socket (direct_answer.h). */
 static void job_ended(void *user) {
     ps_request *r = user;
     ps_server *s = r->srv;
@@ -296,7 +299,10 @@ static void job_ended(void *user) {
         if (r->next) r->next->prev = r->prev;
         r->waiting = 0;
     }
+    r->answer_direct = r->probed || ps_peer_done_sending(ps_connection_fd(r->conn));
     pthread_mutex_unlock(&s->lock);
+    if (r->answer_direct && r->job) answer_from_job(r, r->job);
+    else if (r->answer_direct) ps_respond_error(r, &r->error);
     MHD_resume_connection(r->conn);
 }
 
