@@ -55,6 +55,7 @@ static ps_jobstore *open_store(const ps_config *cfg, ps_jobs *jobs) {
     char why[512];
     if (!cfg->redis[0]) return ps_jobstore_memory_new(jobs);
     ps_redis_store_config rc = {.workers = cfg->threads, .job_ttl = cfg->job_ttl,
+                                .max_kept_bytes = cfg->max_kept_bytes,
                                 .lease_seconds = cfg->job_lease, .max_losses = MAX_WORKER_LOSSES,
                                 .max_points = cfg->max_points, .name = cfg->replica_name};
     if (ps_redis_url_parse(cfg->redis, &rc.url, why, sizeof why)) {

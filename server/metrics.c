@@ -143,8 +143,10 @@ static void render_shared_queue(text *t, const ps_jobstore_stats *s) {
         put(t, "# HELP pointseg_shared_queue_length Jobs in the shared queue no worker took yet.\n"
                "# TYPE pointseg_shared_queue_length gauge\npointseg_shared_queue_length %zu\n"
                "# HELP pointseg_shared_pending Jobs taken by a worker (any replica), not finished.\n"
-               "# TYPE pointseg_shared_pending gauge\npointseg_shared_pending %zu\n",
-            s->queue_length, s->pending);
+               "# TYPE pointseg_shared_pending gauge\npointseg_shared_pending %zu\n"
+               "# HELP pointseg_shared_result_bytes Result bytes kept in Redis (any replica's jobs).\n"
+               "# TYPE pointseg_shared_result_bytes gauge\npointseg_shared_result_bytes %zu\n",
+            s->queue_length, s->pending, s->result_bytes);
     put(t, "# HELP pointseg_jobs_reclaimed_total Jobs this replica took over from a lost worker.\n"
            "# TYPE pointseg_jobs_reclaimed_total counter\npointseg_jobs_reclaimed_total %llu\n"
            "# HELP pointseg_jobs_lost_failed_total Jobs failed for losing their worker too often.\n"
