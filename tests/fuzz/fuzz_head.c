@@ -30,15 +30,21 @@ static double now_s(void) {
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-/* 1 when a problem+json answer's body is a JSON object in valid UTF-8. */
-static int problem_is_sound(const char *answer) {
-    const char *body = strstr(answer, "\r\n\r\n");
-    if (!strstr(answer, PS_PROBLEM_MEDIA_TYPE) || !body) return 1;
-    cJSON *doc = cJSON_Parse(body + 4);
-    char *clean = ps_problem_utf8(body + 4);
-    int sound = cJSON_IsObject(doc) && clean && !strcmp(clean, body + 4);
-    cJSON_Delete(doc);
-    free(clean);
+/* 1 when the answer in answer[0..len) is not problem+json, or its body is
+ * a JSON object in valid UTF-8.  Only the first answer counts: answers to
+ * pipelined requests may follow it in the buffer. */
+static int problem_is_sound(const char *answer, size_t len) {
+    char *first = strndup(answer, len);
+    const char *body = first ? strstr(first, "\r\n\r\n") : NULL;
+    int sound = 1;
+    if (body && strstr(first, PS_PROBLEM_MEDIA_TYPE) && strstr(first, PS_PROBLEM_MEDIA_TYPE) < body) {
+        cJSON *doc = cJSON_Parse(body + 4);
+        char *clean = ps_problem_utf8(body + 4);
+        sound = cJSON_IsObject(doc) && clean && !strcmp(clean, body + 4);
+        cJSON_Delete(doc);
+        free(clean);
+    }
+    free(first);
     return sound;
 }
 
@@ -52,7 +58,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     double took = now_s() - start;
     int status = whole && !strncmp(answer, "HTTP/1.", 7) ? atoi(answer + 9) : 0;
     if (took > PS_FUZZ_ANSWER_TIMEOUT_S - 1 || (status >= 500 && status != 501 && status != 503 && status != 505) ||
-        (whole && !problem_is_sound(answer))) {
+        (whole && !problem_is_sound(answer, whole))) {
         fprintf(stderr, "fuzz_head: status %d after %.3f s: %.300s\n", status, took, answer);
         __builtin_trap();
     }
