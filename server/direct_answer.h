@@ -8,7 +8,9 @@
  * proxies) would get no answer.  So such an answer is serialized here (the
  * status line, the response's headers, Date, Content-Length and
  * Connection: close, then the body) and sent before the connection is
- * resumed; libmicrohttpd then closes it.
+ * resumed; libmicrohttpd then closes it.  A client whose shutdown arrives
+ * in the microseconds between that check and libmicrohttpd queuing the
+ * answer still loses it.
  */
 #ifndef PS_DIRECT_ANSWER_H
 #define PS_DIRECT_ANSWER_H
