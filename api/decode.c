@@ -100,6 +100,7 @@ static int is_blank_input(const char *bytes, size_t len) {
 int ps_decode(const char *bytes, size_t len, const ps_decode_limits *lim,
               ps_pointset *out, ps_api_error *err) {
     memset(out, 0, sizeof *out);
+    bytes = ps_skip_bom(bytes, &len);
     if (is_blank_input(bytes, len)) return ps_api_fail(err, 400, "empty input");
     ps_format f = ps_detect_format(bytes, len);
     switch (f) {

@@ -176,6 +176,7 @@ int ps_decode_json(const char *bytes, size_t len, const ps_decode_limits *lim,
                    ps_pointset *out, ps_api_error *err) {
     const char *stop = NULL;
     memset(out, 0, sizeof *out);
+    bytes = ps_skip_bom(bytes, &len);
     cJSON *root = cJSON_ParseWithLengthOpts(bytes, len, &stop, 0);
     size_t at = stop && stop >= bytes ? (size_t)(stop - bytes) : 0;
     if (!root) return ps_api_fail(err, 400, "malformed JSON at byte offset %zu", at);

@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "pointseg.h"
 
@@ -14,6 +15,12 @@ ps_decode_limits ps_decode_limits_of(const ps_decode_limits *lim) {
         if (lim->max_dim > 0) out.max_dim = lim->max_dim;
     }
     return out;
+}
+
+const char *ps_skip_bom(const char *bytes, size_t *len) {
+    if (*len < 3 || memcmp(bytes, "\xEF\xBB\xBF", 3)) return bytes;
+    *len -= 3;
+    return bytes + 3;
 }
 
 int ps_decode_check_points(size_t n, const ps_decode_limits *lim, ps_api_error *err) {

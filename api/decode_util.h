@@ -15,6 +15,10 @@
  * field is 0. */
 ps_decode_limits ps_decode_limits_of(const ps_decode_limits *lim);
 
+/* Steps over a UTF-8 byte order mark at the start of a text: the bytes
+ * after it (*len shortened), or bytes unchanged. */
+const char *ps_skip_bom(const char *bytes, size_t *len);
+
 /* 413 when n points exceed lim.max_points. */
 int ps_decode_check_points(size_t n, const ps_decode_limits *lim, ps_api_error *err);
 

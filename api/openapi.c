@@ -115,7 +115,15 @@ static void add_problem(cJSON *responses, int status, const char *description) {
     cJSON_AddStringToObject(r, "description", description);
     cJSON_AddItemToObject(c, "application/problem+json", media(ref(problem_ref)));
     cJSON_AddItemToObject(r, "content", c);
-    cJSON_AddItemToObject(responses, code, r);
+    if (cJSON_GetObjectItem(responses, code)) cJSON_ReplaceItemInObject(responses, code, r);
+    else cJSON_AddItemToObject(responses, code, r);
+}
+
+/* An answer every route may give, unless the route describes its own. */
+static void add_common_problem(cJSON *responses, int status, const char *description) {
+    char code[8];
+    snprintf(code, sizeof code, "%d", status);
+    if (!cJSON_GetObjectItem(responses, code)) add_problem(responses, status, description);
 }
 
 static void add_response(cJSON *responses, const char *code, const char *description,
@@ -136,11 +144,18 @@ static cJSON *operation(const char *summary, const char *id, cJSON *responses) {
     cJSON_AddStringToObject(op, "operationId", id);
     add_problem(responses, 401, "a bearer token is configured and missing or wrong");
     add_problem(responses, 405, "method not allowed (see the Allow header)");
+    add_common_problem(responses, 400, "malformed request head: HTTP/1.1 without Host, conflicting "
+                       "Content-Length headers, more than 64 query parameters, a NUL byte in one");
+    add_common_problem(responses, 414, "URL path longer than 255 bytes");
+    add_common_problem(responses, 501, "a Transfer-Encoding other than chunked");
+    add_common_problem(responses, 503, "over --max-connections: only /healthz, /readyz and /metrics "
+                       "are served (see Retry-After)");
     cJSON_AddItemToObject(op, "responses", responses);
     return op;
 }
 
 #define SHARED_QUEUE_DOWN "the shared job queue (pointsegd --redis) is unreachable (see Retry-After)"
+#define JOB_ROUTE_503 "over --max-connections, or " SHARED_QUEUE_DOWN
 
 static cJSON *segment_responses(int async) {
     cJSON *r = cJSON_CreateObject();
@@ -157,12 +172,13 @@ static cJSON *segment_responses(int async) {
         cJSON_AddItemToObject(r, "200", ok);
     }
     add_problem(r, 400, "malformed body (bytes in no known format, not PLY for application/ply, "
-                        "not JSON for application/json) or unknown parameter");
+                        "not JSON for application/json) or request head, unknown parameter, two "
+                        "multipart file parts, a NUL byte in a parameter");
     add_problem(r, 413, "body, inflated body or point count over the limit");
     add_problem(r, 415, "a Content-Type or Content-Encoding the service does not take");
     add_problem(r, 422, "well-formed but unusable input, or a parameter out of range");
-    add_problem(r, 503, async ? "queue full, shutting down, or " SHARED_QUEUE_DOWN
-                              : "queue full (see Retry-After) or shutting down");
+    add_problem(r, 503, async ? "queue full, shutting down, over --max-connections, or " SHARED_QUEUE_DOWN
+                              : "queue full, shutting down, or over --max-connections (see Retry-After)");
     return r;
 }
 
@@ -201,11 +217,11 @@ static cJSON *job_path(void) {
     cJSON *path = cJSON_CreateObject(), *r = cJSON_CreateObject(), *d = cJSON_CreateObject();
     add_response(r, "200", "the job's status and progress", "application/json", ref("#/components/schemas/JobStatus"));
     add_problem(r, 404, "no such job (or it expired)");
-    add_problem(r, 503, SHARED_QUEUE_DOWN);
+    add_problem(r, 503, JOB_ROUTE_503);
     cJSON_AddItemToObject(path, "get", operation("status of a job", "getJob", r));
     add_response(d, "202", "cancellation requested; the job's status", "application/json", ref("#/components/schemas/JobStatus"));
     add_problem(d, 404, "no such job");
-    add_problem(d, 503, SHARED_QUEUE_DOWN);
+    add_problem(d, 503, JOB_ROUTE_503);
     cJSON_AddItemToObject(path, "delete", operation("cancel a job", "cancelJob", d));
     cJSON_AddItemToObject(path, "parameters", job_id_parameter());
     return path;
@@ -218,7 +234,7 @@ static cJSON *result_path(void) {
     add_problem(r, 409, "the job is not done (queued, running or cancelled)");
     add_problem(r, 422, "the job failed: its input was unusable");
     add_problem(r, 500, "the job failed: an internal error, or it lost its worker 3 times");
-    add_problem(r, 503, SHARED_QUEUE_DOWN);
+    add_problem(r, 503, JOB_ROUTE_503);
     cJSON_AddItemToObject(path, "get", operation("result of a finished job", "getJobResult", r));
     cJSON_AddItemToObject(path, "parameters", job_id_parameter());
     return path;

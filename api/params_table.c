@@ -7,6 +7,7 @@
  */
 #include "params_table.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -106,27 +107,49 @@ void ps_request_params_default(ps_request_params *rp) {
 
 /* ---- parsing text values ------------------------------------------------ */
 
+/* Decimal notation and nothing else: [-]digits[.digits][e[+-]digits].  No
+ * hexadecimal ("0x10"), no blanks or '+' in front, no "inf" or "nan". */
+static int is_decimal(const char *p) {
+    size_t digits;
+    if (*p == '-') p++;
+    for (digits = 0; isdigit((unsigned char)*p); p++) digits++;
+    if (!digits) return 0;
+    if (*p == '.') {
+        for (p++, digits = 0; isdigit((unsigned char)*p); p++) digits++;
+        if (!digits) return 0;
+    }
+    if (*p == 'e' || *p == 'E') {
+        p++;
+        if (*p == '+' || *p == '-') p++;
+        for (digits = 0; isdigit((unsigned char)*p); p++) digits++;
+        if (!digits) return 0;
+    }
+    return *p == 0;
+}
+
 /* An integer, also written as an integral number ("1e+05", "7.0": what a
  * JSON number turned into text may look like); "7.5" is not one. */
 static int parse_int(const char *text, long *out) {
     char *end;
+    if (!is_decimal(text)) return 0;
     errno = 0;
     long v = strtol(text, &end, 10);
-    if (end != text && *end == 0 && errno != ERANGE) {
+    if (*end == 0 && errno != ERANGE) {
         *out = v;
         return 1;
     }
     double d = strtod(text, &end);
-    if (end == text || *end != 0 || !(fabs(d) < 1e15) || d != floor(d)) return 0;
+    if (!(fabs(d) < 1e15) || d != floor(d)) return 0;
     *out = (long)d;
     return 1;
 }
 
 static int parse_double(const char *text, double *out) {
     char *end;
+    if (!is_decimal(text)) return 0;
     errno = 0;
     double v = strtod(text, &end);
-    if (end == text || *end != 0 || errno == ERANGE || !isfinite(v)) return 0;
+    if (errno == ERANGE || !isfinite(v)) return 0;
     *out = v;
     return 1;
 }

@@ -1,4 +1,5 @@
-/* body.c: request body assembly: gzip inflate, multipart split, size bound. */
+/* body.c: request body assembly: gzip inflate (every member of a
+ * concatenated stream), multipart split (one file part), size bound. */
 #include "body.h"
 
 #include <microhttpd.h>
@@ -16,7 +17,7 @@ struct ps_body {
     size_t len, cap;
     int gzip, multipart;
     z_stream z;
-    int z_ended;          /* saw Z_STREAM_END */
+    int z_ended;          /* the last member so far is complete */
     unsigned char *chunk; /* #INFLATE_CHUNK inflate output */
     struct MHD_PostProcessor *pp;
     int has_file;
@@ -91,6 +92,10 @@ static enum MHD_Result on_part(void *cls, enum MHD_ValueKind kind, const char *k
     (void)kind, (void)filename, (void)content_type, (void)transfer_encoding;
     if (!key) return MHD_YES;
     if (!strcmp(key, "file")) {
+        if (b->has_file && off == 0) {
+            ps_api_fail(&b->error, 400, "multipart/form-data body has more than one 'file' part");
+            return MHD_NO;
+        }
         b->has_file = 1;
         return append_data(b, data, size, &b->error) ? MHD_NO : MHD_YES;
     }
@@ -133,10 +138,16 @@ static int take(ps_body *b, const char *data, size_t len, ps_api_error *err) {
     return ps_api_fail(err, 400, "malformed multipart/form-data body");
 }
 
+/* Inflates data; a new gzip member may start where one ended ("cat a.gz
+ * b.gz"), so input after a member's end starts the next one. */
 static int inflate_feed(ps_body *b, const char *data, size_t len, ps_api_error *err) {
     b->z.next_in = (unsigned char *)(uintptr_t)data;
     b->z.avail_in = (uInt)len;
-    while (b->z.avail_in && !b->z_ended) {
+    while (b->z.avail_in) {
+        if (b->z_ended) {
+            inflateReset(&b->z);
+            b->z_ended = 0;
+        }
         b->z.next_out = b->chunk;
         b->z.avail_out = INFLATE_CHUNK;
         int rc = inflate(&b->z, Z_NO_FLUSH);

@@ -45,6 +45,16 @@ static const opt_spec options[] = {
     SIZE_OPT("max-points", max_points, 1, 1e12, "5000000", "most points in one request (413)"),
     INT_OPT("job-ttl", job_ttl, 0, 1e8, "600", "seconds a finished job is kept"),
     INT_OPT("max-jobs-kept", max_jobs_kept, 1, 1e7, "1000", "finished jobs kept at most"),
+    SIZE_OPT("max-kept-bytes", max_kept_bytes, 0, 1e15, "268435456",
+             "bytes of kept results at most (the oldest finished jobs go first)"),
+    INT_OPT("max-connections", max_connections, 1, 1e6, "1000",
+            "open connections; over it only health checks are served (8 more)"),
+    INT_OPT("max-connections-per-ip", max_connections_per_ip, 0, 1e6, "100",
+            "open connections from one address (0 = no limit)"),
+    INT_OPT("header-timeout", header_timeout, 1, 86400, "10",
+            "seconds to send a request's head (from connect, or the previous answer)"),
+    SIZE_OPT("min-upload-rate", min_upload_rate, 0, 1e12, "4096",
+             "bytes a second a body must average, after header-timeout (0 = none)"),
     INT_OPT("drain-seconds", drain_seconds, 0, 86400, "30", "on SIGTERM, wait this long for jobs"),
     TEXT_OPT("token", token, "", "bearer token required on every route but /healthz"),
     TEXT_OPT("cors-origin", cors_origin, "", "allowed CORS origins: * or a comma-separated list"),
@@ -153,7 +163,7 @@ void ps_config_usage(FILE *out) {
                  "Every option is also read from the environment variable shown.\n\n");
     for (size_t i = 0; i < N_OPTIONS; i++) {
         env_name(options[i].name, env, sizeof env);
-        fprintf(out, "  --%-15s %-24s %s (default: %s)\n", options[i].name, env, options[i].help,
+        fprintf(out, "  --%-22s %-31s %s (default: %s)\n", options[i].name, env, options[i].help,
                 options[i].default_text[0] ? options[i].default_text : "none");
     }
     fprintf(out, "  --help, --version\n");

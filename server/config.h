@@ -18,6 +18,11 @@ typedef struct ps_config {
     size_t max_points;     /* --max-points, default 5,000,000 */
     int job_ttl;           /* --job-ttl: seconds a finished job is kept, default 600 */
     int max_jobs_kept;     /* --max-jobs-kept: finished jobs kept, default 1000 */
+    size_t max_kept_bytes; /* --max-kept-bytes: their results' bytes, default 256 MiB */
+    int max_connections;   /* --max-connections: open connections, default 1000 (+ health room) */
+    int max_connections_per_ip; /* --max-connections-per-ip: default 100, 0 = no limit */
+    int header_timeout;    /* --header-timeout: seconds to send a request head, default 10 */
+    size_t min_upload_rate; /* --min-upload-rate: bytes/s of a body, default 4096, 0 = none */
     int drain_seconds;     /* --drain-seconds: wait for running jobs on SIGTERM, default 30 */
     char token[256];       /* --token: bearer token, "" = none */
     char cors_origin[512]; /* --cors-origin: "*" or comma-separated origins, "" = none */

@@ -1,9 +1,12 @@
 /* http.c: libmicrohttpd start-up and shut-down, the request callbacks
  * (first call, upload pieces, resume), the request log, and the watcher
- * that cancels the job of a client that went away. */
+ * that cuts slow connections (guard.h) and cancels the job of a client
+ * that went away. */
 #include "http.h"
 
+#include "admit.h"
 #include "deadline.h"
+#include "direct_answer.h"
 #include "openapi.h"
 #include "request.h"
 #include "respond.h"
@@ -22,6 +25,9 @@
 
 #define WATCH_PERIOD_MS 100
 #define IO_THREADS 4
+#define HEALTH_ROOM 8                  /* connections over --max-connections, for health checks */
+#define DRAIN_LIMIT (1u << 20)         /* bodies read to keep the connection after an early error */
+#define PROCESSING "HTTP/1.1 102 Processing\r\n\r\n"
 
 struct ps_http {
     ps_server srv;
@@ -34,15 +40,12 @@ static double monotonic_seconds(void) {
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static ps_request *request_new(ps_server *s, struct MHD_Connection *conn, const char *url,
-                               const char *method) {
+static ps_request *request_new(ps_server *s, struct MHD_Connection *conn) {
     ps_request *r = calloc(1, sizeof *r);
     if (!r) return NULL;
     r->srv = s;
     r->conn = conn;
     r->t0 = monotonic_seconds();
-    snprintf(r->method, sizeof r->method, "%s", method);
-    snprintf(r->path, sizeof r->path, "%s", url);
     r->route = PS_ROUTE_OTHER;
     pthread_mutex_lock(&s->lock);
     s->in_flight++;
@@ -50,23 +53,74 @@ static ps_request *request_new(ps_server *s, struct MHD_Connection *conn, const 
     return r;
 }
 
+/* The request line is in: the request starts here, before libmicrohttpd
+ * splits the query string. */
+static void *on_uri(void *cls, const char *uri, struct MHD_Connection *conn) {
+    ps_request *r = request_new(cls, conn);
+    if (r) r->query_cut = ps_admit_cut_query(uri);
+    return r;
+}
+
+static ps_guard_conn *guard_conn_of(struct MHD_Connection *conn) {
+    const union MHD_ConnectionInfo *info = MHD_get_connection_info(conn, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
+    return info ? info->socket_context : NULL;
+}
+
+/* The head is in.  A request without a body is answered on the next call:
+ * libmicrohttpd closes the connection after an answer queued on the first
+ * one.  Early errors on a body of up to DRAIN_LIMIT bytes wait until it is
+ * read, for the same reason. */
+static enum MHD_Result head_received(ps_request *r, const char *url, const char *method, const char *version) {
+    unsigned long long declared;
+    r->seen = 1;
+    snprintf(r->method, sizeof r->method, "%s", method);
+    snprintf(r->path, sizeof r->path, "%s", url);
+    r->path_too_long = strlen(url) >= sizeof r->path;
+    r->http11 = version && !strcmp(version, MHD_HTTP_VERSION_1_1);
+    r->guard_conn = guard_conn_of(r->conn);
+    ps_guard_request_begun(r->srv->guard, r->guard_conn);
+    ps_routes_match(r);
+    int refused = ps_admit_check(r);
+    if (refused >= 0) return (enum MHD_Result)refused;
+    if (!ps_admit_has_body(r, &declared)) return MHD_YES;
+    r->routed = 1;
+    r->defer_answer = declared > 0 && declared <= DRAIN_LIMIT;
+    enum MHD_Result rc = ps_routes_begin(r);
+    r->defer_answer = 0;
+    return rc;
+}
+
+static enum MHD_Result queue_pending(ps_request *r) {
+    enum MHD_Result rc = MHD_queue_response(r->conn, (unsigned)r->status, r->pending);
+    MHD_destroy_response(r->pending);
+    r->pending = NULL;
+    return rc;
+}
+
 static enum MHD_Result on_request(void *cls, struct MHD_Connection *conn, const char *url,
                                   const char *method, const char *version, const char *upload,
                                   size_t *upload_size, void **state) {
     ps_request *r = *state;
-    (void)version;
     if (!r) {
-        r = request_new(cls, conn, url, method);
+        r = request_new(cls, conn);
         if (!r) return MHD_NO;
         *state = r;
-        return ps_routes_begin(r);
     }
+    if (!r->seen) return head_received(r, url, method, version);
     if (*upload_size) {
+        ps_guard_received(r->srv->guard, r->guard_conn, *upload_size);
         if (!r->status && r->body && !r->failed && ps_body_feed(r->body, upload, *upload_size, &r->error))
             r->failed = 1;
         *upload_size = 0;
         return MHD_YES;
     }
+    ps_guard_upload_done(r->srv->guard, r->guard_conn);
+    if (r->pending) return queue_pending(r);
+    if (!r->routed) {
+        r->routed = 1;
+        return ps_routes_begin(r);
+    }
+    if (r->answer_direct) return MHD_NO; /* answered on the socket: close */
     if (r->status) return MHD_YES;
     if (r->suspended) return ps_routes_resumed(r);
     if (r->body) return ps_routes_upload_done(r);
@@ -81,11 +135,13 @@ static void on_completed(void *cls, struct MHD_Connection *conn, void **state,
     if (!r) return;
     double seconds = monotonic_seconds() - r->t0;
     int status = r->status ? r->status : 499; /* answered nothing: the client went away */
-    if (toe != MHD_REQUEST_TERMINATED_COMPLETED_OK && status < 400) status = 499;
+    if (toe != MHD_REQUEST_TERMINATED_COMPLETED_OK && status < 400 && !r->sent_direct) status = 499;
     ps_metrics_observe(r->route, status, seconds);
     if (!s->cfg->quiet)
         fprintf(stderr, "%s %s %d %zu %.1fms%s%s\n", r->method, r->path, status, r->bytes,
                 seconds * 1e3, r->job_id[0] ? " job=" : "", r->job_id);
+    if (r->pending) MHD_destroy_response(r->pending);
+    ps_guard_answered(s->guard, r->guard_conn);
     ps_job_release(r->job);
     ps_body_free(r->body);
     free(r);
@@ -96,13 +152,30 @@ static void on_completed(void *cls, struct MHD_Connection *conn, void **state,
     pthread_mutex_unlock(&s->lock);
 }
 
-/* 1 when the peer of a suspended connection closed it. */
-static int peer_closed(struct MHD_Connection *conn) {
-    const union MHD_ConnectionInfo *info = MHD_get_connection_info(conn, MHD_CONNECTION_INFO_CONNECTION_FD);
+/* 1 when the socket has a pending error (a reset after the peer's FIN is
+ * only seen there: recv keeps answering the FIN). */
+static int socket_failed(int fd) {
+    int error = 0;
+    socklen_t len = sizeof error;
+    return getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &len) == 0 && error != 0;
+}
+
+/* 1 when the client of a suspended request is gone.  A read EOF alone is
+ * no proof: a client may shut down its write side and wait for the answer.
+ * So on EOF an HTTP/1.1 client gets an interim 102 (which clients skip);
+ * a peer that closed for good answers it with a reset, seen as a socket
+ * error on a later call.  The caller holds the server lock. */
+static int client_gone(ps_request *r) {
     char c;
-    if (!info) return 0;
-    ssize_t n = recv(info->connect_fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
-    return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR);
+    int fd = ps_connection_fd(r->conn);
+    if (fd < 0) return 0;
+    ssize_t n = recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
+    if (n > 0 || (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))) return 0;
+    if (n < 0) return 1;
+    if (!r->http11) return 0;
+    if (r->probed) return socket_failed(fd);
+    r->probed = 1;
+    return send(fd, PROCESSING, sizeof PROCESSING - 1, MSG_NOSIGNAL | MSG_DONTWAIT) != sizeof PROCESSING - 1;
 }
 
 static void cancel_abandoned(ps_server *s) {
@@ -110,7 +183,7 @@ static void cancel_abandoned(ps_server *s) {
     size_t n = 0;
     pthread_mutex_lock(&s->lock);
     for (ps_request *r = s->waiting; r && n < 64; r = r->next) {
-        if (r->cancel_sent || !r->job_id[0] || !peer_closed(r->conn)) continue;
+        if (r->cancel_sent || !r->job_id[0] || !client_gone(r)) continue;
         r->cancel_sent = 1;
         memcpy(ids[n++], r->job_id, sizeof ids[0]);
     }
@@ -130,6 +203,7 @@ static void *watch_main(void *arg) {
         pthread_cond_timedwait(&s->changed, &s->lock, &ts);
         if (s->stop_watch) break;
         pthread_mutex_unlock(&s->lock);
+        ps_metrics_connections_cut(ps_guard_sweep(s->guard));
         cancel_abandoned(s);
         pthread_mutex_lock(&s->lock);
     }
@@ -137,17 +211,34 @@ static void *watch_main(void *arg) {
     return NULL;
 }
 
+static void on_connection(void *cls, struct MHD_Connection *conn, void **socket_context,
+                          enum MHD_ConnectionNotificationCode code) {
+    ps_server *s = cls;
+    if (code == MHD_CONNECTION_NOTIFY_STARTED) {
+        int fd = ps_connection_fd(conn);
+        *socket_context = fd >= 0 ? ps_guard_opened(s->guard, fd) : NULL;
+    } else {
+        ps_guard_closed(s->guard, *socket_context);
+        *socket_context = NULL;
+    }
+}
+
 /* poll(), not epoll: with epoll worker threads, libmicrohttpd's
  * MHD_quiesce_daemon (SIGTERM's first step) races with the workers over
  * removing the listening socket from their epoll sets, and the loser
  * aborts the process (about 1 stop in 300 under incoming connections). */
 static struct MHD_Daemon *start_daemon(ps_http *h, const struct sockaddr_in *addr) {
+    const ps_config *cfg = h->srv.cfg;
     unsigned flags = MHD_USE_POLL_INTERNAL_THREAD | MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG;
     unsigned pool = IO_THREADS;
-    return MHD_start_daemon(flags, (uint16_t)h->srv.cfg->port, NULL, NULL, on_request, &h->srv,
+    return MHD_start_daemon(flags, (uint16_t)cfg->port, NULL, NULL, on_request, &h->srv,
                             MHD_OPTION_SOCK_ADDR, addr,
                             MHD_OPTION_THREAD_POOL_SIZE, pool,
+                            MHD_OPTION_URI_LOG_CALLBACK, on_uri, &h->srv,
                             MHD_OPTION_NOTIFY_COMPLETED, on_completed, &h->srv,
+                            MHD_OPTION_NOTIFY_CONNECTION, on_connection, &h->srv,
+                            MHD_OPTION_CONNECTION_LIMIT, (unsigned)(cfg->max_connections + HEALTH_ROOM),
+                            MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned)cfg->max_connections_per_ip,
                             MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)120,
                             MHD_OPTION_END);
 }
@@ -167,7 +258,8 @@ ps_http *ps_http_start(const ps_config *cfg, ps_jobs *jobs, ps_jobstore *store, 
     pthread_mutex_init(&h->srv.lock, NULL);
     pthread_cond_init(&h->srv.changed, NULL);
     h->srv.openapi = ps_openapi_json(&h->srv.openapi_len);
-    if (!h->srv.openapi) {
+    h->srv.guard = ps_guard_new(cfg->max_connections, cfg->header_timeout, (double)cfg->min_upload_rate);
+    if (!h->srv.openapi || !h->srv.guard) {
         snprintf(why, why_cap, "out of memory");
         ps_http_stop(h);
         return NULL;
@@ -211,6 +303,7 @@ void ps_http_stop(ps_http *h) {
         pthread_join(h->srv.watcher, NULL);
     }
     if (h->srv.mhd) MHD_stop_daemon(h->srv.mhd);
+    ps_guard_free(h->srv.guard);
     pthread_cond_destroy(&h->srv.changed);
     pthread_mutex_destroy(&h->srv.lock);
     free(h->srv.openapi);

@@ -1,6 +1,6 @@
 /*
  * http.h: the HTTP front of pointsegd on libmicrohttpd: its own I/O threads
- * (internal polling, epoll, a thread pool), never running a segmentation;
+ * (internal polling with poll(), a thread pool), never running a segmentation;
  * requests become jobs of the job backend (jobs.h).
  */
 #ifndef PS_HTTP_H

@@ -27,6 +27,7 @@ struct ps_job {
     ps_request_params params;
     ps_job_done_fn on_done;
     void *user;
+    int waited_for;             /* submitted with on_done: not kept once final */
     char *doc;                  /* DONE: the encoded document */
     size_t doc_len;
     const char *media_type;
@@ -103,17 +104,25 @@ static void unlink_locked(ps_jobs *q, ps_job *job) {
 
 static int is_final(ps_job_state s) { return s >= PS_JOB_DONE; }
 
-/* Unlinks finished jobs past their time or beyond the count, oldest first,
- * onto *dead (chained by next) for freeing outside the lock. */
+/* 1 when a finished job must leave the registry: its request took its
+ * result, or it is past its time. */
+static int expired(const ps_job *j, double limit) { return j->waited_for || j->finished <= limit; }
+
+/* Unlinks finished jobs that expired, or beyond the count or the byte
+ * budget, oldest first, onto *dead (chained by next) for freeing outside
+ * the lock. */
 static void purge_locked(ps_jobs *q, ps_job **dead) {
-    size_t finished = 0;
+    size_t finished = 0, bytes = 0;
     double limit = now_seconds() - q->cfg.ttl_seconds;
-    for (ps_job *j = q->first; j; j = j->next) finished += is_final(j->state);
+    for (ps_job *j = q->first; j; j = j->next)
+        if (is_final(j->state)) finished++, bytes += j->doc_len;
     for (ps_job *j = q->first, *next; j; j = next) {
         next = j->next;
         if (!is_final(j->state)) continue;
-        if (j->finished > limit && finished <= (size_t)q->cfg.max_finished) continue;
+        if (!expired(j, limit) && finished <= (size_t)q->cfg.max_finished && bytes <= q->cfg.max_kept_bytes)
+            continue;
         finished--;
+        bytes -= j->doc_len;
         unlink_locked(q, j);
         release_locked(j, dead);
     }
@@ -259,6 +268,7 @@ static ps_job *new_job(ps_jobs *q, ps_pointset *points, const ps_request_params 
     job->params = *params;
     job->on_done = on_done;
     job->user = user;
+    job->waited_for = on_done != NULL;
     job->refs = 3; /* registry, ring, caller */
     return job;
 }
@@ -287,10 +297,10 @@ int ps_jobs_submit(ps_jobs *q, ps_pointset *points, const ps_request_params *par
     q->last = job;
     q->registered++;
     purge_locked(q, &dead);
+    *out = job; /* before any worker can finish it and call on_done */
     pthread_cond_signal(&q->work);
     pthread_mutex_unlock(&q->lock);
     free_chain(dead);
-    *out = job;
     return 0;
 }
 
@@ -352,6 +362,8 @@ void ps_jobs_get_stats(ps_jobs *q, ps_jobs_stats *st) {
         st->queued += q->ring[(q->head + i) % (size_t)q->cfg.queue_size]->state == PS_JOB_QUEUED;
     st->running = q->running;
     st->kept = q->registered;
+    st->kept_bytes = 0;
+    for (ps_job *j = q->first; j; j = j->next) st->kept_bytes += is_final(j->state) ? j->doc_len : 0;
     st->capacity = (size_t)q->cfg.queue_size;
     st->points_segmented = q->points_segmented;
     st->jobs_done = q->n_done;

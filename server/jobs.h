@@ -1,7 +1,10 @@
 /*
  * jobs.h: the job queue behind the daemon: a bounded queue of segmentation
  * jobs served by a fixed pool of worker threads, and a registry of jobs by
- * id (finished jobs are kept for a time and a count, then freed).
+ * id (finished jobs are kept for a time, a count and a byte budget, then
+ * freed).  A job submitted with an on_done callback belongs to a waiting
+ * request: it leaves the registry once final, and its result is freed with
+ * the request's reference, once the answer is sent.
  *
  * This header is the whole interface the HTTP layer uses, so another backend
  * (a distributed queue) can implement it later; jobs.c is the in-process
@@ -43,6 +46,7 @@ typedef struct ps_jobs_config {
     int queue_size;    /* jobs waiting at most (>= 1) */
     int ttl_seconds;   /* finished jobs are freed after this */
     int max_finished;  /* and when more are kept than this, oldest first */
+    size_t max_kept_bytes; /* and when their results hold more bytes than this */
     const char *id_prefix; /* prepended to ids as "<prefix>-"; NULL or "" = none */
 } ps_jobs_config;
 
@@ -60,6 +64,7 @@ typedef struct ps_job_status {
 
 typedef struct ps_jobs_stats {
     size_t queued, running, kept, capacity;
+    size_t kept_bytes; /* result bytes held by the registry */
     unsigned long long points_segmented, jobs_done, jobs_failed, jobs_cancelled;
 } ps_jobs_stats;
 
@@ -67,8 +72,8 @@ typedef struct ps_jobs_stats {
 ps_jobs *ps_jobs_start(const ps_jobs_config *cfg);
 
 /* Queues a job on points (moved into the job: *points is zeroed) with params.
- * on_done (may be NULL) is called with user once the job is final.  Returns
- * 0 and a referenced *job, or 503 when the queue is full or stopping, 500
+ * on_done (may be NULL) is called with user once the job is final, and *job
+ * is set before it is.  Returns 0 and a referenced *job, or 503 when the queue is full or stopping, 500
  * when out of memory (points are then freed). */
 int ps_jobs_submit(ps_jobs *q, ps_pointset *points, const ps_request_params *params,
                    ps_job_done_fn on_done, void *user, ps_job **job);

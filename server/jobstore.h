@@ -47,6 +47,7 @@ typedef struct ps_jobstore_stats {
     int reachable;                     /* Redis answered just now */
     size_t queue_length;               /* jobs in the shared queue no worker took yet */
     size_t pending;                    /* taken by a worker, not finished */
+    size_t result_bytes;               /* results kept in the shared store (all replicas) */
     unsigned long long reclaimed;      /* jobs this replica took over from a lost worker */
     unsigned long long lost_failed;    /* jobs failed for having lost their worker too often */
     unsigned long long handed_back;    /* jobs given back to the queue on shutdown */

@@ -37,7 +37,7 @@ static const char cancel_script[] =
 static ps_redis_store *store_of(ps_jobstore *s) { return (ps_redis_store *)s; }
 
 void ps_redis_job_key(const char *id, const char *suffix, char *out, size_t cap) {
-    snprintf(out, cap, "pointseg:job:%s%s", id, suffix ? suffix : "");
+    snprintf(out, cap, PS_REDIS_JOB_PREFIX "%s%s", id, suffix ? suffix : "");
 }
 
 void ps_redis_now_text(char *out, size_t cap) {
@@ -225,15 +225,19 @@ static int queue_figures(ps_redis_link *l, ps_jobstore_stats *st) {
     redisReply *len = ps_redis_runv(l, why, sizeof why, "XLEN", PS_REDIS_STREAM, (char *)NULL);
     redisReply *pend = len ? ps_redis_runv(l, why, sizeof why, "XPENDING", PS_REDIS_STREAM,
                                            PS_REDIS_GROUP, (char *)NULL) : NULL;
+    redisReply *kept = pend ? ps_redis_runv(l, why, sizeof why, "GET", PS_REDIS_RESULT_BYTES, (char *)NULL)
+                            : NULL;
     int ok = len && len->type == REDIS_REPLY_INTEGER;
     size_t pending = pend && pend->type == REDIS_REPLY_ARRAY && pend->elements &&
                      pend->element[0]->type == REDIS_REPLY_INTEGER ? (size_t)pend->element[0]->integer : 0;
     if (ok) {
         st->pending = pending;
         st->queue_length = (size_t)len->integer > pending ? (size_t)len->integer - pending : 0;
+        st->result_bytes = kept && kept->type == REDIS_REPLY_STRING ? (size_t)strtoull(kept->str, NULL, 10) : 0;
     }
     if (len) freeReplyObject(len);
     if (pend) freeReplyObject(pend);
+    if (kept) freeReplyObject(kept);
     return ok;
 }
 

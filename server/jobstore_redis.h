@@ -2,8 +2,9 @@
  * jobstore_redis.h: the job store shared by every replica (--redis): a job's
  * input (the body as received, after gzip, and its text parameters), its
  * status, progress, error and result live in Redis under its id and expire
- * after the job TTL; jobs queue on a Redis Stream read by one consumer group
- * of every replica's workers.
+ * after the job TTL, or earlier when the results kept exceed the byte budget
+ * (oldest first, as the in-process store does); jobs queue on a Redis Stream
+ * read by one consumer group of every replica's workers.
  *
  * A worker holds a lease on its job (the stream's pending entry, renewed
  * while it runs); a job whose lease lapses is taken over by another worker
@@ -25,6 +26,7 @@ typedef struct ps_redis_store_config {
     ps_redis_url url;
     int workers;          /* threads taking jobs; 0 = submit and read only */
     int job_ttl;          /* seconds a finished job is kept */
+    size_t max_kept_bytes; /* results kept in Redis at most (all replicas): the oldest go first */
     int lease_seconds;    /* a worker that has not renewed for this long has lost its job */
     int max_losses;       /* losses that fail a job */
     size_t max_points;    /* what the workers decode at most */

@@ -8,7 +8,9 @@
  * PS_REDIS_GROUP; per job a hash (state, phase, fraction, created, started,
  * finished, points, media, accept, params, losses, cancel, worker,
  * error_status, error, media_type), its input (":body") and its document
- * (":result").
+ * (":result").  The kept documents are indexed in PS_REDIS_RESULTS (members
+ * "<id>:<bytes>" scored by their finish time) and their bytes summed in
+ * PS_REDIS_RESULT_BYTES, so the oldest go first when over the byte budget.
  */
 #ifndef PS_JOBSTORE_REDIS_PRIVATE_H
 #define PS_JOBSTORE_REDIS_PRIVATE_H
@@ -19,6 +21,9 @@
 
 #define PS_REDIS_STREAM "pointseg:jobs"
 #define PS_REDIS_GROUP "pointseg"
+#define PS_REDIS_JOB_PREFIX "pointseg:job:"
+#define PS_REDIS_RESULTS "pointseg:results"
+#define PS_REDIS_RESULT_BYTES "pointseg:result_bytes"
 
 typedef struct ps_redis_store ps_redis_store;
 

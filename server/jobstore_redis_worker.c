@@ -58,15 +58,39 @@ static const char renew_script[] =
     "if redis.call('HGET', KEYS[2], 'cancel') == '1' then return 1 end\n"
     "return 0\n";
 
+/* A result leaves the index (and its bytes the sum); returns its job id. */
+#define FORGET_RESULT \
+    "local function forget(member)\n" \
+    "  redis.call('DECRBY', KEYS[6], tonumber(string.match(member, ':(%d+)$')))\n" \
+    "  redis.call('ZREM', KEYS[5], member)\n" \
+    "  return string.match(member, '^(.*):%d+$') end\n"
+
+/* Keeps the new result (ARGV[10] of job ARGV[13]) and the kept ones within
+ * the byte budget ARGV[14]: results past their time leave the index, then
+ * the oldest jobs go whole (their status too, as in the in-process store). */
+#define KEEP_RESULT \
+    "redis.call('SET', KEYS[4], ARGV[10], 'EX', ARGV[6])\n" \
+    "redis.call('INCRBY', KEYS[6], #ARGV[10])\n" \
+    "redis.call('ZADD', KEYS[5], ARGV[5], ARGV[13] .. ':' .. #ARGV[10])\n" \
+    "local past = tonumber(ARGV[5]) - tonumber(ARGV[6])\n" \
+    "for _, m in ipairs(redis.call('ZRANGEBYSCORE', KEYS[5], '-inf', '(' .. past)) do forget(m) end\n" \
+    "while tonumber(redis.call('GET', KEYS[6])) > tonumber(ARGV[14]) do\n" \
+    "  local oldest = redis.call('ZRANGE', KEYS[5], 0, 0)\n" \
+    "  if #oldest == 0 then break end\n" \
+    "  local id = forget(oldest[1])\n" \
+    "  redis.call('DEL', '" PS_REDIS_JOB_PREFIX "' .. id, '" PS_REDIS_JOB_PREFIX "' .. id .. ':result')\n" \
+    "end\n"
+
 static const char finish_script[] =
     OWNER_CHECK
+    FORGET_RESULT
     "redis.call('HSET', KEYS[2], 'state', ARGV[4], 'finished', ARGV[5], 'media_type', ARGV[7],"
     "  'error_status', ARGV[8], 'error', ARGV[9], 'phase', ARGV[11], 'fraction', ARGV[12])\n"
-    "if ARGV[4] == 'done' then redis.call('SET', KEYS[4], ARGV[10], 'EX', ARGV[6]) end\n"
     "redis.call('EXPIRE', KEYS[2], ARGV[6])\n"
     "redis.call('DEL', KEYS[3])\n"
     "redis.call('XACK', KEYS[1], ARGV[1], ARGV[2])\n"
     "redis.call('XDEL', KEYS[1], ARGV[2])\n"
+    "if ARGV[4] == 'done' then\n" KEEP_RESULT "end\n"
     "return 1\n";
 
 static const char handback_script[] =
@@ -229,24 +253,27 @@ static long long run_owned(ps_redis_slot *w, ps_redis_link *l, const char *scrip
 
 static void store_outcome(ps_redis_slot *w, ps_redis_link *l, const taken *t, const ps_run_outcome *out) {
     static const char *const state_names[] = {"done", "failed", "cancelled"};
-    char hash[160], body[160], result[160], now[32], ttl[32], status[16], phase[16], fraction[32];
+    char hash[160], body[160], result[160], now[32], ttl[32], status[16], phase[16], fraction[32],
+        budget[32];
     ps_redis_job_key(t->id, NULL, hash, sizeof hash);
     ps_redis_job_key(t->id, ":body", body, sizeof body);
     ps_redis_job_key(t->id, ":result", result, sizeof result);
     ps_redis_now_text(now, sizeof now);
     snprintf(ttl, sizeof ttl, "%d", w->store->cfg.job_ttl > 0 ? w->store->cfg.job_ttl : 1);
     snprintf(status, sizeof status, "%d", out->error_status);
+    snprintf(budget, sizeof budget, "%zu", w->store->cfg.max_kept_bytes);
     pthread_mutex_lock(&w->store->lock);
     snprintf(phase, sizeof phase, "%d", (int)w->phase);
     snprintf(fraction, sizeof fraction, "%.4f", w->fraction);
     pthread_mutex_unlock(&w->store->lock);
-    const char *args[] = {PS_REDIS_STREAM, hash, body, result, PS_REDIS_GROUP, t->entry, w->consumer,
-                          state_names[out->state], now, ttl,
+    const char *args[] = {PS_REDIS_STREAM, hash, body, result, PS_REDIS_RESULTS, PS_REDIS_RESULT_BYTES,
+                          PS_REDIS_GROUP, t->entry, w->consumer, state_names[out->state], now, ttl,
                           out->media_type ? out->media_type : "", status, out->error,
-                          out->doc ? out->doc : "", phase, fraction};
-    size_t lens[16];
-    for (int i = 0; i < 16; i++) lens[i] = i == 13 ? out->doc_len : strlen(args[i]);
-    run_owned(w, l, finish_script, 4, args, lens, 16);
+                          out->doc ? out->doc : "", phase, fraction, t->id, budget};
+    enum { N_ARGS = sizeof args / sizeof args[0], DOC_ARG = 15 };
+    size_t lens[N_ARGS];
+    for (int i = 0; i < N_ARGS; i++) lens[i] = i == DOC_ARG ? out->doc_len : strlen(args[i]);
+    run_owned(w, l, finish_script, 6, args, lens, N_ARGS);
 }
 
 static void hand_back(ps_redis_slot *w, ps_redis_link *l, const taken *t) {

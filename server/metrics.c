@@ -23,6 +23,7 @@ typedef struct histogram {
 static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static unsigned long long requests[PS_ROUTE_COUNT][N_STATUS];
 static histogram latency[PS_ROUTE_COUNT];
+static unsigned long long connections_cut;
 
 const char *ps_route_name(ps_route r) {
     static const char *const names[PS_ROUTE_COUNT] = {
@@ -41,6 +42,13 @@ void ps_metrics_observe(ps_route route, int status, double seconds) {
     if (b < N_BUCKETS) latency[route].bucket[b]++;
     latency[route].count++;
     latency[route].sum += seconds;
+    pthread_mutex_unlock(&lock);
+}
+
+void ps_metrics_connections_cut(size_t n) {
+    if (!n) return;
+    pthread_mutex_lock(&lock);
+    connections_cut += n;
     pthread_mutex_unlock(&lock);
 }
 
@@ -110,8 +118,11 @@ static void render_jobs(text *t, const ps_jobs_stats *j) {
            "# HELP pointseg_jobs_running Jobs being segmented.\n# TYPE pointseg_jobs_running gauge\n"
            "pointseg_jobs_running %zu\n"
            "# HELP pointseg_jobs_kept Jobs in the registry.\n# TYPE pointseg_jobs_kept gauge\n"
-           "pointseg_jobs_kept %zu\n",
-        j->queued, j->capacity, j->running, j->kept);
+           "pointseg_jobs_kept %zu\n"
+           "# HELP pointseg_jobs_kept_bytes Result bytes held by kept jobs.\n"
+           "# TYPE pointseg_jobs_kept_bytes gauge\n"
+           "pointseg_jobs_kept_bytes %zu\n",
+        j->queued, j->capacity, j->running, j->kept, j->kept_bytes);
     put(t, "# HELP pointseg_jobs_finished_total Jobs finished, by outcome.\n"
            "# TYPE pointseg_jobs_finished_total counter\n"
            "pointseg_jobs_finished_total{outcome=\"done\"} %llu\n"
@@ -132,8 +143,10 @@ static void render_shared_queue(text *t, const ps_jobstore_stats *s) {
         put(t, "# HELP pointseg_shared_queue_length Jobs in the shared queue no worker took yet.\n"
                "# TYPE pointseg_shared_queue_length gauge\npointseg_shared_queue_length %zu\n"
                "# HELP pointseg_shared_pending Jobs taken by a worker (any replica), not finished.\n"
-               "# TYPE pointseg_shared_pending gauge\npointseg_shared_pending %zu\n",
-            s->queue_length, s->pending);
+               "# TYPE pointseg_shared_pending gauge\npointseg_shared_pending %zu\n"
+               "# HELP pointseg_shared_result_bytes Result bytes kept in Redis (any replica's jobs).\n"
+               "# TYPE pointseg_shared_result_bytes gauge\npointseg_shared_result_bytes %zu\n",
+            s->queue_length, s->pending, s->result_bytes);
     put(t, "# HELP pointseg_jobs_reclaimed_total Jobs this replica took over from a lost worker.\n"
            "# TYPE pointseg_jobs_reclaimed_total counter\npointseg_jobs_reclaimed_total %llu\n"
            "# HELP pointseg_jobs_lost_failed_total Jobs failed for losing their worker too often.\n"
@@ -157,6 +170,9 @@ char *ps_metrics_render(const ps_jobs_stats *jobs, const ps_jobstore_stats *stor
     pthread_mutex_lock(&lock);
     render_requests(&t);
     render_latency(&t);
+    put(&t, "# HELP pointseg_connections_cut_total Connections closed for a slow request head or body, "
+            "or idle too long.\n# TYPE pointseg_connections_cut_total counter\npointseg_connections_cut_total %llu\n",
+        connections_cut);
     pthread_mutex_unlock(&lock);
     render_jobs(&t, jobs);
     if (store->shared) render_shared_queue(&t, store);

@@ -3,7 +3,8 @@
  * a request latency histogram per route, and (from the job backend's stats)
  * queue depth, running jobs, jobs by outcome and points segmented; with a
  * Redis job store, the shared queue's length and pending jobs, reclaimed
- * jobs, and Redis commands, errors and latency.
+ * jobs, and Redis commands, errors and latency; and connections the guard
+ * cut (guard.h).
  * Thread safe.
  */
 #ifndef PS_METRICS_H
@@ -24,6 +25,9 @@ const char *ps_route_name(ps_route r); /* "/segment", "/jobs/{id}", ... */
 
 /* Counts one answered request that took `seconds`. */
 void ps_metrics_observe(ps_route route, int status, double seconds);
+
+/* Counts n connections cut for being slow, idle or abandoned. */
+void ps_metrics_connections_cut(size_t n);
 
 /* The text exposition document (malloc'ed, *len its length), or NULL. */
 char *ps_metrics_render(const ps_jobs_stats *jobs, const ps_jobstore_stats *store, size_t *len);

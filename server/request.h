@@ -13,13 +13,17 @@
 #include "api_error.h"
 #include "body.h"
 #include "config.h"
+#include "guard.h"
 #include "intake.h"
 #include "jobs.h"
 #include "jobstore.h"
 #include "metrics.h"
 
+#define PS_MAX_QUERY_PARAMS 64
+
 struct MHD_Connection;
 struct MHD_Daemon;
+struct MHD_Response;
 typedef struct ps_request ps_request;
 
 typedef struct ps_server {
@@ -27,6 +31,7 @@ typedef struct ps_server {
     ps_jobs *jobs;            /* the in-process queue: POST /segment */
     ps_jobstore *store;       /* asynchronous jobs: on jobs, or on Redis */
     struct MHD_Daemon *mhd;
+    ps_guard *guard;          /* connection deadlines, health room */
     pthread_mutex_t lock;     /* guards waiting, in_flight, stop_watch */
     pthread_cond_t changed;   /* in_flight dropped, or stop_watch set */
     ps_request *waiting;      /* suspended synchronous requests */
@@ -42,8 +47,16 @@ struct ps_request {
     ps_server *srv;
     struct MHD_Connection *conn;
     double t0;                /* monotonic seconds at the first callback */
+    ps_guard_conn *guard_conn; /* the connection's guard record (may be NULL) */
     char method[16];
     char path[256];
+    int path_too_long;        /* the URL path did not fit in path */
+    int query_cut;            /* the query string had too many parameters */
+    int http11;               /* HTTP/1.1 (may get a 102 probe) */
+    int seen;                 /* the request head was handled */
+    int routed;               /* ps_routes_begin ran */
+    int defer_answer;         /* answers wait until the body is drained */
+    struct MHD_Response *pending; /* a deferred answer, with status below */
     ps_route route;
     char job_id[96];          /* job of this request ("" = none) */
     int status;               /* answered status, 0 = not yet */
@@ -56,6 +69,9 @@ struct ps_request {
     ps_job *job;              /* synchronous job, referenced */
     int waiting;              /* linked in srv->waiting */
     int cancel_sent;
+    int probed;               /* a 102 went out to test a half-closed peer */
+    int answer_direct;        /* the peer shut down its write side: answer on the socket */
+    int sent_direct;          /* and that answer went out whole (direct_answer.h) */
     ps_request *prev, *next;  /* srv->waiting */
 };
 

@@ -1,12 +1,15 @@
 /* respond.c: queuing answers with their headers; problem+json errors; CORS. */
 #include "respond.h"
 
+#include "direct_answer.h"
 #include "problem.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define DIRECT_ANSWER_SECONDS 10.0
 
 const char *const ps_retry_after_header[] = {MHD_HTTP_HEADER_RETRY_AFTER, "1", NULL};
 
@@ -36,14 +39,24 @@ static void add_cors(ps_request *r, struct MHD_Response *resp) {
     if (strcmp(origin, "*")) MHD_add_response_header(resp, "Vary", "Origin");
 }
 
-static enum MHD_Result queue(ps_request *r, int status, const char *media_type,
-                             struct MHD_Response *resp, size_t len, const char *const *headers) {
+static enum MHD_Result queue(ps_request *r, int status, const char *media_type, struct MHD_Response *resp,
+                             const char *body, size_t len, const char *const *headers) {
     if (!resp) return MHD_NO;
     if (media_type) MHD_add_response_header(resp, MHD_HTTP_HEADER_CONTENT_TYPE, media_type);
     for (; headers && headers[0] && headers[1]; headers += 2) MHD_add_response_header(resp, headers[0], headers[1]);
     add_cors(r, resp);
     r->status = status;
     r->bytes = len;
+    if (r->answer_direct) {
+        r->sent_direct = !ps_direct_answer(ps_connection_fd(r->conn), status, resp, body, len,
+                                           DIRECT_ANSWER_SECONDS);
+        MHD_destroy_response(resp);
+        return MHD_NO;
+    }
+    if (r->defer_answer) {
+        r->pending = resp;
+        return MHD_YES;
+    }
     enum MHD_Result rc = MHD_queue_response(r->conn, (unsigned)status, resp);
     MHD_destroy_response(resp);
     return rc;
@@ -53,14 +66,14 @@ enum MHD_Result ps_respond(ps_request *r, int status, const char *media_type, ch
                            size_t len, const char *const *headers) {
     struct MHD_Response *resp = MHD_create_response_from_buffer(len, body, MHD_RESPMEM_MUST_FREE);
     if (!resp) free(body);
-    return queue(r, status, media_type, resp, len, headers);
+    return queue(r, status, media_type, resp, body, len, headers);
 }
 
 enum MHD_Result ps_respond_copy(ps_request *r, int status, const char *media_type,
                                 const char *body, size_t len, const char *const *headers) {
     struct MHD_Response *resp =
         MHD_create_response_from_buffer(len, (void *)(uintptr_t)body, MHD_RESPMEM_MUST_COPY);
-    return queue(r, status, media_type, resp, len, headers);
+    return queue(r, status, media_type, resp, body, len, headers);
 }
 
 enum MHD_Result ps_respond_problem(ps_request *r, int status, const char *const *headers,

@@ -1,6 +1,7 @@
 /* routes.c: routing, authorization, and the handler of every route. */
 #include "routes.h"
 
+#include "direct_answer.h"
 #include "respond.h"
 #include "static_files.h"
 
@@ -12,16 +13,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#define MAX_QUERY_PARAMS 64
-
 static const char *const allow_get[] = {MHD_HTTP_HEADER_ALLOW, "GET, HEAD, OPTIONS", NULL};
 static const char *const allow_post[] = {MHD_HTTP_HEADER_ALLOW, "POST, OPTIONS", NULL};
 static const char *const allow_job[] = {MHD_HTTP_HEADER_ALLOW, "GET, DELETE, OPTIONS", NULL};
 
 static int is(const ps_request *r, const char *method) { return !strcmp(r->method, method); }
 
-/* Sets r->route and, for /jobs/{id}..., r->job_id. */
-static void match_route(ps_request *r) {
+void ps_routes_match(ps_request *r) {
     static const struct { const char *path; ps_route route; } fixed[] = {
         {"/segment", PS_ROUTE_SEGMENT}, {"/jobs", PS_ROUTE_JOBS}, {"/healthz", PS_ROUTE_HEALTHZ},
         {"/readyz", PS_ROUTE_READYZ}, {"/metrics", PS_ROUTE_METRICS},
@@ -234,7 +232,6 @@ static enum MHD_Result begin_upload(ps_request *r) {
 }
 
 enum MHD_Result ps_routes_begin(ps_request *r) {
-    match_route(r);
     if (is(r, "OPTIONS")) return ps_respond_preflight(r);
     if (!authorized(r)) {
         static const char *const challenge[] = {MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer", NULL};
@@ -253,15 +250,21 @@ enum MHD_Result ps_routes_begin(ps_request *r) {
 }
 
 typedef struct query_params {
-    ps_text_param items[MAX_QUERY_PARAMS];
+    ps_text_param items[PS_MAX_QUERY_PARAMS];
     size_t n;
     int overflow;
+    int nul;      /* a name or value holds a NUL byte (%00) */
 } query_params;
 
-static enum MHD_Result collect_query(void *cls, enum MHD_ValueKind kind, const char *key, const char *value) {
+static enum MHD_Result collect_query(void *cls, enum MHD_ValueKind kind, const char *key, size_t key_size,
+                                     const char *value, size_t value_size) {
     query_params *q = cls;
     (void)kind;
-    if (q->n == MAX_QUERY_PARAMS) {
+    if (strlen(key) != key_size || (value && strlen(value) != value_size)) {
+        q->nul = 1;
+        return MHD_NO;
+    }
+    if (q->n == PS_MAX_QUERY_PARAMS) {
         q->overflow = 1;
         return MHD_NO;
     }
@@ -274,16 +277,18 @@ static int gather_params(ps_request *r, const ps_pointset *ps, query_params *q, 
                          ps_request_params *rp) {
     size_t n_fields;
     const ps_body_field *fields = ps_body_fields(r->body, &n_fields);
-    q->n = 0;
-    q->overflow = 0;
-    for (size_t i = 0; i < n_fields && q->n < MAX_QUERY_PARAMS; i++)
+    *q = (query_params){.n = 0};
+    for (size_t i = 0; i < n_fields && q->n < PS_MAX_QUERY_PARAMS; i++)
         q->items[q->n++] = (ps_text_param){fields[i].name, fields[i].value};
-    MHD_get_connection_values(r->conn, MHD_GET_ARGUMENT_KIND, collect_query, q);
-    if (q->overflow) return ps_api_fail(&r->error, 400, "more than %d parameters", MAX_QUERY_PARAMS);
+    MHD_get_connection_values_n(r->conn, MHD_GET_ARGUMENT_KIND, collect_query, q);
+    if (q->nul) return ps_api_fail(&r->error, 400, "a query parameter holds a NUL byte (%%00)");
+    if (q->overflow) return ps_api_fail(&r->error, 400, "more than %d parameters", PS_MAX_QUERY_PARAMS);
     *accept = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT);
     return ps_intake_params(ps, *accept, q->items, q->n, rp, &r->error);
 }
 
+/* Resumes the request; a client that shut down its write side is answered
+ * first, on its socket (direct_answer.h). */
 static void job_ended(void *user) {
     ps_request *r = user;
     ps_server *s = r->srv;
@@ -294,7 +299,10 @@ static void job_ended(void *user) {
         if (r->next) r->next->prev = r->prev;
         r->waiting = 0;
     }
+    r->answer_direct = r->probed || ps_peer_done_sending(ps_connection_fd(r->conn));
     pthread_mutex_unlock(&s->lock);
+    if (r->answer_direct && r->job) answer_from_job(r, r->job);
+    else if (r->answer_direct) ps_respond_error(r, &r->error);
     MHD_resume_connection(r->conn);
 }
 

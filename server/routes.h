@@ -1,6 +1,7 @@
 /*
- * routes.h: what each route does.  The HTTP layer calls ps_routes_begin on a
- * request's first callback (headers known), ps_routes_upload_done once its
+ * routes.h: what each route does.  The HTTP layer calls ps_routes_match
+ * once a request's head is in, ps_routes_begin then (a request with a body)
+ * or on the next callback (one without), ps_routes_upload_done once its
  * body is in, and ps_routes_resumed when its synchronous job has ended.
  * Each returns the libmicrohttpd result to hand back.
  */
@@ -11,7 +12,10 @@
 
 #include "request.h"
 
-/* Answers at once, or (POST /segment, /jobs) sets r->body for the upload. */
+/* Sets r->route and, for /jobs/{id}..., r->job_id (from r->path). */
+void ps_routes_match(ps_request *r);
+
+/* After ps_routes_match: answers at once, or (POST /segment, /jobs) sets r->body for the upload. */
 enum MHD_Result ps_routes_begin(ps_request *r);
 
 /* Decodes, then answers 202 (/jobs) or suspends the connection until the

@@ -1,6 +1,7 @@
 /*
  * static_files.h: files under the static directory (the web viewer) by URL
- * path: "/" is index.html; paths with ".." or hidden segments are refused.
+ * path: "/" is index.html; paths with ".." or hidden segments are refused,
+ * and so are symlinks below the directory (one could lead out of it).
  */
 #ifndef PS_STATIC_FILES_H
 #define PS_STATIC_FILES_H

@@ -10,13 +10,19 @@
  *      the daemon's VmRSS at the start, middle and end (plus its VmHWM);
  *   b) the horse: median of 5 POST /segment against the median of 5
  *      in-process decode + ps_segment + encode with the daemon's parameters,
- *      giving the HTTP overhead in percent (target: under 10%).
+ *      giving the HTTP overhead in percent (target: under 10%);
+ *   c) a soak of a fresh daemon: --soak N (default 20,000) mixed valid and
+ *      invalid requests (tests/unit/load_soak.h) over 8 connections, every
+ *      status checked, VmRSS at the start, middle and end (the end must be
+ *      within 20% of the middle).
  *
- *   bench_load [--requests N] [--connections N] [--timeout SECONDS] [--synthetic]
+ *   bench_load [--requests N] [--connections N] [--timeout SECONDS] [--soak N] [--soak-only]
+ *              [--synthetic]
  *
- * --synthetic uses the synthetic shapes even when the PSB files are there.
- * Exit status 0 when every request succeeded, 1 otherwise, 2 on a bad
- * option.  See docs/benchmarks-load.md.
+ * --synthetic uses the synthetic shapes even when the PSB files are there;
+ * --soak-only runs c) alone.
+ * Exit status 0 when every request succeeded (and the soak's memory held),
+ * 1 otherwise, 2 on a bad option.  See docs/benchmarks-load.md.
  */
 #include <cJSON.h>
 #include <curl/curl.h>
@@ -37,6 +43,7 @@
 
 #include "daemon_proc.h"
 #include "decode.h"
+#include "load_soak.h"
 #include "encode.h"
 #include "params_table.h"
 #include "pointseg.h"
@@ -50,6 +57,8 @@
 #define HORSE_RUNS 5
 #define REQUEST_TIMEOUT_S 300L
 #define RSS_SAMPLES 3
+#define SOAK_CONNECTIONS 8
+#define SOAK_MAX_GROWTH 0.20
 
 typedef struct body {
     char name[32];
@@ -68,7 +77,9 @@ typedef struct options {
     size_t requests;
     int connections;
     double timeout_s;
+    size_t soak;
     int synthetic;
+    int soak_only;
 } options;
 
 typedef struct daemon_proc {
@@ -100,22 +111,27 @@ static double now_s(void) {
 }
 
 static int parse_options(int argc, char **argv, options *o) {
-    *o = (options){2000, 64, 3600, 0};
+    *o = (options){2000, 64, 3600, 20000, 0, 0};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--synthetic")) {
             o->synthetic = 1;
+            continue;
+        }
+        if (!strcmp(argv[i], "--soak-only")) {
+            o->soak_only = 1;
             continue;
         }
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         double v = value ? strtod(value, NULL) : 0;
         if (!value || v < 1) {
             fprintf(stderr, "usage: %s [--requests N] [--connections N] [--timeout SECONDS] "
-                            "[--synthetic]\n", argv[0]);
+                            "[--soak N] [--soak-only] [--synthetic]\n", argv[0]);
             return -1;
         }
         if (!strcmp(argv[i], "--requests")) o->requests = (size_t)v;
         else if (!strcmp(argv[i], "--connections")) o->connections = (int)v;
         else if (!strcmp(argv[i], "--timeout")) o->timeout_s = v;
+        else if (!strcmp(argv[i], "--soak")) o->soak = (size_t)v;
         else return fprintf(stderr, "%s: unknown option %s\n", argv[0], argv[i]), -1;
         i++;
     }
@@ -266,19 +282,6 @@ static int daemon_start(daemon_proc *d) {
     return -1;
 }
 
-/* A "Name:   123 kB" line of /proc/PID/status, in kB; -1 if absent. */
-static long proc_status_kb(pid_t pid, const char *name) {
-    char path[64], line[256];
-    long kb = -1;
-    size_t n = strlen(name);
-    snprintf(path, sizeof path, "/proc/%d/status", (int)pid);
-    FILE *f = fopen(path, "r");
-    while (f && fgets(line, sizeof line, f))
-        if (!strncmp(line, name, n) && line[n] == ':') kb = strtol(line + n + 1, NULL, 10);
-    if (f) fclose(f);
-    return kb;
-}
-
 /* ---- replies ------------------------------------------------------------- */
 
 static size_t on_reply(char *data, size_t size, size_t count, void *user) {
@@ -388,7 +391,7 @@ static void drive(CURLM *multi, slot *slots, const body_set *bodies, const optio
             if (started < o->requests) slot_send(multi, s, &bodies->items[started++ % bodies->n]);
         }
         if (!mid_sampled && st->done >= o->requests / 2) {
-            st->rss_kb[1] = proc_status_kb(daemon_pid, "VmRSS");
+            st->rss_kb[1] = ps_proc_status_kb(daemon_pid, "VmRSS");
             mid_sampled = 1;
         }
         if (st->done < o->requests) curl_multi_poll(multi, NULL, 0, 100, NULL);
@@ -407,12 +410,12 @@ static int run_load(const daemon_proc *d, const body_set *bodies, const options 
     for (int i = 0; !rc && i < o->connections; i++) rc = slot_init(&slots[i], url, headers);
     if (!rc) {
         curl_multi_setopt(multi, CURLMOPT_MAX_HOST_CONNECTIONS, (long)o->connections);
-        st->rss_kb[0] = proc_status_kb(d->pid, "VmRSS");
+        st->rss_kb[0] = ps_proc_status_kb(d->pid, "VmRSS");
         double start = now_s();
         drive(multi, slots, bodies, o, d->pid, st);
         st->seconds = now_s() - start;
-        st->rss_kb[2] = proc_status_kb(d->pid, "VmRSS");
-        st->hwm_kb = proc_status_kb(d->pid, "VmHWM");
+        st->rss_kb[2] = ps_proc_status_kb(d->pid, "VmRSS");
+        st->hwm_kb = ps_proc_status_kb(d->pid, "VmHWM");
     }
     for (int i = 0; slots && i < o->connections; i++) {
         if (slots[i].easy) curl_multi_remove_handle(multi, slots[i].easy);
@@ -546,28 +549,63 @@ static int run_horse(const daemon_proc *d) {
     return 0;
 }
 
-int main(int argc, char **argv) {
-    options o;
+/* c) the soak, on a daemon of its own; returns 0 when every request got
+ * its status and the RSS at the end is within SOAK_MAX_GROWTH of the middle. */
+static int run_soak(const options *o) {
+    daemon_proc d;
+    ps_soak_stats st;
+    if (daemon_start(&d)) return -1;
+    int rc = ps_soak_run(d.url, d.pid, o->soak, SOAK_CONNECTIONS, &st);
+    double mid = (double)st.rss_kb[1], end = (double)st.rss_kb[2];
+    double growth = mid > 0 ? (end - mid) / mid : 1;
+    int exit_status = daemon_stop(&d);
+    printf("c) soak: %zu requests cycling %zu kinds (valid, async, health, malformed) over %d "
+           "connections, fresh daemon\n", o->soak, st.kinds, SOAK_CONNECTIONS);
+    printf("   %-34s %12zu\n", "requests completed", st.done);
+    printf("   %-34s %12.1f\n", "wall time (s)", st.seconds);
+    printf("   %-34s %12.1f\n", "requests per second", st.done / (st.seconds > 0 ? st.seconds : 1));
+    printf("   %-34s %12zu\n", "  wrong status", st.wrong_status);
+    printf("   %-34s %12zu\n", "  transport (timeout, reset)", st.transport_errors);
+    printf("   %-34s %8.1f MB %8.1f MB %8.1f MB\n", "daemon VmRSS start / middle / end",
+           st.rss_kb[0] / 1024.0, mid / 1024.0, end / 1024.0);
+    printf("   %-34s %12.1f MB\n", "daemon VmHWM (peak RSS)", st.hwm_kb / 1024.0);
+    printf("   %-34s %11.1f%%  (limit %.0f%%: %s)\n", "RSS growth middle -> end", 100 * growth,
+           100 * SOAK_MAX_GROWTH, growth <= SOAK_MAX_GROWTH ? "met" : "NOT met");
+    printf("   daemon stopped on SIGTERM with exit status %d\n", exit_status);
+    int ok = !rc && st.done == o->soak && !st.wrong_status && !st.transport_errors &&
+             growth <= SOAK_MAX_GROWTH && exit_status == 0;
+    return ok ? 0 : -1;
+}
+
+/* a) and b) on one daemon; returns 0 when every request succeeded. */
+static int run_load_and_horse(const options *o) {
     body_set bodies = {.n = 0};
     daemon_proc d;
     load_stats st = {.done = 0};
+    if (!o->synthetic) load_psb_bodies(&bodies);
+    if (!bodies.n) make_synthetic_bodies(&bodies);
+    if (!bodies.n || daemon_start(&d)) return free_bodies(&bodies), -1;
+    printf("daemon: %s (default settings)\n\n", d.url);
+    print_bodies(&bodies);
+    int failed = run_load(&d, &bodies, o, &st) != 0;
+    print_load(&st, o);
+    failed |= st.done != o->requests || st.transport_errors || st.non_200 || st.bad_json;
+    failed |= run_horse(&d) != 0;
+    int exit_status = daemon_stop(&d);
+    printf("\ndaemon stopped on SIGTERM with exit status %d\n\n", exit_status);
+    free(st.latency_ms);
+    free_bodies(&bodies);
+    return failed || exit_status != 0 ? -1 : 0;
+}
+
+int main(int argc, char **argv) {
+    options o;
     if (parse_options(argc, argv, &o)) return 2;
     if (curl_global_init(CURL_GLOBAL_ALL)) return 1;
     signal(SIGPIPE, SIG_IGN);
     print_machine(&o);
-    if (!o.synthetic) load_psb_bodies(&bodies);
-    if (!bodies.n) make_synthetic_bodies(&bodies);
-    if (!bodies.n || daemon_start(&d)) return free_bodies(&bodies), 1;
-    printf("daemon: %s (default settings)\n\n", d.url);
-    print_bodies(&bodies);
-    int failed = run_load(&d, &bodies, &o, &st) != 0;
-    print_load(&st, &o);
-    failed |= st.done != o.requests || st.transport_errors || st.non_200 || st.bad_json;
-    failed |= run_horse(&d) != 0;
-    int exit_status = daemon_stop(&d);
-    printf("\ndaemon stopped on SIGTERM with exit status %d\n", exit_status);
-    free(st.latency_ms);
-    free_bodies(&bodies);
+    int failed = !o.soak_only && run_load_and_horse(&o) != 0;
+    failed |= run_soak(&o) != 0;
     curl_global_cleanup();
-    return failed || exit_status != 0;
+    return failed;
 }

@@ -1,6 +1,7 @@
 #!/bin/sh
 # run.sh: builds the fuzz targets (the decoders, the daemon's multipart
-# path, and the --redis URL parser) with libFuzzer + ASan + UBSan and runs each on a copy of its seed
+# path, whole requests to the daemon, and the --redis URL parser) with
+# libFuzzer + ASan + UBSan and runs each on a copy of its seed
 # corpus.
 #   tests/fuzz/run.sh BUILD [short|long]   20 s per target (short) or 600 s
 # Prints "PASS fuzz:<target>", "FAIL fuzz:<target>: <reason>" or
@@ -9,7 +10,7 @@
 set -u
 BUILD=${1:-build}
 MODE=${2:-short}
-TARGETS="ply json text multipart redis_url"
+TARGETS="ply json text multipart head redis_url"
 case "$MODE" in
 short) SECONDS_EACH=20 ;;
 long) SECONDS_EACH=600 ;;
@@ -25,8 +26,8 @@ fi
 # The decoder targets: only the decoders and what they need; no core, no daemon.
 DECODER_SOURCES="api/api_error.c api/pointset.c $(ls api/decode*.c)"
 DECODER_LIBS="$(pkg-config --cflags --libs libcjson) -lm"
-# multipart: the daemon's HTTP layer in-process, so everything but its main.
-DAEMON_SOURCES="$(ls core/*.c api/*.c server/*.c | grep -v '^server/main\.c$')"
+# multipart, head: the daemon's HTTP layer in-process, so everything but its main.
+DAEMON_SOURCES="$(ls core/*.c api/*.c server/*.c | grep -v '^server/main\.c$') tests/fuzz/daemon_harness.c"
 DAEMON_LIBS="-lflann $(pkg-config --cflags --libs lapacke libmicrohttpd libcjson zlib hiredis) -lopenblas -lm -pthread"
 # redis_url: the URL parser and the connection code it lives with.
 REDIS_SOURCES="server/redis_link.c"
@@ -38,13 +39,13 @@ for t in $TARGETS; do
     bin="$OUT/fuzz_$t"
     log="$OUT/fuzz_$t.log"
     case "$t" in
-    multipart) sources=$DAEMON_SOURCES libs=$DAEMON_LIBS ;;
+    multipart | head) sources=$DAEMON_SOURCES libs=$DAEMON_LIBS ;;
     redis_url) sources=$REDIS_SOURCES libs=$REDIS_LIBS ;;
     *) sources=$DECODER_SOURCES libs=$DECODER_LIBS ;;
     esac
     # shellcheck disable=SC2086
     if ! clang -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -fsanitize=fuzzer,address,undefined \
-        -fno-sanitize-recover=undefined -Icore -Iapi -Iserver $sources "tests/fuzz/fuzz_$t.c" \
+        -fno-sanitize-recover=undefined -Icore -Iapi -Iserver -Itests/fuzz $sources "tests/fuzz/fuzz_$t.c" \
         $libs -o "$bin" >"$log" 2>&1; then
         echo "FAIL fuzz:$t: does not build (see $log)"
         failed=1

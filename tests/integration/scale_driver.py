@@ -77,7 +77,9 @@ class Replica:
         log = open(os.path.join(TMP, "replica-%d.log" % self.n), "a")
         self.proc = subprocess.Popen(
             [PSD, "--port", str(self.port), "--threads", "1", "--redis", self.url,
-             "--job-lease", str(LEASE), "--drain-seconds", "5"], stdout=log, stderr=log)
+             "--job-lease", str(LEASE), "--drain-seconds", "5",
+             "--max-connections-per-ip", "0"],  # as in compose.yaml: nginx limits per client
+            stdout=log, stderr=log)
         procs.append(self.proc)
         return wait_http(self.base)
 

@@ -10,13 +10,13 @@
 #include "pointseg.h"
 #include "pointseg_client.h"
 #include "shapes.h"
-#include "daemon_proc.h"
+#include "daemon_run.h"
+#include "gzip_body.h"
 #include "testlib.h"
 
 #include <arpa/inet.h>
 #include <cJSON.h>
 #include <dirent.h>
-#include <fcntl.h>
 #include <libgen.h>
 #include <netinet/in.h>
 #include <pthread.h>
@@ -27,114 +27,10 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
-#include <sys/time.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
-#include <zlib.h>
-
-typedef struct ps_daemon {
-    pid_t pid;
-    int port;
-    char base_url[64];
-    ps_client client;
-    char log[64];    /* its stderr; removed when it stops well */
-    char why[1024];  /* how it ended and its last log lines, when not well */
-} ps_daemon;
-
-#define MAX_ARGS 32
-
-static int ps_daemon_stop(ps_daemon *d, double timeout_s);
-
-/* Stops d and checks that it exited 0; the failure says how it ended. */
-#define CHECK_STOPS(d, timeout_s) CHECK_MSG(ps_daemon_stop(&(d), timeout_s) == 0, "%s", (d).why)
-
-/* Starts d with the NULL-terminated args, or fails the test saying why. */
-#define REQUIRE_STARTS(d, ...)                                                   \
-    do {                                                                         \
-        if (ps_daemon_start(&(d), (const char *const[]){__VA_ARGS__}) != 0) {    \
-            ps_test_fail(__FILE__, __LINE__, "pointsegd did not start: %s", (d).why); \
-            return;                                                              \
-        }                                                                        \
-    } while (0)
-
-
-static int ps_daemon_healthy(const ps_daemon *d) {
-    ps_client_response r;
-    int ok = ps_client_request(&d->client, "GET", "/healthz", NULL, NULL, &r) == 0 && r.status == 200;
-    ps_client_response_free(&r);
-    return ok;
-}
-
-/* In the child: pointsegd on a port the kernel picks (--port 0), stderr to
- * the log file open as log_fd. */
-static void exec_daemon(const char *path, int log_fd, const char *const *args) {
-    const char *argv[MAX_ARGS + 8] = {path, "--port", "0", "--bind", "127.0.0.1"};
-    size_t n = 5;
-    for (; args && *args && n < MAX_ARGS; args++) argv[n++] = *args;
-    argv[n] = NULL;
-    dup2(log_fd, 2);
-    execv(path, (char *const *)(uintptr_t)argv);
-    _exit(127);
-}
-
-/* 1 when the child has exited (it stays waitable for ps_daemon_stop). */
-static int has_exited(pid_t pid) {
-    siginfo_t info;
-    memset(&info, 0, sizeof info);
-    return waitid(P_PID, (id_t)pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
-}
-
-/* The port the daemon says it listens on (its log's "listening on" line),
- * or 0 when it has not said so yet. */
-static int announced_port(const char *log) {
-    char text[4096];
-    ps_test_log_tail(log, 20, text, sizeof text);
-    const char *at = strstr(text, "listening on http://127.0.0.1:");
-    return at ? atoi(at + strlen("listening on http://127.0.0.1:")) : 0;
-}
-
-/* Starts pointsegd with args, its stderr to a new log file; its port is the
- * one it announces there, so no other process can be answering in its
- * place.  0, or -1 (d->why says why). */
-static int ps_daemon_start(ps_daemon *d, const char *const *args) {
-    char path[4200];
-    memset(d, 0, sizeof *d);
-    snprintf(d->log, sizeof d->log, "/tmp/pointsegd-itest-XXXXXX");
-    int log_fd = mkstemp(d->log);
-    if (ps_test_daemon_path(path, sizeof path) || access(path, X_OK) || log_fd < 0) {
-        snprintf(d->why, sizeof d->why, "no %.900s, or no log file", path);
-        return -1;
-    }
-    d->pid = fork();
-    if (d->pid == 0) exec_daemon(path, log_fd, args);
-    close(log_fd);
-    if (d->pid < 0) return -1;
-    for (int i = 0; i < 800 && !d->port && !has_exited(d->pid); i++) {
-        d->port = announced_port(d->log);
-        if (!d->port) ps_test_sleep_ms(25);
-    }
-    snprintf(d->base_url, sizeof d->base_url, "http://127.0.0.1:%d", d->port);
-    d->client = (ps_client){d->base_url, NULL, 60000};
-    if (d->port && ps_daemon_healthy(d)) return 0;
-    const char *what = d->port ? "GET /healthz failed" : "it announced no port";
-    if (ps_daemon_stop(d, 1) == 0) snprintf(d->why, sizeof d->why, "%s", what);
-    return -1;
-}
-
-/* 0 when d exited 0 after SIGTERM; else -1, with d->why. */
-static int ps_daemon_stop(ps_daemon *d, double timeout_s) {
-    char how[128], tail[768];
-    int status = ps_test_daemon_stop(&d->pid, timeout_s, how, sizeof how);
-    if (status == 0) {
-        remove(d->log);
-        return 0;
-    }
-    ps_test_log_tail(d->log, 8, tail, sizeof tail);
-    snprintf(d->why, sizeof d->why, "pointsegd %s; the end of %s:\n%s", how, d->log, tail);
-    return -1;
-}
 
 static char *ps_points_xyz(const double *pts, size_t n, size_t *len) {
     char *text = malloc(n * 3 * 26 + 1);
@@ -157,21 +53,6 @@ static int *ps_json_labels(const char *doc, size_t *n) {
     }
     cJSON_Delete(root);
     return out;
-}
-
-static int ps_raw_status(const ps_daemon *d, const char *request, size_t len) {
-    struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)d->port),
-                            .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
-    char reply[256] = {0};
-    int code = 0, fd = socket(AF_INET, SOCK_STREAM, 0);
-    if (fd < 0) return 0;
-    struct timeval tv = {5, 0};
-    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    if (!connect(fd, (struct sockaddr *)&a, sizeof a) && send(fd, request, len, MSG_NOSIGNAL) == (ssize_t)len &&
-        recv(fd, reply, sizeof reply - 1, 0) > 0)
-        sscanf(reply, "HTTP/1.%*d %d", &code);
-    close(fd);
-    return code;
 }
 
 /* ---- request bodies ------------------------------------------------------ */
@@ -244,21 +125,6 @@ static char *multipart_body(const char *file, size_t file_len, size_t *len) {
     return out;
 }
 
-static char *gzip_bytes(const char *data, size_t n, size_t *len) {
-    z_stream z = {0};
-    uLong cap = compressBound((uLong)n) + 64;
-    char *out = malloc(cap);
-    deflateInit2(&z, 6, Z_DEFLATED, 31, 8, Z_DEFAULT_STRATEGY);
-    z.next_in = (unsigned char *)(uintptr_t)data;
-    z.avail_in = (uInt)n;
-    z.next_out = (unsigned char *)out;
-    z.avail_out = (uInt)cap;
-    deflate(&z, Z_FINISH);
-    *len = z.total_out;
-    deflateEnd(&z);
-    return out;
-}
-
 /* ---- checks -------------------------------------------------------------- */
 
 static int same_labels(const ps_client_response *r, const sample *s) {
@@ -317,7 +183,7 @@ static void test_content_types_give_library_labels(void) {
     size_t json_len, ply_len, mp_len, gz_len;
     char *json = json_body(&small, &json_len), *ply = binary_ply(&small, &ply_len);
     char *mp = multipart_body(small.xyz, small.xyz_len, &mp_len);
-    char *gz = gzip_bytes(mp, mp_len, &gz_len);
+    char *gz = ps_test_gzip(mp, mp_len, &gz_len);
     const ps_client_body bodies[] = {
         {small.xyz, small.xyz_len, "application/octet-stream", NULL},
         {small.xyz, small.xyz_len, "text/plain", NULL},
@@ -570,7 +436,7 @@ static void test_size_limits(void) {
                                "Content-Length: 99999999999\r\n\r\nply\n";
     CHECK(ps_raw_status(&d, huge, sizeof huge - 1) == 413);
     size_t n = 300000, gz_len;
-    char *zeros = calloc(n, 1), *gz = gzip_bytes(zeros, n, &gz_len);
+    char *zeros = calloc(n, 1), *gz = ps_test_gzip(zeros, n, &gz_len);
     ps_client_body plain = {zeros, n, NULL, NULL}, bomb = {gz, gz_len, NULL, "gzip"};
     CHECK(ps_client_segment(&d.client, &plain, NULL, &r) == 0 && is_problem(&r, 413));
     ps_client_response_free(&r);

@@ -1,5 +1,6 @@
 /* test_decode_text.c: OFF, OBJ and XYZ/CSV decoding, format detection,
- * ps_decode's checks and ps_read_file, with good and bad inputs. */
+ * ps_decode's checks and ps_read_file, with good and bad inputs (and a
+ * byte order mark in front). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -116,6 +117,21 @@ static void test_xyz(void) {
     ps_pointset_free(&ps);
 }
 
+/* A UTF-8 byte order mark in front (what some editors write) is skipped
+ * in every text format, and the first point is kept. */
+static void test_byte_order_mark(void) {
+    static const char *const texts[] = {
+        "\xEF\xBB\xBF" "1 2 3\n4 5 6\n", "\xEF\xBB\xBF" "1,2,3\n4,5,6\n",
+        "\xEF\xBB\xBF" "OFF\n2 0 0\n1 2 3\n4 5 6\n", "\xEF\xBB\xBF" "v 1 2 3\nv 4 5 6\n",
+        "\xEF\xBB\xBF" "{\"points\": [[1,2,3],[4,5,6]]}"};
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
+        ps_pointset ps;
+        REQUIRE(ps_check_decodes(texts[i], &ps));
+        CHECK_MSG(ps.n == 2 && ps.points[0] == 1 && ps.points[5] == 6, "text %zu: %zu points", i, ps.n);
+        ps_pointset_free(&ps);
+    }
+}
+
 static void test_xyz_errors(void) {
     CHECK(fails("1 2 3\n4 5 6\n7 8\n", NULL, 400, "line 3: 2 columns, expected 3"));
     CHECK(fails("1 2 3\r4 5 6\r\n7 8\r", NULL, 400, "line 3: 2 columns, expected 3"));
@@ -181,6 +197,6 @@ static void test_psb_off(void) {
 }
 
 PS_TEST_MAIN(TEST(test_detect), TEST(test_off), TEST(test_off_errors), TEST(test_obj),
-             TEST(test_obj_errors), TEST(test_xyz), TEST(test_xyz_errors),
+             TEST(test_obj_errors), TEST(test_xyz), TEST(test_byte_order_mark), TEST(test_xyz_errors),
              TEST(test_decode_checks), TEST(test_not_nul_terminated), TEST(test_read_file),
              TEST(test_psb_off))

@@ -2,7 +2,8 @@
  * (started by the test on a free loopback port): any store reads any job,
  * cancels reach the worker running the job, lapsed leases are taken over,
  * the third loss fails a job, Redis going away gives 503s and coming back
- * heals by itself, shutdown hands running jobs back. */
+ * heals by itself, shutdown hands running jobs back, kept results stay
+ * within their byte budget. */
 #include "job_runner.h"
 #include "jobstore_redis.h"
 #include "daemon_proc.h"
@@ -81,16 +82,20 @@ static void free_upload(upload *u) {
     free(u->text);
 }
 
-static ps_jobstore *open_store(int workers) {
+/* A store whose finished jobs stay ttl seconds, their results within budget bytes. */
+static ps_jobstore *open_store_keeping(int workers, int ttl, size_t budget) {
     char why[256];
-    ps_redis_store_config cfg = {.workers = workers, .job_ttl = 60, .lease_seconds = LEASE_S,
-                                 .max_losses = 3, .max_points = 10000000, .name = "test"};
+    ps_redis_store_config cfg = {.workers = workers, .job_ttl = ttl, .max_kept_bytes = budget,
+                                 .lease_seconds = LEASE_S, .max_losses = 3, .max_points = 10000000,
+                                 .name = "test"};
     snprintf(cfg.url.host, sizeof cfg.url.host, "127.0.0.1");
     cfg.url.port = server.port;
     ps_jobstore *s = ps_jobstore_redis_new(&cfg, why, sizeof why);
     if (!s) fprintf(stderr, "store: %s\n", why);
     return s;
 }
+
+static ps_jobstore *open_store(int workers) { return open_store_keeping(workers, 60, (size_t)1 << 30); }
 
 /* Polls until the job is in one of the final states or `seconds` pass. */
 static ps_job_state wait_state(ps_jobstore *s, const char *id, ps_job_state want, double seconds) {
@@ -349,7 +354,63 @@ static void test_drain_hands_back(void) {
     free_upload(&slow);
 }
 
+/* Runs the upload on s to the end; 0 when it is done. */
+static int run_to_done(ps_jobstore *s, upload *u, char *id, size_t cap) {
+    ps_api_error err;
+    if (ps_jobstore_submit(s, &u->up, id, cap, &err)) return -1;
+    return wait_state(s, id, PS_JOB_DONE, 30) == PS_JOB_DONE ? 0 : -1;
+}
+
+static long long kept_results(void) {
+    redisContext *c = ps_test_redis_connect(&server);
+    redisReply *r = c ? redisCommand(c, "ZCARD pointseg:results") : NULL;
+    long long n = r && r->type == REDIS_REPLY_INTEGER ? r->integer : -1;
+    if (r) freeReplyObject(r);
+    if (c) redisFree(c);
+    return n;
+}
+
+/* Four results where two and a half fit: the two oldest jobs are gone
+ * (404, as in the in-process store), the two newest kept, and the shared
+ * figure is their bytes.  Results past their TTL leave the sum. */
+static void test_result_byte_budget(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    upload u;
+    ps_api_error err;
+    ps_job_status st;
+    ps_jobstore_stats stats;
+    char ids[4][96];
+    size_t doc_len;
+    REQUIRE(make_upload(&u, SMALL_POINTS, 0) == 0);
+    free(local_labels(&u, &doc_len));
+    ps_jobstore *store = open_store_keeping(1, 60, doc_len * 5 / 2);
+    REQUIRE(store);
+    for (int i = 0; i < 4; i++) REQUIRE(run_to_done(store, &u, ids[i], sizeof ids[i]) == 0);
+    for (int i = 0; i < 2; i++)
+        CHECK(ps_jobstore_status(store, ids[i], &st, &err) == -1 && err.http_status == 404);
+    for (int i = 2; i < 4; i++) {
+        ps_job_doc doc;
+        int found = ps_jobstore_result(store, ids[i], &doc, &err) == 0;
+        CHECK(found && doc.len == doc_len);
+        if (found) free(doc.doc);
+    }
+    ps_jobstore_get_stats(store, &stats);
+    CHECK_MSG(stats.result_bytes == 2 * doc_len, "%zu bytes kept, not 2 x %zu", stats.result_bytes, doc_len);
+    CHECK(kept_results() == 2);
+    ps_jobstore_free(store);
+    store = open_store_keeping(1, 1, (size_t)1 << 30);
+    REQUIRE(store);
+    REQUIRE(run_to_done(store, &u, ids[0], sizeof ids[0]) == 0);
+    ps_test_sleep_ms(1500);
+    REQUIRE(run_to_done(store, &u, ids[1], sizeof ids[1]) == 0);
+    ps_jobstore_get_stats(store, &stats);
+    CHECK_MSG(stats.result_bytes == doc_len, "%zu bytes kept, not %zu", stats.result_bytes, doc_len);
+    CHECK(kept_results() == 1);
+    ps_jobstore_free(store);
+    free_upload(&u);
+}
+
 PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(test_cancel_reaches_worker),
              TEST(test_lapsed_lease_is_taken_over), TEST(test_third_loss_fails_job),
              TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
-             TEST(test_drain_hands_back))
+             TEST(test_drain_hands_back), TEST(test_result_byte_budget))

@@ -147,7 +147,8 @@ static void test_unknown_name_is_400(void) {
 static void test_bad_values_are_422(void) {
     const char *k_msg = "parameter 'k' must be an integer in [1, 64], got '%s'";
     static const char *const bad_k[] = {"abc", "0", "65", "7.5", "", "7x", "-1", "5e+02",
-                                        "99999999999999999999999", "1e300", "inf"};
+                                        "99999999999999999999999", "1e300", "inf", "0x10", "+8",
+                                        " 8", "8 ", "0x1p3", "1e", "8."};
     char msg[256];
     for (size_t i = 0; i < sizeof bad_k / sizeof bad_k[0]; i++) {
         snprintf(msg, sizeof msg, k_msg, bad_k[i]);
@@ -161,6 +162,9 @@ static void test_bad_values_are_422(void) {
                  "parameter 'ncut_threshold' must be a number in [0, 2], got '2.5'");
     expect_error("ncut_threshold", "nan", 422,
                  "parameter 'ncut_threshold' must be a number in [0, 2], got 'nan'");
+    expect_error("persistence", "0x1p-3", 422,
+                 "parameter 'persistence' must be a number in [0, 1], got '0x1p-3'");
+    expect_error("persistence", ".5", 422, "parameter 'persistence' must be a number in [0, 1], got '.5'");
     expect_error("feature_threshold", "-0.1", 422,
                  "parameter 'feature_threshold' must be a number in [0, 1], got '-0.1'");
     expect_error("minima", "maybe", 422,

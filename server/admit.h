@@ -1,0 +1,28 @@
+/*
+ * admit.h: the checks a request's head must pass before any route sees it:
+ * a path that fits, at most PS_MAX_QUERY_PARAMS query parameters, a Host
+ * header on HTTP/1.1 (RFC 9112), one Content-Length, no transfer coding
+ * but chunked, and only health routes over the connection limit.  Each
+ * refusal is answered at once with problem+json, and the connection closes.
+ */
+#ifndef PS_ADMIT_H
+#define PS_ADMIT_H
+
+#include <microhttpd.h>
+
+#include "request.h"
+
+/* Before libmicrohttpd splits the query string: 1 when uri has more than
+ * PS_MAX_QUERY_PARAMS parameters, and then the query is dropped from the
+ * request line (libmicrohttpd 0.9.75 runs out of connection memory on a
+ * few hundred and then sends nothing at all). */
+int ps_admit_cut_query(const char *uri);
+
+/* MHD_YES/MHD_NO after answering a refused request; -1 when admitted. */
+int ps_admit_check(ps_request *r);
+
+/* 1 when the request announces a body (Content-Length > 0 or chunked), with
+ * its declared length in *declared (0 when chunked). */
+int ps_admit_has_body(ps_request *r, unsigned long long *declared);
+
+#endif
