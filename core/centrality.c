@@ -101,6 +101,11 @@ static void sample_run(void *ctx, size_t s, int worker) {
 }
 
 /* Samples per component: round(S * size / n), at least 1, at most size. */
+int ps_centrality_default_samples(size_t n) {
+    double s = ceil(sqrt((double)n));
+    return s < PS_MAX_DEFAULT_SAMPLES ? (int)s : PS_MAX_DEFAULT_SAMPLES;
+}
+
 static size_t share_of(size_t samples, size_t size, size_t n) {
     size_t s = (size_t)llround((double)samples * (double)size / (double)n);
     if (s < 1) s = 1;
@@ -248,7 +253,7 @@ ps_status ps_centrality_with_threshold(const ps_graph *g, const int *component, 
                        n_components, o.n_components);
     }
     int exact = mode == PS_CENTRALITY_EXACT;
-    size_t count = samples ? (size_t)samples : (size_t)ceil(sqrt((double)g->n));
+    size_t count = samples ? (size_t)samples : (size_t)ps_centrality_default_samples(g->n);
     if (!exact && g->n >= coarse_min)
         st = coarse_centrality(&o, count, threads, ctl, f, sample_ids, samples_used, err);
     else

@@ -26,6 +26,15 @@
 #define PS_COARSE_MIN_POINTS 20000 /* approx uses the two-level scheme from here (-D to tune) */
 #endif
 
+#define PS_MAX_DEFAULT_SAMPLES 512 /* the default sample count's cap */
+
+/* The default approx sample count for n points: ceil(sqrt(n)), at most
+ * PS_MAX_DEFAULT_SAMPLES.  The error of a mean distance over samples that
+ * cover the shape depends on their number, not on n, so beyond ~1M points
+ * more samples cost time and memory (a float per cell and sample) for no
+ * better f. */
+int ps_centrality_default_samples(size_t n);
+
 /* component #P from ps_graph_components.  mode is EXACT or APPROX (the
  * caller resolves AUTO).  f #P out.  sample_ids, if not NULL, receives a
  * malloc'ed list of the sample vertices (#samples_used).  In exact mode no

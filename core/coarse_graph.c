@@ -67,8 +67,13 @@ static void ball_clear(ball *b) {
 
 /* ---- cells --------------------------------------------------------------- */
 
+double ps_cell_radius_growth(size_t size) {
+    return size > PS_CELL_SCALE_POINTS ? sqrt((double)size / PS_CELL_SCALE_POINTS) : 1.0;
+}
+
 /* radius #components: PS_CELL_RADIUS_EDGES x median edge length (0 when
- * the component has no edge). */
+ * the component has no edge), grown for a component over
+ * PS_CELL_SCALE_POINTS points. */
 static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
     const ps_graph *g = &o->g;
     double *copy = malloc((g->offsets[g->n] ? g->offsets[g->n] : 1) * sizeof *copy);
@@ -77,7 +82,8 @@ static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
         size_t first = g->offsets[o->start[k]], end = g->offsets[o->start[k + 1]];
         size_t count = end - first;
         memcpy(copy, g->weights + first, count * sizeof *copy);
-        radius[k] = count ? PS_CELL_RADIUS_EDGES * ps_select_kth(copy, count, count / 2) : 0.0;
+        double growth = ps_cell_radius_growth(o->start[k + 1] - o->start[k]);
+        radius[k] = count ? growth * PS_CELL_RADIUS_EDGES * ps_select_kth(copy, count, count / 2) : 0.0;
     }
     free(copy);
     return PS_OK;

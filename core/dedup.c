@@ -4,8 +4,11 @@
  * Sorts the row indices lexicographically by coordinates (ties by index), so
  * equal points become runs whose first element is their lowest index; the
  * runs are then numbered in order of that lowest index.  O(n log n).
+ * ps_dedup_morton renumbers them by the Morton codes of their coordinates.
  */
 #include "dedup.h"
+
+#include "morton.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -71,6 +74,36 @@ ps_status ps_dedup_build(const double *points, size_t n, int dim, ps_dedup *d,
     }
     d->n_unique = u;
     return PS_OK;
+}
+
+int ps_dedup_is_identity(const ps_dedup *d, size_t n) {
+    if (d->n_unique != n) return 0;
+    for (size_t i = 0; i < n; i++)
+        if (d->first[i] != i) return 0;
+    return 1;
+}
+
+ps_status ps_dedup_morton(ps_dedup *d, const double *points, size_t n, int dim, ps_error *err) {
+    size_t u = d->n_unique;
+    double *distinct = malloc((u ? u : 1) * (size_t)dim * sizeof *distinct);
+    uint32_t *order = malloc((u ? u : 1) * sizeof *order);
+    size_t *first = malloc((u ? u : 1) * sizeof *first), *renumber = malloc((u ? u : 1) * sizeof *renumber);
+    ps_status st = distinct && order && first && renumber ? PS_OK : PS_ERR_NOMEM;
+    for (size_t i = 0; st == PS_OK && i < u; i++)
+        memcpy(distinct + i * (size_t)dim, points + d->first[i] * (size_t)dim, (size_t)dim * sizeof *distinct);
+    if (st == PS_OK) st = ps_morton_order(distinct, u, dim, order);
+    if (st == PS_OK) {
+        for (size_t i = 0; i < u; i++) {
+            first[i] = d->first[order[i]];
+            renumber[order[i]] = i;
+        }
+        for (size_t p = 0; p < n; p++) d->unique_of[p] = renumber[d->unique_of[p]];
+        free(d->first);
+        d->first = first;
+        first = NULL;
+    }
+    free(distinct), free(order), free(first), free(renumber);
+    return st == PS_OK ? PS_OK : ps_fail(err, st, "dedup: out of memory for the Morton order");
 }
 
 void ps_dedup_free(ps_dedup *d) {

@@ -11,7 +11,8 @@
  * never changes the graph.  Queries go in Morton order
  * (morton.h), blocks of them per worker, which keeps the tree walks in
  * cache for inputs in any order.  The directed lists are then
- * mirrored into CSR rows sorted by neighbour index without duplicates.
+ * mirrored into CSR rows, sorted by neighbour index and freed of duplicates
+ * row by row in parallel.
  */
 #include "knn_graph.h"
 
@@ -188,9 +189,29 @@ static void sort_row(uint32_t *row, size_t len) {
     }
 }
 
+typedef struct rows_job {
+    ps_graph *g;
+    size_t *unique; /* #P out: distinct neighbours of each row */
+} rows_job;
+
+/* Sorts each row in place and moves its distinct entries to its front. */
+static void sort_rows(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    const rows_job *j = ctx;
+    for (size_t p = begin; p < end; p++) {
+        uint32_t *row = j->g->neighbors + j->g->offsets[p];
+        size_t len = j->g->offsets[p + 1] - j->g->offsets[p], kept = 0;
+        sort_row(row, len);
+        for (size_t i = 0; i < len; i++)
+            if (i == 0 || row[i] != row[kept - 1]) row[kept++] = row[i];
+        j->unique[p] = kept;
+    }
+}
+
 /* Mirrors the directed lists into g->offsets / g->neighbors (with room for
- * duplicates), then sorts and compacts each row in place. */
-static void symmetrize(const uint32_t *knn, size_t n, int k, ps_graph *g, size_t *fill) {
+ * duplicates), sorts and dedups the rows in parallel, then packs them. */
+static void symmetrize(const uint32_t *knn, size_t n, int k, int threads, ps_graph *g,
+                       size_t *fill) {
     memset(fill, 0, n * sizeof *fill);
     for (size_t p = 0; p < n * (size_t)k; p++) fill[knn[p]]++;
     g->offsets[0] = 0;
@@ -202,14 +223,13 @@ static void symmetrize(const uint32_t *knn, size_t n, int k, ps_graph *g, size_t
             g->neighbors[fill[p]++] = q;
             g->neighbors[fill[q]++] = (uint32_t)p;
         }
+    rows_job rj = {g, fill};
+    ps_parallel_for(threads, n, 0, sort_rows, &rj);
     size_t out = 0;
     for (size_t p = 0; p < n; p++) {
-        uint32_t *row = g->neighbors + g->offsets[p];
-        size_t len = g->offsets[p + 1] - g->offsets[p];
-        sort_row(row, len);
+        memmove(g->neighbors + out, g->neighbors + g->offsets[p], fill[p] * sizeof *g->neighbors);
         g->offsets[p] = out;
-        for (size_t i = 0; i < len; i++)
-            if (i == 0 || row[i] != row[i - 1]) g->neighbors[out++] = row[i];
+        out += fill[p];
     }
     g->offsets[n] = out;
 }
@@ -259,7 +279,7 @@ ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int
     }
     st = directed_knn(points, n, dim, k, threads, knn, err);
     if (st != PS_OK) goto done;
-    symmetrize(knn, n, k, g, fill);
+    symmetrize(knn, n, k, threads, g, fill);
     size_t edges = g->offsets[n];
     uint32_t *shrunk = realloc(g->neighbors, edges * sizeof *shrunk);
     if (shrunk) g->neighbors = shrunk;

@@ -90,12 +90,12 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
 }
 
 /* pl->points: the distinct points of pl->dedup (the input itself when
- * every point is distinct); an earlier copy is freed. */
+ * they are every input point in input order); an earlier copy is freed. */
 static ps_status distinct_points(pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
     size_t u = pl->dedup.n_unique;
     if (pl->points != in->points) free(pl->points);
-    if (u == in->n) {
+    if (ps_dedup_is_identity(&pl->dedup, in->n)) {
         pl->points = (double *)in->points;
         return PS_OK;
     }
@@ -107,7 +107,8 @@ static ps_status distinct_points(pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
-/* Distinct points; fails when fewer than k + 1 remain. */
+/* Distinct points (in Morton order for a big scan, dedup.h); fails when
+ * fewer than k + 1 remain. */
 static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
     ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
@@ -116,7 +117,8 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     if (u < (size_t)pl->params.k + 1)
         return ps_fail(err, PS_ERR_INVALID,
                        "need at least k + 1 = %d distinct points, got %zu", pl->params.k + 1, u);
-    return distinct_points(pl, err);
+    if (u >= PS_DEDUP_MORTON_MIN) st = ps_dedup_morton(&pl->dedup, in->points, in->n, in->dim, err);
+    return st == PS_OK ? distinct_points(pl, err) : st;
 }
 
 /* Normals (given, or PCA) of the distinct points, kept for the boundary
@@ -200,7 +202,7 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     if (p->centrality == PS_CENTRALITY_AUTO)
         p->centrality = u <= PS_EXACT_AUTO_LIMIT ? PS_CENTRALITY_EXACT : PS_CENTRALITY_APPROX;
     if (p->centrality == PS_CENTRALITY_APPROX && p->samples == 0)
-        p->samples = (int)ceil(sqrt((double)u));
+        p->samples = ps_centrality_default_samples(u);
     pl->f = malloc(u * sizeof *pl->f);
     if (!pl->f) return ps_fail(err, PS_ERR_NOMEM, "out of memory (centrality)");
     int used = 0;

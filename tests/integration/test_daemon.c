@@ -1,7 +1,8 @@
 /*
  * test_daemon.c: pointsegd over HTTP: every endpoint and content type, the
  * same labels through /segment, /jobs and the library, bad inputs of every
- * kind (right status, problem+json, daemon healthy afterwards), 32
+ * kind (right status, problem+json, daemon healthy afterwards), every
+ * core for a job on an idle daemon, --max-memory, 32
  * concurrent clients, a full queue (503), DELETE of a running exact job,
  * token, CORS, static files, and SIGTERM draining.  Each test starts
  * pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
@@ -385,6 +386,34 @@ static void test_outputs_and_includes(void) {
     CHECK_STOPS(d, 10);
 }
 
+/* params.threads of a JSON document, or -1. */
+static int document_threads(const ps_client_response *r) {
+    cJSON *doc = r->body ? cJSON_Parse(r->body) : NULL;
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(doc, "params"), "threads");
+    int threads = cJSON_IsNumber(t) ? t->valueint : -1;
+    cJSON_Delete(doc);
+    return threads;
+}
+
+/* Alone on an idle daemon a job runs on every core, as the CLI does; an
+ * explicit threads parameter is kept. */
+static void test_idle_daemon_job_gets_every_core(void) {
+    ps_daemon d;
+    ps_client_response r;
+    REQUIRE(need_small());
+    REQUIRE_STARTS(d, NULL);
+    ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && r.status == 200);
+    CHECK_MSG(document_threads(&r) == cores, "threads %d on %ld cores", document_threads(&r), cores);
+    ps_client_response_free(&r);
+    CHECK(ps_client_segment(&d.client, &body, "threads=1", &r) == 0 && r.status == 200 &&
+          document_threads(&r) == 1 && same_labels(&r, &small));
+    ps_client_response_free(&r);
+    CHECK_STOPS(d, 10);
+}
+
 static void test_service_endpoints(void) {
     ps_daemon d;
     ps_client_response r;
@@ -420,6 +449,24 @@ static void test_service_endpoints(void) {
     const char *const preflight[] = {"Origin: http://viewer.example", "Access-Control-Request-Method: POST", NULL};
     CHECK(ps_client_request(&d.client, "OPTIONS", "/segment", NULL, preflight, &r) == 0 && r.status == 204);
     ps_client_response_free(&r);
+    CHECK_STOPS(d, 10);
+}
+
+/* A job whose memory estimate is over --max-memory is refused before it
+ * runs, on /segment and /jobs alike, with a 413 naming the limit. */
+static void test_memory_limit(void) {
+    ps_daemon d;
+    ps_client_response r;
+    char id[128];
+    REQUIRE(need_small());
+    REQUIRE_STARTS(d, "--max-memory", "1000000", NULL);
+    ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && is_problem(&r, 413) &&
+          strstr(r.body, "--max-memory") && strstr(r.body, "estimate"));
+    ps_client_response_free(&r);
+    CHECK(ps_client_submit(&d.client, &body, NULL, id, sizeof id, &r) == 0 && is_problem(&r, 413));
+    ps_client_response_free(&r);
+    CHECK(ps_daemon_healthy(&d));
     CHECK_STOPS(d, 10);
 }
 
@@ -772,7 +819,7 @@ static void test_help_lists_flags(void) {
     size_t len = fread(out, 1, sizeof out - 1, p);
     out[len] = 0;
     CHECK(pclose(p) == 0);
-    const char *flags[] = {"--port", "--bind", "--threads", "--queue-size", "--max-body", "--max-points",
+    const char *flags[] = {"--port", "--bind", "--threads", "--queue-size", "--max-body", "--max-points", "--max-memory",
                            "--job-ttl", "--token", "--cors-origin", "--static-dir", "POINTSEG_PORT"};
     for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
         CHECK_MSG(strstr(out, flags[i]), "--help lacks %s", flags[i]);
@@ -802,9 +849,11 @@ static void test_zz_cleanup(void) {
 int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
-        TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
+        TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes),
+        TEST(test_idle_daemon_job_gets_every_core), TEST(test_bad_inputs_get_problems),
         TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_ply_header_warning_in_document),
-        TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
+        TEST(test_size_limits), TEST(test_memory_limit), TEST(test_token_and_static_files),
+        TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_sigterm_under_incoming_connections),
         TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};

@@ -1,7 +1,8 @@
 /* test_centrality.c: exact centrality has the path graph's closed form,
  * approx (full Dijkstras and the two-level scheme) is close to exact on the
  * shapes (RMS of normalized f < 0.08), all are bit-identical for any thread
- * count, and cancel / progress behave. */
+ * count, cancel / progress behave, and the default sample count is
+ * ceil(sqrt(n)) up to its cap. */
 #include "centrality.h"
 #include "knn_graph.h"
 #include "shapes.h"
@@ -247,8 +248,17 @@ static void test_default_threshold(void) {
     shape_graph_free(&s);
 }
 
+static void test_default_samples_capped(void) {
+    CHECK(ps_centrality_default_samples(100) == 10);
+    CHECK(ps_centrality_default_samples(48485) == 221); /* the horse */
+    CHECK(ps_centrality_default_samples(262144) == 512);
+    CHECK(ps_centrality_default_samples(262145) == PS_MAX_DEFAULT_SAMPLES);
+    CHECK(ps_centrality_default_samples(10000000) == PS_MAX_DEFAULT_SAMPLES);
+}
+
 PS_TEST_MAIN(TEST(test_exact_path_closed_form), TEST(test_approx_all_samples_is_exact),
              TEST(test_approx_close_to_exact), TEST(test_two_level_close_to_exact),
              TEST(test_threads_identical_exact), TEST(test_threads_identical_approx),
              TEST(test_threads_identical_two_level), TEST(test_progress_and_cancel),
-             TEST(test_progress_and_cancel_two_level), TEST(test_default_threshold))
+             TEST(test_progress_and_cancel_two_level), TEST(test_default_threshold),
+             TEST(test_default_samples_capped))
