@@ -24,6 +24,7 @@
 #define PS_COARSE_GRAPH_H
 
 #include "bfs_order.h"
+#include "parallel.h"
 
 #ifndef PS_CELL_RADIUS_EDGES
 #define PS_CELL_RADIUS_EDGES 3.0 /* cell radius in median kNN edge lengths (-D to tune) */
@@ -53,10 +54,12 @@ typedef struct ps_coarse_graph {
 } ps_coarse_graph;
 
 /* o: the breadth-first relabelled graph (its vertex ids are used
- * throughout).  threads as ps_parallel_threads.  cancel may be NULL; when
- * it is raised the build stops with PS_ERR_CANCELLED.  On success cg owns
- * its arrays; on failure it holds none. */
-ps_status ps_coarse_graph_build(const ps_bfs_order *o, int threads, const volatile int *cancel,
+ * throughout).  threads as ps_parallel_threads.  span (may be NULL, and so
+ * may its ctl): progress from span->lo to span->hi as the cover and the
+ * local distances go; when its cancel flag is raised the build stops with
+ * PS_ERR_CANCELLED.  On success cg owns its arrays; on failure it holds
+ * none. */
+ps_status ps_coarse_graph_build(const ps_bfs_order *o, int threads, const ps_progress_span *span,
                                 ps_coarse_graph *cg, ps_error *err);
 void ps_coarse_graph_free(ps_coarse_graph *cg);
 

@@ -17,8 +17,8 @@
 #include "knn_graph.h"
 
 
+#include "control.h"
 #include "morton.h"
-#include "parallel.h"
 #include "sort_util.h"
 #include "union_find.h"
 
@@ -30,6 +30,7 @@
 
 #define EXTRA 3               /* candidates beyond k + 1, for exact tie breaks */
 #define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
+#define INDEX_SHARE 0.25      /* progress share of the index build, before the queries */
 
 typedef struct candidate {
     float dist;      /* the distance to single precision: a tie key */
@@ -102,28 +103,27 @@ static int keep_nearest(const query_job *j, size_t p, const int *found) {
     return 0;
 }
 
-static void query_blocks(void *ctx, size_t begin, size_t end, int worker) {
+/* Query block b: QUERY_BLOCK rows in Morton order. */
+static void query_block(void *ctx, size_t b, int worker) {
     query_job *j = ctx;
     struct FLANNParameters fp = search_parameters();
     size_t width = (size_t)j->dim;
-    for (size_t b = begin; b < end; b++) {
-        size_t first = b * QUERY_BLOCK;
-        size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
-        for (size_t r = 0; r < rows; r++)
-            memcpy(j->rows[worker] + r * width, j->points + j->order[first + r] * width,
-                   width * sizeof *j->points);
-        if (flann_find_nearest_neighbors_index_double(j->index, j->rows[worker], (int)rows,
-                                                      j->found[worker], j->squared[worker],
-                                                      j->m, &fp) != 0) {
+    size_t first = b * QUERY_BLOCK;
+    size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
+    for (size_t r = 0; r < rows; r++)
+        memcpy(j->rows[worker] + r * width, j->points + j->order[first + r] * width,
+               width * sizeof *j->points);
+    if (flann_find_nearest_neighbors_index_double(j->index, j->rows[worker], (int)rows,
+                                                  j->found[worker], j->squared[worker], j->m,
+                                                  &fp) != 0) {
+        atomic_store(&j->failed, 1);
+        return;
+    }
+    for (size_t r = 0; r < rows; r++)
+        if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m) != 0) {
             atomic_store(&j->failed, 1);
             return;
         }
-        for (size_t r = 0; r < rows; r++)
-            if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m) != 0) {
-                atomic_store(&j->failed, 1);
-                return;
-            }
-    }
 }
 
 static void free_scratch(query_job *j, int threads) {
@@ -149,9 +149,10 @@ static int alloc_scratch(query_job *j, int threads) {
     return 1;
 }
 
-/* knn #P by k: each point's k nearest other points. */
+/* knn #P by k: each point's k nearest other points; the index build is
+ * the first QUERY_SHARE of span, the queries the rest. */
 static ps_status directed_knn(const double *points, size_t n, int dim, int k, int threads,
-                              uint32_t *knn, ps_error *err) {
+                              const ps_progress_span *span, uint32_t *knn, ps_error *err) {
     struct FLANNParameters fp = search_parameters();
     float speedup = 0.0f;
     uint32_t *order = malloc(n * sizeof *order);
@@ -166,8 +167,13 @@ static ps_status directed_knn(const double *points, size_t n, int dim, int k, in
     j.index = flann_build_index_double((double *)points, (int)n, dim, &speedup, &fp);
     ps_status st = j.index ? PS_OK : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
     if (st == PS_OK) {
-        ps_parallel_for(threads, (n + QUERY_BLOCK - 1) / QUERY_BLOCK, 1, query_blocks, &j);
-        if (atomic_load(&j.failed)) st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
+        ps_progress_span queries = *span;
+        queries.lo = span->lo + (span->hi - span->lo) * INDEX_SHARE;
+        ps_control_progress(span->ctl, span->phase, queries.lo);
+        st = ps_parallel_for_tracked(threads, (n + QUERY_BLOCK - 1) / QUERY_BLOCK, 1, query_block,
+                                     &j, &queries);
+        if (st != PS_OK) st = ps_fail(err, st, "knn: cancelled");
+        else if (atomic_load(&j.failed)) st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
         flann_free_index_double(j.index, &fp);
     }
     free_scratch(&j, threads);
@@ -263,6 +269,12 @@ static ps_status check_arguments(const double *points, size_t n, int dim, int k,
 
 ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int threads,
                              ps_graph *g, ps_error *err) {
+    ps_progress_span untracked = {NULL, PS_PHASE_KNN, 0.0, 0.0};
+    return ps_knn_graph_build_tracked(points, n, dim, k, threads, &untracked, g, err);
+}
+
+ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, int k, int threads,
+                                     const ps_progress_span *span, ps_graph *g, ps_error *err) {
     memset(g, 0, sizeof *g);
     ps_status st = check_arguments(points, n, dim, k, err);
     if (st != PS_OK) return st;
@@ -277,7 +289,7 @@ ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int
         st = ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for %zu points", n);
         goto done;
     }
-    st = directed_knn(points, n, dim, k, threads, knn, err);
+    st = directed_knn(points, n, dim, k, threads, span, knn, err);
     if (st != PS_OK) goto done;
     symmetrize(knn, n, k, threads, g, fill);
     size_t edges = g->offsets[n];

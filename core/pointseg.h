@@ -125,7 +125,10 @@ typedef enum ps_phase {
 const char *ps_phase_name(ps_phase phase); /* "knn", "centrality", ... */
 
 /* Called from the calling thread or a worker of the call, never concurrently
- * with itself; fraction in [0, 1] within the phase. */
+ * with itself; fraction in [0, 1] within the phase, nondecreasing.  Every
+ * phase reports 0, then fractions as its steps go (the kNN queries, the
+ * normals, the coarse graph and the Dijkstras of the centrality, the cuts
+ * of the hierarchy, the steps of supernodes and refine), then 1. */
 typedef void (*ps_progress_fn)(void *user, ps_phase phase, double fraction);
 
 typedef struct ps_control {

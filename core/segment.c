@@ -35,6 +35,19 @@
 #include <string.h>
 #include <time.h>
 
+/* Progress within the knn phase after each of its steps ... */
+#define KNN_GRAPH_DONE 0.45
+#define KNN_OUTLIERS_DONE 0.55
+#define KNN_NORMALS_DONE 0.9
+#define KNN_STRENGTHS_DONE 0.95
+/* ... within the supernodes phase ... */
+#define SUPERNODES_BUILT 0.5
+#define SUPERNODES_F2_DONE 0.6
+/* ... and within the refine phase. */
+#define REFINE_GROUPS_DONE 0.2
+#define REFINE_CUT_DONE 0.7
+#define REFINE_CREASE_MERGE_DONE 0.85
+
 /* Everything the phases produce for the distinct points. */
 typedef struct pipeline {
     const ps_input *in;
@@ -137,11 +150,14 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
         for (size_t i = 0; i < u; i++)
             memcpy(given + 3 * i, pl->in->normals + 3 * pl->dedup.first[i], 3 * sizeof *given);
     }
-    ps_status st = ps_normals_build(&pl->graph, pl->points, given, pl->component,
-                                    pl->n_components, pl->params.smooth_normals, pl->normals,
-                                    &pl->normal_smoothing, err);
+    ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_OUTLIERS_DONE, KNN_NORMALS_DONE};
+    ps_status st = ps_normals_build_tracked(&pl->graph, pl->points, given, pl->component,
+                                            pl->n_components, pl->params.smooth_normals,
+                                            pl->threads, &span, pl->normals,
+                                            &pl->normal_smoothing, err);
     if (st == PS_OK) {
         ps_crease_strengths(&pl->graph, pl->points, pl->normals, &pl->creases);
+        ps_control_progress(pl->ctl, PS_PHASE_KNN, KNN_STRENGTHS_DONE);
         ps_crease_weights(&pl->graph, pl->points, pl->normals);
     }
     free(given);
@@ -161,9 +177,10 @@ static ps_status drop_outliers_once(pipeline *pl, size_t *dropped, ps_error *err
         st = ps_outliers_drop(&pl->dedup, pl->in->n, keep_for, err);
         if (st == PS_OK) st = distinct_points(pl, err);
         ps_graph_free(&pl->graph);
+        ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_GRAPH_DONE, KNN_OUTLIERS_DONE};
         if (st == PS_OK)
-            st = ps_knn_graph_build(pl->points, pl->dedup.n_unique, pl->in->dim, pl->params.k,
-                                    pl->threads, &pl->graph, err);
+            st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
+                                            pl->params.k, pl->threads, &span, &pl->graph, err);
         *dropped = count;
     }
     free(keep_for);
@@ -184,8 +201,9 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
 }
 
 static ps_status phase_knn(pipeline *pl, ps_error *err) {
-    ps_status st = ps_knn_graph_build(pl->points, pl->dedup.n_unique, pl->in->dim,
-                                      pl->params.k, pl->threads, &pl->graph, err);
+    ps_progress_span span = {pl->ctl, PS_PHASE_KNN, 0.0, KNN_GRAPH_DONE};
+    ps_status st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
+                                              pl->params.k, pl->threads, &span, &pl->graph, err);
     if (st == PS_OK && pl->params.method == PS_METHOD_AUTO) st = drop_outliers(pl, err);
     if (st != PS_OK) return st;
     size_t u = pl->dedup.n_unique;
@@ -216,8 +234,10 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     ps_params *p = &pl->params;
     ps_status st = ps_supernodes_build(&pl->graph, pl->f, pl->component, pl->n_components,
                                        &p->persistence, p->use_minima, &pl->sn, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_BUILT);
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
     if (st == PS_OK && pl->normals)
         st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     return st;
@@ -301,8 +321,11 @@ static ps_status phase_refine(pipeline *pl, ps_error *err) {
                              pl->component, pl->tree, pl->n_tree, pl->params.feature_threshold,
                              pl->group_of_leaf, &pl->merges, &pl->n_merges, err);
     if (st == PS_OK) st = point_groups(pl, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CUT_DONE);
     if (st == PS_OK && pl->normals) st = crease_merge(pl, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CREASE_MERGE_DONE);
     if (st == PS_OK && pl->normals) st = patch_merge(pl, err);
     return st;
 }

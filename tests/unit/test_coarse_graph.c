@@ -162,9 +162,11 @@ static void test_cancel(void) {
     REQUIRE(pts && ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
     REQUIRE(ps_bfs_order_build(&g, &o, NULL) == PS_OK);
     volatile int cancel = 1;
+    ps_control ctl = {.cancel = &cancel};
+    ps_progress_span span = {&ctl, PS_PHASE_CENTRALITY, 0.0, 0.3};
     ps_coarse_graph cg;
     ps_error err = {0};
-    CHECK(ps_coarse_graph_build(&o, 2, &cancel, &cg, &err) == PS_ERR_CANCELLED);
+    CHECK(ps_coarse_graph_build(&o, 2, &span, &cg, &err) == PS_ERR_CANCELLED);
     CHECK(err.status == PS_ERR_CANCELLED && cg.seed == NULL && cg.local == NULL);
     ps_bfs_order_free(&o);
     ps_graph_free(&g);
