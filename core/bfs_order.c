@@ -63,6 +63,63 @@ ps_status ps_bfs_order_build(const ps_graph *g, ps_bfs_order *o, ps_error *err) 
     return PS_OK;
 }
 
+/* dst's rows from src's with vertex v of dst being map_row[v] of src and
+ * neighbours renamed by rename; each of src's arrays is freed once read,
+ * so at most three of the four big arrays exist at once.  dst->n and
+ * dst->offsets (#n+1) are set; returns 0, or -1 out of memory (src
+ * freed, dst partly built). */
+static int move_rows(ps_graph *src, const uint32_t *map_row, const uint32_t *rename,
+                     ps_graph *dst) {
+    size_t n = src->n, edges = src->offsets[n];
+    dst->offsets[0] = 0;
+    for (size_t v = 0; v < n; v++)
+        dst->offsets[v + 1] = dst->offsets[v] + src->offsets[map_row[v] + 1] - src->offsets[map_row[v]];
+    dst->neighbors = malloc((edges ? edges : 1) * sizeof *dst->neighbors);
+    if (dst->neighbors)
+        for (size_t v = 0; v < n; v++)
+            for (size_t e = src->offsets[map_row[v]], out = dst->offsets[v];
+                 e < src->offsets[map_row[v] + 1]; e++, out++)
+                dst->neighbors[out] = rename[src->neighbors[e]];
+    free(src->neighbors), src->neighbors = NULL;
+    dst->weights = dst->neighbors ? malloc((edges ? edges : 1) * sizeof *dst->weights) : NULL;
+    if (dst->weights)
+        for (size_t v = 0; v < n; v++)
+            memcpy(dst->weights + dst->offsets[v], src->weights + src->offsets[map_row[v]],
+                   (dst->offsets[v + 1] - dst->offsets[v]) * sizeof *dst->weights);
+    ps_graph_free(src);
+    return dst->weights ? 0 : -1;
+}
+
+ps_status ps_bfs_order_take(ps_graph *g, ps_bfs_order *o, ps_error *err) {
+    memset(o, 0, sizeof *o);
+    size_t n = g->n, alloc_n = n ? n : 1;
+    o->g.n = n;
+    o->g.offsets = malloc((n + 1) * sizeof *o->g.offsets);
+    o->old_of = malloc(alloc_n * sizeof *o->old_of);
+    o->new_of = malloc(alloc_n * sizeof *o->new_of);
+    o->start = malloc((n + 1) * sizeof *o->start);
+    if (!o->g.offsets || !o->old_of || !o->new_of || !o->start) {
+        ps_bfs_order_free(o);
+        return ps_fail(err, PS_ERR_NOMEM, "bfs order: out of memory for %zu vertices", n);
+    }
+    o->n_components = visit_order(g, o->old_of, o->new_of, o->start);
+    if (move_rows(g, o->old_of, o->new_of, &o->g) == 0) return PS_OK;
+    ps_bfs_order_free(o);
+    return ps_fail(err, PS_ERR_NOMEM, "bfs order: out of memory for %zu vertices", n);
+}
+
+ps_status ps_bfs_order_give_back(ps_bfs_order *o, ps_graph *g, ps_error *err) {
+    size_t n = o->g.n;
+    memset(g, 0, sizeof *g);
+    g->n = n;
+    g->offsets = malloc((n + 1) * sizeof *g->offsets);
+    int ok = g->offsets && move_rows(&o->g, o->new_of, o->old_of, g) == 0;
+    ps_bfs_order_free(o);
+    if (ok) return PS_OK;
+    ps_graph_free(g);
+    return ps_fail(err, PS_ERR_NOMEM, "bfs order: out of memory giving back %zu vertices", n);
+}
+
 void ps_bfs_order_free(ps_bfs_order *o) {
     if (!o) return;
     ps_graph_free(&o->g);

@@ -46,6 +46,15 @@ ps_status ps_centrality(const ps_graph *g, const int *component, int n_component
                         const ps_control *ctl, double *f, uint32_t **sample_ids,
                         int *samples_used, ps_error *err);
 
+/* ps_centrality on a graph it borrows: g's arrays move into the
+ * breadth-first copy (bfs_order.h) while the centrality runs and move back,
+ * byte-identical, before it returns, so the peak holds one copy of the
+ * graph instead of two.  Out of memory, g may come back freed. */
+ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_components,
+                                  ps_centrality_mode mode, int samples, int threads,
+                                  const ps_control *ctl, double *f, uint32_t **sample_ids,
+                                  int *samples_used, ps_error *err);
+
 /* As ps_centrality, with the two-level scheme in approx mode when the graph
  * has at least coarse_min vertices (ps_centrality: PS_COARSE_MIN_POINTS);
  * 0 forces it, SIZE_MAX never uses it.  For tests and tuning. */

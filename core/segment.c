@@ -224,8 +224,9 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     pl->f = malloc(u * sizeof *pl->f);
     if (!pl->f) return ps_fail(err, PS_ERR_NOMEM, "out of memory (centrality)");
     int used = 0;
-    ps_status st = ps_centrality(&pl->graph, pl->component, pl->n_components, p->centrality,
-                                 p->samples, pl->threads, pl->ctl, pl->f, NULL, &used, err);
+    ps_status st = ps_centrality_borrowing(&pl->graph, pl->component, pl->n_components,
+                                           p->centrality, p->samples, pl->threads, pl->ctl,
+                                           pl->f, NULL, &used, err);
     if (st == PS_OK && p->centrality == PS_CENTRALITY_APPROX) p->samples = used;
     return st;
 }
