@@ -104,5 +104,17 @@ static void test_morton_renumbering(void) {
     free(p);
 }
 
-PS_TEST_MAIN(TEST(test_small_example), TEST(test_all_distinct_and_empty),
+/* -0 and +0 are the same coordinate, as == says, wherever they fall. */
+static void test_signed_zeros_coincide(void) {
+    const double p[] = {0.0, 1.0, -0.0, 1.0, 2.0, -0.0, 2.0, 0.0, -0.0, -0.0};
+    ps_dedup d;
+    REQUIRE(ps_dedup_build(p, 5, 2, &d, NULL) == PS_OK);
+    CHECK(d.n_unique == 3);
+    CHECK(d.unique_of[0] == 0 && d.unique_of[1] == 0 && d.unique_of[2] == 1 &&
+          d.unique_of[3] == 1 && d.unique_of[4] == 2);
+    CHECK(d.first[0] == 0 && d.first[1] == 2 && d.first[2] == 4);
+    ps_dedup_free(&d);
+}
+
+PS_TEST_MAIN(TEST(test_signed_zeros_coincide), TEST(test_small_example), TEST(test_all_distinct_and_empty),
              TEST(test_against_brute_force), TEST(test_rejects_null), TEST(test_morton_renumbering))
