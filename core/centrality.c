@@ -291,12 +291,12 @@ ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_compo
     ps_status st = check_mode(mode, samples, sample_ids, samples_used, err);
     if (st != PS_OK || g->n == 0) return st;
     ps_bfs_order o;
-    st = ps_bfs_order_take(g, &o, err);
+    st = ps_bfs_order_take(g, threads, &o, err);
     if (st != PS_OK) return st;
     st = centrality_on(&o, component, n_components, mode, samples, threads,
                        PS_COARSE_MIN_POINTS, ctl, f, sample_ids, samples_used, err);
     ps_error back_err;
-    ps_status back = ps_bfs_order_give_back(&o, g, &back_err);
+    ps_status back = ps_bfs_order_give_back(&o, threads, g, &back_err);
     if (st == PS_OK && back != PS_OK) {
         st = back;
         if (err) *err = back_err;

@@ -73,11 +73,11 @@ static void test_take_and_give_back(void) {
     REQUIRE(ps_knn_graph_build(p, n, 3, 6, 2, &kept, NULL) == PS_OK);
     ps_bfs_order copied, taken;
     REQUIRE(ps_bfs_order_build(&kept, &copied, NULL) == PS_OK);
-    REQUIRE(ps_bfs_order_take(&g, &taken, NULL) == PS_OK);
+    REQUIRE(ps_bfs_order_take(&g, 2, &taken, NULL) == PS_OK);
     CHECK(g.offsets == NULL && g.neighbors == NULL && g.weights == NULL);
     CHECK(same_arrays(&copied.g, &taken.g) && copied.n_components == taken.n_components &&
           !memcmp(copied.old_of, taken.old_of, n * sizeof *copied.old_of));
-    REQUIRE(ps_bfs_order_give_back(&taken, &g, NULL) == PS_OK);
+    REQUIRE(ps_bfs_order_give_back(&taken, 3, &g, NULL) == PS_OK);
     CHECK(same_arrays(&kept, &g));
     CHECK(taken.g.offsets == NULL && taken.old_of == NULL);
     ps_bfs_order_free(&copied);
