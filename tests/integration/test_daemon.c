@@ -10,6 +10,7 @@
 #include "params_table.h"
 #include "pointseg.h"
 #include "pointseg_client.h"
+#include "progress_seen.h"
 #include "shapes.h"
 #include "daemon_proc.h"
 #include "testlib.h"
@@ -711,6 +712,57 @@ static void test_full_queue_and_cancel(void) {
     CHECK_STOPS(d, 10);
 }
 
+/* The job's progress (phase index, fraction) from a GET /jobs/{id}
+ * answer; 0, or -1 when it has none. */
+static int job_progress(const ps_client_response *r, int *phase, double *fraction) {
+    cJSON *doc = r->body ? cJSON_Parse(r->body) : NULL;
+    const cJSON *progress = cJSON_GetObjectItemCaseSensitive(doc, "progress");
+    const cJSON *name = cJSON_GetObjectItemCaseSensitive(progress, "phase");
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(progress, "fraction");
+    int ok = cJSON_IsString(name) && cJSON_IsNumber(value);
+    *phase = -1;
+    for (int p = 0; ok && p < PS_PHASE_COUNT; p++)
+        if (!strcmp(name->valuestring, ps_phase_name((ps_phase)p))) *phase = p;
+    if (ok) *fraction = value->valuedouble;
+    cJSON_Delete(doc);
+    return ok && *phase >= 0 ? 0 : -1;
+}
+
+/* Polled while it runs, a job of 150,000 points on one thread shows its
+ * knn and centrality phases move: several fractions strictly between 0
+ * and 1 in each, as the viewer's bar does. */
+static void test_job_progress_moves_within_phases(void) {
+    ps_daemon d;
+    ps_client_response r;
+    char id[128];
+    size_t n, len;
+    double *pts = ps_shape_dumbbell(5400, &n, NULL);
+    REQUIRE(pts && n > 150000);
+    char *xyz = ps_points_xyz(pts, n, &len);
+    free(pts);
+    REQUIRE(xyz);
+    REQUIRE_STARTS(d, NULL);
+    ps_client_body body = {xyz, len, NULL, NULL};
+    REQUIRE(ps_client_submit(&d.client, &body, "threads=1", id, sizeof id, &r) == 0 && r.status == 202);
+    ps_client_response_free(&r);
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    int final = 0;
+    for (double t0 = seconds_now(); !final && seconds_now() - t0 < 60; ps_test_sleep_ms(2)) {
+        int phase;
+        double fraction;
+        if (ps_client_poll(&d.client, id, &r) == 0 && job_progress(&r, &phase, &fraction) == 0)
+            ps_progress_seen_record(&seen, (ps_phase)phase, fraction);
+        final = r.body && strstr(r.body, "\"status\":\"done\"");
+        ps_client_response_free(&r);
+    }
+    CHECK_MSG(final, "the job did not finish in 60 s");
+    CHECK_MSG(seen.inside[PS_PHASE_KNN] >= 2 && seen.inside[PS_PHASE_CENTRALITY] >= 2,
+              "fractions seen inside (0, 1): knn %d, centrality %d", seen.inside[PS_PHASE_KNN],
+              seen.inside[PS_PHASE_CENTRALITY]);
+    free(xyz);
+    CHECK_STOPS(d, 10);
+}
+
 static void test_client_going_away_cancels(void) {
     ps_daemon d;
     ps_client_response r;
@@ -854,7 +906,8 @@ int main(int argc, char **argv) {
         TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_ply_header_warning_in_document),
         TEST(test_size_limits), TEST(test_memory_limit), TEST(test_token_and_static_files),
         TEST(test_32_concurrent_clients),
-        TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
+        TEST(test_full_queue_and_cancel), TEST(test_job_progress_moves_within_phases),
+        TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_sigterm_under_incoming_connections),
         TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);
