@@ -172,7 +172,7 @@ static ps_status drop_outliers_once(pipeline *pl, size_t *dropped, ps_error *err
     *dropped = 0;
     uint32_t *keep_for = malloc(u * sizeof *keep_for);
     if (!keep_for) return ps_fail(err, PS_ERR_NOMEM, "out of memory (outliers)");
-    ps_status st = ps_outliers_find(&pl->graph, keep_for, &count, err);
+    ps_status st = ps_outliers_find(&pl->graph, pl->threads, keep_for, &count, err);
     if (st == PS_OK && count > 0 && u - count >= (size_t)pl->params.k + 1) {
         st = ps_outliers_drop(&pl->dedup, pl->in->n, keep_for, err);
         if (st == PS_OK) st = distinct_points(pl, err);
