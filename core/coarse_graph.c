@@ -24,8 +24,10 @@
 
 #define NO_SLOT UINT32_MAX
 #define CANCEL_POLL 256 /* seeds between cancel checks and progress in the cover */
-#define COVER_SHARE 0.5 /* progress share of the cover ... */
-#define CELLS_SHARE 0.6 /* ... with the cells and near lists; local distances follow */
+#define RADII_SHARE 0.05  /* progress of the span after the cell radii ... */
+#define COVER_SHARE 0.5   /* ... after the cover ... */
+#define ASSIGN_SHARE 0.55 /* ... after the cells ... */
+#define CELLS_SHARE 0.6   /* ... after the near lists; local distances follow */
 
 /* ---- a bounded Dijkstra (one thread's workspace) ------------------------ */
 
@@ -292,14 +294,16 @@ static ps_status build_cells(const ps_bfs_order *o, ball *b, const ps_progress_s
     double *radius = malloc(((size_t)o->n_components + 1) * sizeof *radius);
     ps_status st = radius ? cell_radii(o, radius) : PS_ERR_NOMEM;
     unsigned char *covered = st == PS_OK ? calloc(o->g.n ? o->g.n : 1, 1) : NULL;
-    ps_progress_span cover_span = {span->ctl, span->phase, span->lo,
-                                   span->lo + (span->hi - span->lo) * COVER_SHARE};
+    ps_progress_span cover_span = {span->ctl, span->phase, ps_progress_span_at(span, RADII_SHARE),
+                                   ps_progress_span_at(span, COVER_SHARE)};
+    ps_control_progress(span->ctl, span->phase, cover_span.lo);
     if (st == PS_OK) st = covered ? cover(o, radius, b, &cover_span, covered, cg) : PS_ERR_NOMEM;
     free(radius), free(covered);
     if (st != PS_OK) return st;
     cg->near_offsets = malloc((cg->n_cells + 1) * sizeof *cg->near_offsets);
     if (!cg->near_offsets) return PS_ERR_NOMEM;
     st = assign_cells(o, cg);
+    ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, ASSIGN_SHARE));
     uint32_t *mark = st == PS_OK ? malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mark) : NULL;
     if (st == PS_OK && !mark) st = PS_ERR_NOMEM;
     if (st == PS_OK) {
@@ -317,8 +321,8 @@ static ps_status build_levels(const ps_bfs_order *o, int threads, const ps_progr
     if (st == PS_OK) st = build_cells(o, &balls[0], span, cg);
     if (st != PS_OK) return st;
     ball_free(&balls[0]);
-    ps_progress_span local = {span->ctl, span->phase,
-                              span->lo + (span->hi - span->lo) * CELLS_SHARE, span->hi};
+    ps_progress_span local = {span->ctl, span->phase, ps_progress_span_at(span, CELLS_SHARE),
+                              span->hi};
     ps_control_progress(span->ctl, span->phase, local.lo);
     for (int t = 0; t < threads && st == PS_OK; t++) st = ball_init(&balls[t], o->g.n, cg->n_cells);
     if (st == PS_OK) st = local_distances(&o->g, balls, threads, &local, cg);

@@ -30,7 +30,9 @@
 
 #define EXTRA 3               /* candidates beyond k + 1, for exact tie breaks */
 #define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
-#define INDEX_SHARE 0.25      /* progress share of the index build, before the queries */
+#define INDEX_SHARE 0.25      /* progress of the span after the index build ... */
+#define QUERIES_SHARE 0.8     /* ... after the queries ... */
+#define ROWS_SHARE 0.9        /* ... after the rows are mirrored; the weights follow */
 
 typedef struct candidate {
     float dist;      /* the distance to single precision: a tie key */
@@ -149,8 +151,8 @@ static int alloc_scratch(query_job *j, int threads) {
     return 1;
 }
 
-/* knn #P by k: each point's k nearest other points; the index build is
- * the first QUERY_SHARE of span, the queries the rest. */
+/* knn #P by k: each point's k nearest other points; progress through
+ * span up to QUERIES_SHARE. */
 static ps_status directed_knn(const double *points, size_t n, int dim, int k, int threads,
                               const ps_progress_span *span, uint32_t *knn, ps_error *err) {
     struct FLANNParameters fp = search_parameters();
@@ -167,8 +169,8 @@ static ps_status directed_knn(const double *points, size_t n, int dim, int k, in
     j.index = flann_build_index_double((double *)points, (int)n, dim, &speedup, &fp);
     ps_status st = j.index ? PS_OK : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
     if (st == PS_OK) {
-        ps_progress_span queries = *span;
-        queries.lo = span->lo + (span->hi - span->lo) * INDEX_SHARE;
+        ps_progress_span queries = {span->ctl, span->phase, ps_progress_span_at(span, INDEX_SHARE),
+                                    ps_progress_span_at(span, QUERIES_SHARE)};
         ps_control_progress(span->ctl, span->phase, queries.lo);
         st = ps_parallel_for_tracked(threads, (n + QUERY_BLOCK - 1) / QUERY_BLOCK, 1, query_block,
                                      &j, &queries);
@@ -292,6 +294,7 @@ ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, in
     st = directed_knn(points, n, dim, k, threads, span, knn, err);
     if (st != PS_OK) goto done;
     symmetrize(knn, n, k, threads, g, fill);
+    ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, ROWS_SHARE));
     size_t edges = g->offsets[n];
     uint32_t *shrunk = realloc(g->neighbors, edges * sizeof *shrunk);
     if (shrunk) g->neighbors = shrunk;
@@ -302,6 +305,7 @@ ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, in
     }
     weight_job wj = {points, dim, g};
     ps_parallel_for(threads, n, 0, weigh_rows, &wj);
+    ps_control_progress(span->ctl, span->phase, span->hi);
 done:
     free(knn), free(fill);
     if (st != PS_OK) ps_graph_free(g);

@@ -254,8 +254,7 @@ ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, cons
                                    int *smoothing, ps_error *err) {
     size_t n = g->n;
     ps_noise_estimate noise;
-    ps_progress_span pca = {span->ctl, span->phase, span->lo,
-                            span->lo + (span->hi - span->lo) * PCA_SHARE};
+    ps_progress_span pca = {span->ctl, span->phase, span->lo, ps_progress_span_at(span, PCA_SHARE)};
     ps_status pca_status = unit_normals(g, points, given, ps_parallel_threads(threads), &pca,
                                         normals, &noise);
     if (pca_status == PS_ERR_CANCELLED) return ps_fail(err, pca_status, "normals: cancelled");

@@ -166,18 +166,22 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
 
 /* One round of the outlier removal (outliers.h): stray points leave the
  * distinct points and the kNN graph is built again on the rest, unless
- * too few would remain.  *dropped out: how many left. */
-static ps_status drop_outliers_once(pipeline *pl, size_t *dropped, ps_error *err) {
+ * too few would remain.  round's share of the knn phase's progress: the
+ * search, then the build.  *dropped out: how many left. */
+static ps_status drop_outliers_once(pipeline *pl, int round, size_t *dropped, ps_error *err) {
     size_t u = pl->dedup.n_unique, count = 0;
+    double share = (KNN_OUTLIERS_DONE - KNN_GRAPH_DONE) / PS_OUTLIER_ROUNDS;
+    ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_GRAPH_DONE + share * (round + 0.2),
+                             KNN_GRAPH_DONE + share * (round + 1)};
     *dropped = 0;
     uint32_t *keep_for = malloc(u * sizeof *keep_for);
     if (!keep_for) return ps_fail(err, PS_ERR_NOMEM, "out of memory (outliers)");
     ps_status st = ps_outliers_find(&pl->graph, pl->threads, keep_for, &count, err);
+    ps_control_progress(pl->ctl, PS_PHASE_KNN, span.lo);
     if (st == PS_OK && count > 0 && u - count >= (size_t)pl->params.k + 1) {
         st = ps_outliers_drop(&pl->dedup, pl->in->n, keep_for, err);
         if (st == PS_OK) st = distinct_points(pl, err);
         ps_graph_free(&pl->graph);
-        ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_GRAPH_DONE, KNN_OUTLIERS_DONE};
         if (st == PS_OK)
             st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
                                             pl->params.k, pl->threads, &span, &pl->graph, err);
@@ -193,7 +197,7 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
     size_t dropped = 0;
     ps_status st = PS_OK;
     for (int round = 0; st == PS_OK && round < PS_OUTLIER_ROUNDS; round++) {
-        st = drop_outliers_once(pl, &dropped, err);
+        st = drop_outliers_once(pl, round, &dropped, err);
         pl->n_outliers += dropped;
         if (!dropped) break;
     }
