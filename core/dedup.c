@@ -52,8 +52,8 @@ static void number_points(const double *points, size_t n, int dim, uint32_t *slo
             s = (s + 1) & (slots - 1);
         if (slot[s] == EMPTY) {
             slot[s] = (uint32_t)p;
-            d->first[u] = p;
-            d->unique_of[p] = u++;
+            d->first[u] = (uint32_t)p;
+            d->unique_of[p] = (uint32_t)u++;
         } else {
             d->unique_of[p] = d->unique_of[slot[s]];
         }
@@ -94,15 +94,17 @@ ps_status ps_dedup_morton(ps_dedup *d, const double *points, size_t n, int dim, 
     size_t u = d->n_unique;
     double *distinct = malloc((u ? u : 1) * (size_t)dim * sizeof *distinct);
     uint32_t *order = malloc((u ? u : 1) * sizeof *order);
-    size_t *first = malloc((u ? u : 1) * sizeof *first), *renumber = malloc((u ? u : 1) * sizeof *renumber);
+    uint32_t *first = malloc((u ? u : 1) * sizeof *first);
+    uint32_t *renumber = malloc((u ? u : 1) * sizeof *renumber);
     ps_status st = distinct && order && first && renumber ? PS_OK : PS_ERR_NOMEM;
     for (size_t i = 0; st == PS_OK && i < u; i++)
-        memcpy(distinct + i * (size_t)dim, points + d->first[i] * (size_t)dim, (size_t)dim * sizeof *distinct);
+        memcpy(distinct + i * (size_t)dim, points + (size_t)d->first[i] * (size_t)dim,
+               (size_t)dim * sizeof *distinct);
     if (st == PS_OK) st = ps_morton_order(distinct, u, dim, order);
     if (st == PS_OK) {
         for (size_t i = 0; i < u; i++) {
             first[i] = d->first[order[i]];
-            renumber[order[i]] = i;
+            renumber[order[i]] = (uint32_t)i;
         }
         for (size_t p = 0; p < n; p++) d->unique_of[p] = renumber[d->unique_of[p]];
         free(d->first);

@@ -11,10 +11,10 @@
 #include "pointseg.h"
 
 typedef struct ps_dedup {
-    size_t n_unique;   /* #U distinct points */
-    size_t *unique_of; /* #P: index in 0..#U-1 of each input point */
-    size_t *first;     /* #U: lowest input index of each distinct point
-                          (increasing unless ps_dedup_morton reordered them) */
+    size_t n_unique;     /* #U distinct points */
+    uint32_t *unique_of; /* #P: index in 0..#U-1 of each input point */
+    uint32_t *first;     /* #U: lowest input index of each distinct point
+                            (increasing unless ps_dedup_morton reordered them) */
 } ps_dedup;
 
 /* From this many distinct points on, the pipeline (segment.c) renumbers
@@ -26,7 +26,8 @@ typedef struct ps_dedup {
  * distinct points keep their input order, as do the labels' tie breaks. */
 #define PS_DEDUP_MORTON_MIN 131072
 
-/* points #P by dim.  Distinct points keep their input order (by first). */
+/* points #P by dim, #P < UINT32_MAX.  Distinct points keep their input
+ * order (by first). */
 ps_status ps_dedup_build(const double *points, size_t n, int dim, ps_dedup *d,
                          ps_error *err);
 

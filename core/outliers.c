@@ -41,7 +41,8 @@ static void mark_outliers(void *ctx, size_t begin, size_t end, int worker) {
     double *row = j->row[worker];
     for (size_t p = begin; p < end; p++) {
         size_t n = 0;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) row[n++] = j->scale[g->neighbors[e]];
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
+            row[n++] = j->scale[g->neighbors[e]];
         j->outlier[p] = n > 0 && j->scale[p] > PS_OUTLIER_RATIO * ps_select_kth(row, n, n / 2);
     }
 }
@@ -105,11 +106,11 @@ ps_status ps_outliers_find(const ps_graph *g, int threads, uint32_t *keep_for, s
 
 ps_status ps_outliers_drop(ps_dedup *d, size_t n_points, const uint32_t *keep_for,
                            ps_error *err) {
-    size_t *new_index = malloc((d->n_unique ? d->n_unique : 1) * sizeof *new_index);
+    uint32_t *new_index = malloc((d->n_unique ? d->n_unique : 1) * sizeof *new_index);
     if (!new_index) return ps_fail(err, PS_ERR_NOMEM, "outliers: out of memory");
     size_t kept = 0;
     for (size_t u = 0; u < d->n_unique; u++)
-        if (keep_for[u] == u) new_index[u] = kept, d->first[kept++] = d->first[u];
+        if (keep_for[u] == u) new_index[u] = (uint32_t)kept, d->first[kept++] = d->first[u];
     for (size_t u = 0; u < d->n_unique; u++) new_index[u] = new_index[keep_for[u]];
     for (size_t i = 0; i < n_points; i++) d->unique_of[i] = new_index[d->unique_of[i]];
     d->n_unique = kept;

@@ -115,7 +115,7 @@ static ps_status distinct_points(pipeline *pl, ps_error *err) {
     pl->points = malloc(u * (size_t)in->dim * sizeof *pl->points);
     if (!pl->points) return ps_fail(err, PS_ERR_NOMEM, "out of memory (points)");
     for (size_t i = 0; i < u; i++)
-        memcpy(pl->points + i * in->dim, in->points + pl->dedup.first[i] * in->dim,
+        memcpy(pl->points + i * in->dim, in->points + (size_t)pl->dedup.first[i] * in->dim,
                (size_t)in->dim * sizeof *pl->points);
     return PS_OK;
 }
@@ -148,7 +148,8 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
         given = malloc(u * 3 * sizeof *given);
         if (!given) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
         for (size_t i = 0; i < u; i++)
-            memcpy(given + 3 * i, pl->in->normals + 3 * pl->dedup.first[i], 3 * sizeof *given);
+            memcpy(given + 3 * i, pl->in->normals + 3 * (size_t)pl->dedup.first[i],
+                   3 * sizeof *given);
     }
     ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_OUTLIERS_DONE, KNN_NORMALS_DONE};
     ps_status st = ps_normals_build_tracked(&pl->graph, pl->points, given, pl->component,

@@ -13,8 +13,8 @@ static void test_small_example(void) {
     ps_dedup d;
     REQUIRE(ps_dedup_build(p, 6, 2, &d, NULL) == PS_OK);
     CHECK(d.n_unique == 3);
-    const size_t unique_of[] = {0, 1, 0, 2, 1, 0};
-    const size_t first[] = {0, 1, 3};
+    const uint32_t unique_of[] = {0, 1, 0, 2, 1, 0};
+    const uint32_t first[] = {0, 1, 3};
     CHECK(memcmp(d.unique_of, unique_of, sizeof unique_of) == 0);
     CHECK(memcmp(d.first, first, sizeof first) == 0);
     ps_dedup_free(&d);

@@ -96,7 +96,7 @@ static void test_drop_remaps(void) {
     ps_error err = {0};
     REQUIRE(ps_outliers_drop(&d, 5, keep_for, &err) == PS_OK);
     CHECK(d.n_unique == 3);
-    const size_t unique_of[5] = {0, 1, 1, 1, 2}, first[3] = {0, 2, 4};
+    const uint32_t unique_of[5] = {0, 1, 1, 1, 2}, first[3] = {0, 2, 4};
     CHECK(memcmp(d.unique_of, unique_of, sizeof unique_of) == 0);
     CHECK(memcmp(d.first, first, sizeof first) == 0);
     ps_dedup_free(&d);
