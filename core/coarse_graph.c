@@ -25,7 +25,7 @@
 #define NO_SLOT UINT32_MAX
 #define CANCEL_POLL 256 /* seeds between cancel checks and progress in the cover */
 #define RADII_SHARE 0.05  /* progress of the span after the cell radii ... */
-#define COVER_SHARE 0.5   /* ... after the cover ... */
+#define COVER_SHARE 0.3   /* ... after the cover ... */
 #define ASSIGN_SHARE 0.55 /* ... after the cells ... */
 #define CELLS_SHARE 0.6   /* ... after the near lists; local distances follow */
 
@@ -117,15 +117,17 @@ static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
     return PS_OK;
 }
 
-/* cell_of from one multi-source Dijkstra over all seeds. */
-static ps_status assign_cells(const ps_bfs_order *o, ps_coarse_graph *cg) {
+/* cell_of from one multi-source Dijkstra over all seeds, progress over
+ * span. */
+static ps_status assign_cells(const ps_bfs_order *o, const ps_progress_span *span,
+                              ps_coarse_graph *cg) {
     size_t n = o->g.n;
     ps_dijkstra *dij = ps_dijkstra_new(n);
     double *dist = malloc(n * sizeof *dist);
     int *owner = malloc(n * sizeof *owner);
     ps_status st = dij && dist && owner ? PS_OK : PS_ERR_NOMEM;
     if (st == PS_OK) {
-        ps_dijkstra_run(dij, &o->g, cg->seed, cg->n_cells, dist, owner);
+        ps_dijkstra_run_tracked(dij, &o->g, cg->seed, cg->n_cells, dist, owner, span);
         for (size_t v = 0; v < n; v++) cg->cell_of[v] = (uint32_t)owner[v];
     }
     ps_dijkstra_free(dij);
@@ -302,8 +304,9 @@ static ps_status build_cells(const ps_bfs_order *o, ball *b, const ps_progress_s
     if (st != PS_OK) return st;
     cg->near_offsets = malloc((cg->n_cells + 1) * sizeof *cg->near_offsets);
     if (!cg->near_offsets) return PS_ERR_NOMEM;
-    st = assign_cells(o, cg);
-    ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, ASSIGN_SHARE));
+    ps_progress_span assign = {span->ctl, span->phase, cover_span.hi,
+                               ps_progress_span_at(span, ASSIGN_SHARE)};
+    st = assign_cells(o, &assign, cg);
     uint32_t *mark = st == PS_OK ? malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mark) : NULL;
     if (st == PS_OK && !mark) st = PS_ERR_NOMEM;
     if (st == PS_OK) {
