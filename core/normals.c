@@ -131,8 +131,7 @@ static void orient_from(const ps_graph *g, uint32_t root, double *n, orient_walk
         done[v] = 1;
         if (++w->reached % PROGRESS_STEP == 0)
             ps_control_progress(w->span->ctl, w->span->phase,
-                                w->span->lo + (w->span->hi - w->span->lo) *
-                                                  (double)w->reached / (double)g->n);
+                                ps_progress_span_at(w->span, (double)w->reached / (double)g->n));
         if (v != it.parent && dot3(n + 3 * v, n + 3 * it.parent) < 0)
             for (int i = 0; i < 3; i++) n[3 * v + i] = -n[3 * v + i];
         for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
