@@ -6,6 +6,7 @@
 #   make test       install missing packages, build, run every test
 #   make web / test-browser              the web viewer / its Chromium test
 #   make bench-quality / bench-speed     print the benchmark figures
+#   make bench-scale                     1M to 10M points: times, peak RSS
 #   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
 #
 # Sources are found by wildcard: a new core/*.c or api/*.c joins its library,
@@ -50,7 +51,7 @@ INTEG_BIN := $(patsubst tests/integration/%.c,$(BUILD)/itests/%,$(INTEG_SRC))
 BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
-.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-load clean tests-build \
+.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-scale bench-load clean tests-build \
         install uninstall test-scale test-docker web test-browser
 .DEFAULT_GOAL := all
 
@@ -121,6 +122,12 @@ bench-quality: deps
 bench-speed: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BUILD)/pointseg
 	@$(BUILD)/bench/bench_speed $(BENCH_ARGS)
+
+# 1M, 2M, 4M and 10M points sampled on the horse, one child process each
+# (BENCH_ARGS="--sizes 1000000,2000000" for fewer); needs about 6 GB.
+bench-scale: deps
+	@$(MAKE) --no-print-directory $(BUILD)/bench/bench_scale
+	@$(BUILD)/bench/bench_scale $(BENCH_ARGS)
 
 bench-load: deps
 	@$(MAKE) --no-print-directory $(BUILD)/bench/bench_load $(BUILD)/pointsegd

@@ -25,4 +25,15 @@ typedef struct ps_bfs_order {
 ps_status ps_bfs_order_build(const ps_graph *g, ps_bfs_order *o, ps_error *err);
 void ps_bfs_order_free(ps_bfs_order *o);
 
+/* The same, moving g's arrays into o instead of copying them (rows copied
+ * on threads, as ps_parallel_threads): g is freed (empty) on return, and no
+ * more than one graph and one of its edge arrays are alive at once.  On
+ * failure (out of memory) g is lost too. */
+ps_status ps_bfs_order_take(ps_graph *g, int threads, ps_bfs_order *o, ps_error *err);
+
+/* The inverse: g is rebuilt from o, byte-identical to the graph taken
+ * (rows, their order and weights), and o is freed.  On failure (out of
+ * memory) both are freed. */
+ps_status ps_bfs_order_give_back(ps_bfs_order *o, int threads, ps_graph *g, ps_error *err);
+
 #endif

@@ -101,6 +101,11 @@ static void sample_run(void *ctx, size_t s, int worker) {
 }
 
 /* Samples per component: round(S * size / n), at least 1, at most size. */
+int ps_centrality_default_samples(size_t n) {
+    double s = ceil(sqrt((double)n));
+    return s < PS_MAX_DEFAULT_SAMPLES ? (int)s : PS_MAX_DEFAULT_SAMPLES;
+}
+
 static size_t share_of(size_t samples, size_t size, size_t n) {
     size_t s = (size_t)llround((double)samples * (double)size / (double)n);
     if (s < 1) s = 1;
@@ -229,31 +234,43 @@ static ps_status fine_centrality(const ps_bfs_order *o, const int *component, in
     return st == PS_OK ? PS_OK : fail_status(st, err);
 }
 
-ps_status ps_centrality_with_threshold(const ps_graph *g, const int *component, int n_components,
-                                       ps_centrality_mode mode, int samples, int threads,
-                                       size_t coarse_min, const ps_control *ctl, double *f,
-                                       uint32_t **sample_ids, int *samples_used, ps_error *err) {
+static ps_status check_mode(ps_centrality_mode mode, int samples, uint32_t **sample_ids,
+                            int *samples_used, ps_error *err) {
     if (sample_ids) *sample_ids = NULL;
     if (samples_used) *samples_used = 0;
     if (mode != PS_CENTRALITY_EXACT && mode != PS_CENTRALITY_APPROX)
         return ps_fail(err, PS_ERR_INVALID, "centrality: mode must be exact or approx");
     if (samples < 0) return ps_fail(err, PS_ERR_INVALID, "centrality: samples %d < 0", samples);
-    if (g->n == 0) return PS_OK;
-    ps_bfs_order o;
-    ps_status st = ps_bfs_order_build(g, &o, err);
-    if (st != PS_OK) return st;
-    if (o.n_components != n_components) {
-        ps_bfs_order_free(&o);
+    return PS_OK;
+}
+
+/* f on the breadth-first order o of the graph. */
+static ps_status centrality_on(const ps_bfs_order *o, const int *component, int n_components,
+                               ps_centrality_mode mode, int samples, int threads,
+                               size_t coarse_min, const ps_control *ctl, double *f,
+                               uint32_t **sample_ids, int *samples_used, ps_error *err) {
+    if (o->n_components != n_components)
         return ps_fail(err, PS_ERR_INVALID, "centrality: %d components given, the graph has %d",
-                       n_components, o.n_components);
-    }
+                       n_components, o->n_components);
     int exact = mode == PS_CENTRALITY_EXACT;
-    size_t count = samples ? (size_t)samples : (size_t)ceil(sqrt((double)g->n));
-    if (!exact && g->n >= coarse_min)
-        st = coarse_centrality(&o, count, threads, ctl, f, sample_ids, samples_used, err);
-    else
-        st = fine_centrality(&o, component, exact, count, threads, ctl, f, sample_ids,
-                             samples_used, err);
+    size_t count = samples ? (size_t)samples : (size_t)ps_centrality_default_samples(o->g.n);
+    if (!exact && o->g.n >= coarse_min)
+        return coarse_centrality(o, count, threads, ctl, f, sample_ids, samples_used, err);
+    return fine_centrality(o, component, exact, count, threads, ctl, f, sample_ids, samples_used,
+                           err);
+}
+
+ps_status ps_centrality_with_threshold(const ps_graph *g, const int *component, int n_components,
+                                       ps_centrality_mode mode, int samples, int threads,
+                                       size_t coarse_min, const ps_control *ctl, double *f,
+                                       uint32_t **sample_ids, int *samples_used, ps_error *err) {
+    ps_status st = check_mode(mode, samples, sample_ids, samples_used, err);
+    if (st != PS_OK || g->n == 0) return st;
+    ps_bfs_order o;
+    st = ps_bfs_order_build(g, &o, err);
+    if (st != PS_OK) return st;
+    st = centrality_on(&o, component, n_components, mode, samples, threads, coarse_min, ctl, f,
+                       sample_ids, samples_used, err);
     ps_bfs_order_free(&o);
     return st;
 }
@@ -265,4 +282,24 @@ ps_status ps_centrality(const ps_graph *g, const int *component, int n_component
     return ps_centrality_with_threshold(g, component, n_components, mode, samples, threads,
                                         PS_COARSE_MIN_POINTS, ctl, f, sample_ids, samples_used,
                                         err);
+}
+
+ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_components,
+                                  ps_centrality_mode mode, int samples, int threads,
+                                  const ps_control *ctl, double *f, uint32_t **sample_ids,
+                                  int *samples_used, ps_error *err) {
+    ps_status st = check_mode(mode, samples, sample_ids, samples_used, err);
+    if (st != PS_OK || g->n == 0) return st;
+    ps_bfs_order o;
+    st = ps_bfs_order_take(g, threads, &o, err);
+    if (st != PS_OK) return st;
+    st = centrality_on(&o, component, n_components, mode, samples, threads,
+                       PS_COARSE_MIN_POINTS, ctl, f, sample_ids, samples_used, err);
+    ps_error back_err;
+    ps_status back = ps_bfs_order_give_back(&o, threads, g, &back_err);
+    if (st == PS_OK && back != PS_OK) {
+        st = back;
+        if (err) *err = back_err;
+    }
+    return st;
 }

@@ -26,6 +26,15 @@
 #define PS_COARSE_MIN_POINTS 20000 /* approx uses the two-level scheme from here (-D to tune) */
 #endif
 
+#define PS_MAX_DEFAULT_SAMPLES 512 /* the default sample count's cap */
+
+/* The default approx sample count for n points: ceil(sqrt(n)), at most
+ * PS_MAX_DEFAULT_SAMPLES.  The error of a mean distance over samples that
+ * cover the shape depends on their number, not on n, so beyond ~1M points
+ * more samples cost time and memory (a float per cell and sample) for no
+ * better f. */
+int ps_centrality_default_samples(size_t n);
+
 /* component #P from ps_graph_components.  mode is EXACT or APPROX (the
  * caller resolves AUTO).  f #P out.  sample_ids, if not NULL, receives a
  * malloc'ed list of the sample vertices (#samples_used).  In exact mode no
@@ -36,6 +45,15 @@ ps_status ps_centrality(const ps_graph *g, const int *component, int n_component
                         ps_centrality_mode mode, int samples, int threads,
                         const ps_control *ctl, double *f, uint32_t **sample_ids,
                         int *samples_used, ps_error *err);
+
+/* ps_centrality on a graph it borrows: g's arrays move into the
+ * breadth-first copy (bfs_order.h) while the centrality runs and move back,
+ * byte-identical, before it returns, so the peak holds one copy of the
+ * graph instead of two.  Out of memory, g may come back freed. */
+ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_components,
+                                  ps_centrality_mode mode, int samples, int threads,
+                                  const ps_control *ctl, double *f, uint32_t **sample_ids,
+                                  int *samples_used, ps_error *err);
 
 /* As ps_centrality, with the two-level scheme in approx mode when the graph
  * has at least coarse_min vertices (ps_centrality: PS_COARSE_MIN_POINTS);

@@ -366,10 +366,10 @@ ps_status ps_centrality_coarse(const ps_bfs_order *o, size_t samples, int thread
     *samples_used = 0;
     threads = ps_parallel_threads(threads);
     ps_coarse_graph cg;
+    ps_progress_span build = {ctl, PS_PHASE_CENTRALITY, 0.0, BUILD_SHARE};
     report(ctl, 0.0);
-    ps_status st = ps_coarse_graph_build(o, threads, ctl ? ctl->cancel : NULL, &cg, err);
+    ps_status st = ps_coarse_graph_build(o, threads, &build, &cg, err);
     if (st != PS_OK) return st;
-    report(ctl, BUILD_SHARE);
     two_level x = {.o = o, .cg = &cg, .ctl = ctl, .f = f};
     x.fine = malloc(o->g.n * sizeof *x.fine);
     x.spare = malloc(o->g.n * sizeof *x.spare);

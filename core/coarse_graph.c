@@ -23,7 +23,11 @@
 #include <string.h>
 
 #define NO_SLOT UINT32_MAX
-#define CANCEL_POLL 256 /* seeds between cancel checks in the cover */
+#define CANCEL_POLL 256 /* seeds between cancel checks and progress in the cover */
+#define RADII_SHARE 0.05  /* progress of the span after the cell radii ... */
+#define COVER_SHARE 0.3   /* ... after the cover ... */
+#define ASSIGN_SHARE 0.55 /* ... after the cells ... */
+#define CELLS_SHARE 0.6   /* ... after the near lists; local distances follow */
 
 /* ---- a bounded Dijkstra (one thread's workspace) ------------------------ */
 
@@ -67,8 +71,13 @@ static void ball_clear(ball *b) {
 
 /* ---- cells --------------------------------------------------------------- */
 
+double ps_cell_radius_growth(size_t size) {
+    return size > PS_CELL_SCALE_POINTS ? sqrt((double)size / PS_CELL_SCALE_POINTS) : 1.0;
+}
+
 /* radius #components: PS_CELL_RADIUS_EDGES x median edge length (0 when
- * the component has no edge). */
+ * the component has no edge), grown for a component over
+ * PS_CELL_SCALE_POINTS points. */
 static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
     const ps_graph *g = &o->g;
     double *copy = malloc((g->offsets[g->n] ? g->offsets[g->n] : 1) * sizeof *copy);
@@ -77,7 +86,8 @@ static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
         size_t first = g->offsets[o->start[k]], end = g->offsets[o->start[k + 1]];
         size_t count = end - first;
         memcpy(copy, g->weights + first, count * sizeof *copy);
-        radius[k] = count ? PS_CELL_RADIUS_EDGES * ps_select_kth(copy, count, count / 2) : 0.0;
+        double growth = ps_cell_radius_growth(o->start[k + 1] - o->start[k]);
+        radius[k] = count ? growth * PS_CELL_RADIUS_EDGES * ps_select_kth(copy, count, count / 2) : 0.0;
     }
     free(copy);
     return PS_OK;
@@ -85,13 +95,17 @@ static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
 
 /* Greedy cover in vertex order: seed #M out (sized #P), cell_start out. */
 static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
-                       const volatile int *cancel, unsigned char *covered, ps_coarse_graph *cg) {
+                       const ps_progress_span *span, unsigned char *covered, ps_coarse_graph *cg) {
     size_t m = 0;
     for (int k = 0; k < o->n_components; k++) {
         cg->cell_start[k] = m;
         for (size_t v = o->start[k]; v < o->start[k + 1]; v++) {
             if (covered[v]) continue;
-            if (m % CANCEL_POLL == 0 && ps_cancel_raised(cancel)) return PS_ERR_CANCELLED;
+            if (m % CANCEL_POLL == 0) {
+                if (ps_control_cancelled(span->ctl)) return PS_ERR_CANCELLED;
+                ps_control_progress(span->ctl, span->phase,
+                                    span->lo + (span->hi - span->lo) * (double)v / (double)o->g.n);
+            }
             cg->seed[m++] = (uint32_t)v;
             ball_run(b, &o->g, (uint32_t)v, radius[k], NULL, 0);
             for (size_t i = 0; i < b->n_reached; i++) covered[b->reached[i]] = 1;
@@ -103,15 +117,17 @@ static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
     return PS_OK;
 }
 
-/* cell_of from one multi-source Dijkstra over all seeds. */
-static ps_status assign_cells(const ps_bfs_order *o, ps_coarse_graph *cg) {
+/* cell_of from one multi-source Dijkstra over all seeds, progress over
+ * span. */
+static ps_status assign_cells(const ps_bfs_order *o, const ps_progress_span *span,
+                              ps_coarse_graph *cg) {
     size_t n = o->g.n;
     ps_dijkstra *dij = ps_dijkstra_new(n);
     double *dist = malloc(n * sizeof *dist);
     int *owner = malloc(n * sizeof *owner);
     ps_status st = dij && dist && owner ? PS_OK : PS_ERR_NOMEM;
     if (st == PS_OK) {
-        ps_dijkstra_run(dij, &o->g, cg->seed, cg->n_cells, dist, owner);
+        ps_dijkstra_run_tracked(dij, &o->g, cg->seed, cg->n_cells, dist, owner, span);
         for (size_t v = 0; v < n; v++) cg->cell_of[v] = (uint32_t)owner[v];
     }
     ps_dijkstra_free(dij);
@@ -221,7 +237,7 @@ static void local_run(void *ctx, size_t c, int worker) {
 }
 
 static ps_status local_distances(const ps_graph *g, ball *balls, int threads,
-                                 const volatile int *cancel, ps_coarse_graph *cg) {
+                                 const ps_progress_span *span, ps_coarse_graph *cg) {
     cg->local_offsets[0] = 0;
     for (size_t p = 0; p < g->n; p++) {
         uint32_t a = cg->cell_of[p];
@@ -231,9 +247,7 @@ static ps_status local_distances(const ps_graph *g, ball *balls, int threads,
     cg->local = malloc((cg->local_offsets[g->n] ? cg->local_offsets[g->n] : 1) * sizeof *cg->local);
     if (!cg->local) return PS_ERR_NOMEM;
     local_ctx l = {g, cg, balls};
-    ps_control ctl = {.cancel = cancel}; /* cancel only: no progress here */
-    ps_progress_span span = {&ctl, PS_PHASE_CENTRALITY, 0.0, 0.0};
-    return ps_parallel_for_tracked(threads, cg->n_cells, 0, local_run, &l, &span);
+    return ps_parallel_for_tracked(threads, cg->n_cells, 0, local_run, &l, span);
 }
 
 /* ---- coarse graph ------------------------------------------------------------ */
@@ -277,17 +291,22 @@ static ps_status alloc_cells(const ps_bfs_order *o, ps_coarse_graph *cg) {
 }
 
 /* Cells and near lists, sequential; balls[0] serves the cover. */
-static ps_status build_cells(const ps_bfs_order *o, ball *b, const volatile int *cancel,
+static ps_status build_cells(const ps_bfs_order *o, ball *b, const ps_progress_span *span,
                              ps_coarse_graph *cg) {
     double *radius = malloc(((size_t)o->n_components + 1) * sizeof *radius);
     ps_status st = radius ? cell_radii(o, radius) : PS_ERR_NOMEM;
     unsigned char *covered = st == PS_OK ? calloc(o->g.n ? o->g.n : 1, 1) : NULL;
-    if (st == PS_OK) st = covered ? cover(o, radius, b, cancel, covered, cg) : PS_ERR_NOMEM;
+    ps_progress_span cover_span = {span->ctl, span->phase, ps_progress_span_at(span, RADII_SHARE),
+                                   ps_progress_span_at(span, COVER_SHARE)};
+    ps_control_progress(span->ctl, span->phase, cover_span.lo);
+    if (st == PS_OK) st = covered ? cover(o, radius, b, &cover_span, covered, cg) : PS_ERR_NOMEM;
     free(radius), free(covered);
     if (st != PS_OK) return st;
     cg->near_offsets = malloc((cg->n_cells + 1) * sizeof *cg->near_offsets);
     if (!cg->near_offsets) return PS_ERR_NOMEM;
-    st = assign_cells(o, cg);
+    ps_progress_span assign = {span->ctl, span->phase, cover_span.hi,
+                               ps_progress_span_at(span, ASSIGN_SHARE)};
+    st = assign_cells(o, &assign, cg);
     uint32_t *mark = st == PS_OK ? malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mark) : NULL;
     if (st == PS_OK && !mark) st = PS_ERR_NOMEM;
     if (st == PS_OK) {
@@ -298,25 +317,30 @@ static ps_status build_cells(const ps_bfs_order *o, ball *b, const volatile int 
     return st;
 }
 
-static ps_status build_levels(const ps_bfs_order *o, int threads, const volatile int *cancel,
+static ps_status build_levels(const ps_bfs_order *o, int threads, const ps_progress_span *span,
                               ball *balls, ps_coarse_graph *cg) {
     ps_status st = alloc_cells(o, cg);
     if (st == PS_OK) st = ball_init(&balls[0], o->g.n, 0);
-    if (st == PS_OK) st = build_cells(o, &balls[0], cancel, cg);
+    if (st == PS_OK) st = build_cells(o, &balls[0], span, cg);
     if (st != PS_OK) return st;
     ball_free(&balls[0]);
+    ps_progress_span local = {span->ctl, span->phase, ps_progress_span_at(span, CELLS_SHARE),
+                              span->hi};
+    ps_control_progress(span->ctl, span->phase, local.lo);
     for (int t = 0; t < threads && st == PS_OK; t++) st = ball_init(&balls[t], o->g.n, cg->n_cells);
-    if (st == PS_OK) st = local_distances(&o->g, balls, threads, cancel, cg);
+    if (st == PS_OK) st = local_distances(&o->g, balls, threads, &local, cg);
     if (st == PS_OK) st = coarse_edges(cg);
     return st;
 }
 
-ps_status ps_coarse_graph_build(const ps_bfs_order *o, int threads, const volatile int *cancel,
+ps_status ps_coarse_graph_build(const ps_bfs_order *o, int threads, const ps_progress_span *span,
                                 ps_coarse_graph *cg, ps_error *err) {
     memset(cg, 0, sizeof *cg);
     threads = ps_parallel_threads(threads);
+    ps_progress_span untracked = {NULL, PS_PHASE_CENTRALITY, 0.0, 0.0};
     ball *balls = calloc((size_t)threads, sizeof *balls);
-    ps_status st = balls ? build_levels(o, threads, cancel, balls, cg) : PS_ERR_NOMEM;
+    ps_status st = balls ? build_levels(o, threads, span ? span : &untracked, balls, cg)
+                         : PS_ERR_NOMEM;
     for (int t = 0; balls && t < threads; t++) ball_free(&balls[t]);
     free(balls);
     if (st == PS_OK) return PS_OK;

@@ -7,7 +7,8 @@
  * Cells: the vertices are walked in order 0..n-1 (a breadth-first order,
  * bfs_order.h); an uncovered vertex becomes a seed and covers every vertex
  * within geodesic distance r of it, r = PS_CELL_RADIUS_EDGES x the median
- * edge length of its component.  One multi-source Dijkstra from all seeds
+ * edge length of its component (x sqrt(size / PS_CELL_SCALE_POINTS) for a
+ * component bigger than that).  One multi-source Dijkstra from all seeds
  * then gives every vertex its cell: that of its nearest seed (ties to the
  * lower cell).  Cells are connected, never span two components, and are
  * numbered in the order of their seeds.
@@ -23,10 +24,19 @@
 #define PS_COARSE_GRAPH_H
 
 #include "bfs_order.h"
+#include "parallel.h"
 
 #ifndef PS_CELL_RADIUS_EDGES
 #define PS_CELL_RADIUS_EDGES 3.0 /* cell radius in median kNN edge lengths (-D to tune) */
 #endif
+/* Above this many points a component's cell radius grows by sqrt(points /
+ * PS_CELL_SCALE_POINTS), so its cell count (~70,000 here) stops growing: the
+ * coarse Dijkstras' cost is then bounded, and the cells keep the size in
+ * the model's own units they have at this many points. */
+#define PS_CELL_SCALE_POINTS 1000000
+
+/* The factor on the cell radius of a component of size points. */
+double ps_cell_radius_growth(size_t size);
 
 typedef struct ps_coarse_graph {
     size_t n_cells;         /* #M */
@@ -44,10 +54,12 @@ typedef struct ps_coarse_graph {
 } ps_coarse_graph;
 
 /* o: the breadth-first relabelled graph (its vertex ids are used
- * throughout).  threads as ps_parallel_threads.  cancel may be NULL; when
- * it is raised the build stops with PS_ERR_CANCELLED.  On success cg owns
- * its arrays; on failure it holds none. */
-ps_status ps_coarse_graph_build(const ps_bfs_order *o, int threads, const volatile int *cancel,
+ * throughout).  threads as ps_parallel_threads.  span (may be NULL, and so
+ * may its ctl): progress from span->lo to span->hi as the cover and the
+ * local distances go; when its cancel flag is raised the build stops with
+ * PS_ERR_CANCELLED.  On success cg owns its arrays; on failure it holds
+ * none. */
+ps_status ps_coarse_graph_build(const ps_bfs_order *o, int threads, const ps_progress_span *span,
                                 ps_coarse_graph *cg, ps_error *err);
 void ps_coarse_graph_free(ps_coarse_graph *cg);
 

@@ -9,10 +9,13 @@
  */
 #include "dijkstra.h"
 
+#include "control.h"
+
 #include <math.h>
 #include <stdlib.h>
 
 #define NOT_IN_HEAP UINT32_MAX
+#define PROGRESS_STEP 16384 /* settled vertices between reports of a tracked run */
 
 typedef struct heap_entry {
     double key;
@@ -111,11 +114,17 @@ static int within(const ps_dijkstra_limits *l, double nd, uint32_t v) {
 }
 
 /* Pops the heap until it is empty, relaxing each popped vertex's edges;
- * with b, only into vertices within its limits, listing each popped one. */
-static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, ball *b) {
+ * with b, only into vertices within its limits, listing each popped one;
+ * with span, reporting the share of g's vertices settled so far. */
+static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, ball *b,
+                   const ps_progress_span *span) {
+    size_t settled = 0;
     while (w->size > 0) {
         uint32_t u = heap_pop(w);
         if (b) b->reached[b->count++] = u;
+        if (span && ++settled % PROGRESS_STEP == 0)
+            ps_control_progress(span->ctl, span->phase,
+                                ps_progress_span_at(span, (double)settled / (double)g->n));
         double du = dist[u];
         for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
             uint32_t v = g->neighbors[e];
@@ -131,6 +140,12 @@ static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, 
 
 void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
                      size_t n_sources, double *dist, int *owner) {
+    ps_dijkstra_run_tracked(w, g, sources, n_sources, dist, owner, NULL);
+}
+
+void ps_dijkstra_run_tracked(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
+                             size_t n_sources, double *dist, int *owner,
+                             const ps_progress_span *span) {
     for (size_t v = 0; v < g->n; v++) dist[v] = INFINITY;
     if (owner)
         for (size_t v = 0; v < g->n; v++) owner[v] = -1;
@@ -141,7 +156,8 @@ void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
         if (owner) owner[v] = (int)s;
         heap_set(w, v, 0.0);
     }
-    settle(w, g, dist, owner, NULL);
+    settle(w, g, dist, owner, NULL, span);
+    if (span) ps_control_progress(span->ctl, span->phase, span->hi);
 }
 
 void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, double *dist) {
@@ -149,7 +165,7 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, doubl
         dist[source] = 0.0;
         heap_set(w, source, 0.0);
     }
-    settle(w, g, dist, NULL, NULL);
+    settle(w, g, dist, NULL, NULL, NULL);
 }
 
 size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
@@ -157,6 +173,6 @@ size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
     ball b = {limits, reached, 0};
     dist[source] = 0.0;
     heap_set(w, source, 0.0);
-    settle(w, g, dist, NULL, &b);
+    settle(w, g, dist, NULL, &b, NULL);
     return b.count;
 }

@@ -23,6 +23,12 @@ void ps_dijkstra_free(ps_dijkstra *w);
 void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
                      size_t n_sources, double *dist, int *owner);
 
+/* The same, reporting progress from span->lo to span->hi (span->ctl may be
+ * NULL) as the share of g's vertices settled grows; span may be NULL. */
+void ps_dijkstra_run_tracked(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
+                             size_t n_sources, double *dist, int *owner,
+                             const ps_progress_span *span);
+
 /* Lowers dist (#P, current values) to min(dist, distance from source),
  * exploring only vertices it improves: the farthest-point sampling step. */
 void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source,

@@ -11,13 +11,14 @@
  * never changes the graph.  Queries go in Morton order
  * (morton.h), blocks of them per worker, which keeps the tree walks in
  * cache for inputs in any order.  The directed lists are then
- * mirrored into CSR rows sorted by neighbour index without duplicates.
+ * mirrored into CSR rows, sorted by neighbour index and freed of duplicates
+ * row by row in parallel.
  */
 #include "knn_graph.h"
 
 
+#include "control.h"
 #include "morton.h"
-#include "parallel.h"
 #include "sort_util.h"
 #include "union_find.h"
 
@@ -29,6 +30,9 @@
 
 #define EXTRA 3               /* candidates beyond k + 1, for exact tie breaks */
 #define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
+#define INDEX_SHARE 0.25      /* progress of the span after the index build ... */
+#define QUERIES_SHARE 0.8     /* ... after the queries ... */
+#define ROWS_SHARE 0.9        /* ... after the rows are mirrored; the weights follow */
 
 typedef struct candidate {
     float dist;      /* the distance to single precision: a tie key */
@@ -101,28 +105,27 @@ static int keep_nearest(const query_job *j, size_t p, const int *found) {
     return 0;
 }
 
-static void query_blocks(void *ctx, size_t begin, size_t end, int worker) {
+/* Query block b: QUERY_BLOCK rows in Morton order. */
+static void query_block(void *ctx, size_t b, int worker) {
     query_job *j = ctx;
     struct FLANNParameters fp = search_parameters();
     size_t width = (size_t)j->dim;
-    for (size_t b = begin; b < end; b++) {
-        size_t first = b * QUERY_BLOCK;
-        size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
-        for (size_t r = 0; r < rows; r++)
-            memcpy(j->rows[worker] + r * width, j->points + j->order[first + r] * width,
-                   width * sizeof *j->points);
-        if (flann_find_nearest_neighbors_index_double(j->index, j->rows[worker], (int)rows,
-                                                      j->found[worker], j->squared[worker],
-                                                      j->m, &fp) != 0) {
+    size_t first = b * QUERY_BLOCK;
+    size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
+    for (size_t r = 0; r < rows; r++)
+        memcpy(j->rows[worker] + r * width, j->points + j->order[first + r] * width,
+               width * sizeof *j->points);
+    if (flann_find_nearest_neighbors_index_double(j->index, j->rows[worker], (int)rows,
+                                                  j->found[worker], j->squared[worker], j->m,
+                                                  &fp) != 0) {
+        atomic_store(&j->failed, 1);
+        return;
+    }
+    for (size_t r = 0; r < rows; r++)
+        if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m) != 0) {
             atomic_store(&j->failed, 1);
             return;
         }
-        for (size_t r = 0; r < rows; r++)
-            if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m) != 0) {
-                atomic_store(&j->failed, 1);
-                return;
-            }
-    }
 }
 
 static void free_scratch(query_job *j, int threads) {
@@ -148,9 +151,10 @@ static int alloc_scratch(query_job *j, int threads) {
     return 1;
 }
 
-/* knn #P by k: each point's k nearest other points. */
+/* knn #P by k: each point's k nearest other points; progress through
+ * span up to QUERIES_SHARE. */
 static ps_status directed_knn(const double *points, size_t n, int dim, int k, int threads,
-                              uint32_t *knn, ps_error *err) {
+                              const ps_progress_span *span, uint32_t *knn, ps_error *err) {
     struct FLANNParameters fp = search_parameters();
     float speedup = 0.0f;
     uint32_t *order = malloc(n * sizeof *order);
@@ -165,8 +169,13 @@ static ps_status directed_knn(const double *points, size_t n, int dim, int k, in
     j.index = flann_build_index_double((double *)points, (int)n, dim, &speedup, &fp);
     ps_status st = j.index ? PS_OK : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
     if (st == PS_OK) {
-        ps_parallel_for(threads, (n + QUERY_BLOCK - 1) / QUERY_BLOCK, 1, query_blocks, &j);
-        if (atomic_load(&j.failed)) st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
+        ps_progress_span queries = {span->ctl, span->phase, ps_progress_span_at(span, INDEX_SHARE),
+                                    ps_progress_span_at(span, QUERIES_SHARE)};
+        ps_control_progress(span->ctl, span->phase, queries.lo);
+        st = ps_parallel_for_tracked(threads, (n + QUERY_BLOCK - 1) / QUERY_BLOCK, 1, query_block,
+                                     &j, &queries);
+        if (st != PS_OK) st = ps_fail(err, st, "knn: cancelled");
+        else if (atomic_load(&j.failed)) st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
         flann_free_index_double(j.index, &fp);
     }
     free_scratch(&j, threads);
@@ -188,9 +197,29 @@ static void sort_row(uint32_t *row, size_t len) {
     }
 }
 
+typedef struct rows_job {
+    ps_graph *g;
+    size_t *unique; /* #P out: distinct neighbours of each row */
+} rows_job;
+
+/* Sorts each row in place and moves its distinct entries to its front. */
+static void sort_rows(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    const rows_job *j = ctx;
+    for (size_t p = begin; p < end; p++) {
+        uint32_t *row = j->g->neighbors + j->g->offsets[p];
+        size_t len = j->g->offsets[p + 1] - j->g->offsets[p], kept = 0;
+        sort_row(row, len);
+        for (size_t i = 0; i < len; i++)
+            if (i == 0 || row[i] != row[kept - 1]) row[kept++] = row[i];
+        j->unique[p] = kept;
+    }
+}
+
 /* Mirrors the directed lists into g->offsets / g->neighbors (with room for
- * duplicates), then sorts and compacts each row in place. */
-static void symmetrize(const uint32_t *knn, size_t n, int k, ps_graph *g, size_t *fill) {
+ * duplicates), sorts and dedups the rows in parallel, then packs them. */
+static void symmetrize(const uint32_t *knn, size_t n, int k, int threads, ps_graph *g,
+                       size_t *fill) {
     memset(fill, 0, n * sizeof *fill);
     for (size_t p = 0; p < n * (size_t)k; p++) fill[knn[p]]++;
     g->offsets[0] = 0;
@@ -202,14 +231,13 @@ static void symmetrize(const uint32_t *knn, size_t n, int k, ps_graph *g, size_t
             g->neighbors[fill[p]++] = q;
             g->neighbors[fill[q]++] = (uint32_t)p;
         }
+    rows_job rj = {g, fill};
+    ps_parallel_for(threads, n, 0, sort_rows, &rj);
     size_t out = 0;
     for (size_t p = 0; p < n; p++) {
-        uint32_t *row = g->neighbors + g->offsets[p];
-        size_t len = g->offsets[p + 1] - g->offsets[p];
-        sort_row(row, len);
+        memmove(g->neighbors + out, g->neighbors + g->offsets[p], fill[p] * sizeof *g->neighbors);
         g->offsets[p] = out;
-        for (size_t i = 0; i < len; i++)
-            if (i == 0 || row[i] != row[i - 1]) g->neighbors[out++] = row[i];
+        out += fill[p];
     }
     g->offsets[n] = out;
 }
@@ -243,6 +271,12 @@ static ps_status check_arguments(const double *points, size_t n, int dim, int k,
 
 ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int threads,
                              ps_graph *g, ps_error *err) {
+    ps_progress_span untracked = {NULL, PS_PHASE_KNN, 0.0, 0.0};
+    return ps_knn_graph_build_tracked(points, n, dim, k, threads, &untracked, g, err);
+}
+
+ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, int k, int threads,
+                                     const ps_progress_span *span, ps_graph *g, ps_error *err) {
     memset(g, 0, sizeof *g);
     ps_status st = check_arguments(points, n, dim, k, err);
     if (st != PS_OK) return st;
@@ -257,9 +291,10 @@ ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int
         st = ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for %zu points", n);
         goto done;
     }
-    st = directed_knn(points, n, dim, k, threads, knn, err);
+    st = directed_knn(points, n, dim, k, threads, span, knn, err);
     if (st != PS_OK) goto done;
-    symmetrize(knn, n, k, g, fill);
+    symmetrize(knn, n, k, threads, g, fill);
+    ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, ROWS_SHARE));
     size_t edges = g->offsets[n];
     uint32_t *shrunk = realloc(g->neighbors, edges * sizeof *shrunk);
     if (shrunk) g->neighbors = shrunk;
@@ -270,6 +305,7 @@ ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int
     }
     weight_job wj = {points, dim, g};
     ps_parallel_for(threads, n, 0, weigh_rows, &wj);
+    ps_control_progress(span->ctl, span->phase, span->hi);
 done:
     free(knn), free(fill);
     if (st != PS_OK) ps_graph_free(g);

@@ -11,6 +11,7 @@
 #ifndef PS_KNN_GRAPH_H
 #define PS_KNN_GRAPH_H
 
+#include "parallel.h"
 #include "pointseg.h"
 
 typedef struct ps_graph {
@@ -23,6 +24,12 @@ typedef struct ps_graph {
 /* points: #P by dim, distinct; 1 <= k < n.  On success g owns its arrays. */
 ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k,
                              int threads, ps_graph *g, ps_error *err);
+
+/* The same, reporting progress from span->lo to span->hi as the queries
+ * go (span->ctl may be NULL) and stopping with PS_ERR_CANCELLED when its
+ * cancel flag is raised. */
+ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, int k, int threads,
+                                     const ps_progress_span *span, ps_graph *g, ps_error *err);
 void ps_graph_free(ps_graph *g);
 
 /* Connected components: component #P gets 0..count-1, numbered in order of

@@ -1,4 +1,5 @@
-/* morton.c: Z-order of points by their first three coordinates (morton.h). */
+/* morton.c: Z-order of points by their first three coordinates (morton.h),
+ * sorted by a radix sort of the codes. */
 #include "morton.h"
 
 #include <stdlib.h>
@@ -11,10 +12,34 @@ typedef struct keyed {
     uint32_t index;
 } keyed;
 
-static int compare_keyed(const void *pa, const void *pb) {
-    const keyed *a = pa, *b = pb;
-    if (a->code != b->code) return a->code < b->code ? -1 : 1;
-    return (a->index > b->index) - (a->index < b->index);
+#define DIGIT_BITS 16
+#define DIGITS 4 /* 4 x 16 bits cover the 63-bit code */
+#define BUCKETS (1u << DIGIT_BITS)
+
+static unsigned digit_of(uint64_t code, int d) {
+    return (unsigned)(code >> (d * DIGIT_BITS)) & (BUCKETS - 1);
+}
+
+/* Stable LSD radix sort by code, digit by digit (a digit shared by every
+ * key is skipped), between keys and scratch; returns the one holding the
+ * result.  Keys in index order come out with ties by index. */
+static keyed *radix_sort(keyed *keys, keyed *scratch, size_t n, size_t *count) {
+    for (int d = 0; d < DIGITS; d++) {
+        for (unsigned b = 0; b < BUCKETS; b++) count[b] = 0;
+        for (size_t p = 0; p < n; p++) count[digit_of(keys[p].code, d)]++;
+        if (count[digit_of(keys[0].code, d)] == n) continue;
+        size_t sum = 0;
+        for (unsigned b = 0; b < BUCKETS; b++) {
+            size_t c = count[b];
+            count[b] = sum;
+            sum += c;
+        }
+        for (size_t p = 0; p < n; p++) scratch[count[digit_of(keys[p].code, d)]++] = keys[p];
+        keyed *sorted = scratch;
+        scratch = keys;
+        keys = sorted;
+    }
+    return keys;
 }
 
 /* Spreads the low 21 bits of x to every third bit. */
@@ -41,8 +66,12 @@ static void bounding_box(const double *points, size_t n, int dim, int axes, doub
 
 ps_status ps_morton_order(const double *points, size_t n, int dim, uint32_t *order) {
     if (n == 0) return PS_OK;
-    keyed *keys = malloc(n * sizeof *keys);
-    if (!keys) return PS_ERR_NOMEM;
+    keyed *keys = malloc(n * sizeof *keys), *scratch = malloc(n * sizeof *scratch);
+    size_t *count = malloc(BUCKETS * sizeof *count);
+    if (!keys || !scratch || !count) {
+        free(keys), free(scratch), free(count);
+        return PS_ERR_NOMEM;
+    }
     int axes = dim < AXES ? dim : AXES;
     double lo[AXES], hi[AXES], scale[AXES];
     bounding_box(points, n, dim, axes, lo, hi);
@@ -56,8 +85,8 @@ ps_status ps_morton_order(const double *points, size_t n, int dim, uint32_t *ord
         }
         keys[p] = (keyed){code, (uint32_t)p};
     }
-    qsort(keys, n, sizeof *keys, compare_keyed);
-    for (size_t p = 0; p < n; p++) order[p] = keys[p].index;
-    free(keys);
+    const keyed *sorted = radix_sort(keys, scratch, n, count);
+    for (size_t p = 0; p < n; p++) order[p] = sorted[p].index;
+    free(keys), free(scratch), free(count);
     return PS_OK;
 }

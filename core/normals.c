@@ -1,14 +1,19 @@
 /*
- * normals.c: PCA normals, their MST orientation, and on noisy scans their
- * smoothing (normals.h, normals_smooth.h).
+ * normals.c: PCA normals (in parallel), their MST orientation, and on noisy
+ * scans their smoothing (normals.h, normals_smooth.h).
  */
 #include "normals.h"
 
+#include "control.h"
 #include "normals_smooth.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define PCA_BLOCK 4096 /* points per work item of the PCA */
+#define PCA_SHARE 0.6  /* progress share of the PCA; the orientation follows */
+#define PROGRESS_STEP 65536 /* vertices between reports of the orientation */
 
 /* Smallest-eigenvalue eigenvector of the symmetric 3x3 matrix a (Jacobi);
  * returns that eigenvalue. */
@@ -104,10 +109,19 @@ static double dot3(const double *a, const double *b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* The orientation's walk: progress over span as vertices are reached. */
+typedef struct orient_walk {
+    unsigned char *done; /* #P */
+    prim_item *heap;     /* #E+1 */
+    size_t reached;
+    const ps_progress_span *span;
+} orient_walk;
+
 /* Prim's tree from root over the unvisited part of its component: each
  * vertex is flipped to agree with its tree parent. */
-static void orient_from(const ps_graph *g, uint32_t root, double *n, unsigned char *done,
-                        prim_item *heap) {
+static void orient_from(const ps_graph *g, uint32_t root, double *n, orient_walk *w) {
+    unsigned char *done = w->done;
+    prim_item *heap = w->heap;
     size_t len = 0;
     heap_push(heap, &len, (prim_item){0, root, root});
     while (len > 0) {
@@ -115,6 +129,9 @@ static void orient_from(const ps_graph *g, uint32_t root, double *n, unsigned ch
         uint32_t v = it.vertex;
         if (done[v]) continue;
         done[v] = 1;
+        if (++w->reached % PROGRESS_STEP == 0)
+            ps_control_progress(w->span->ctl, w->span->phase,
+                                ps_progress_span_at(w->span, (double)w->reached / (double)g->n));
         if (v != it.parent && dot3(n + 3 * v, n + 3 * it.parent) < 0)
             for (int i = 0; i < 3; i++) n[3 * v + i] = -n[3 * v + i];
         for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
@@ -173,35 +190,82 @@ static void point_outward(size_t n, const double *points, const int *component,
 /* PCA normals: each component's orientation spreads from its root over
  * the tree. */
 static ps_status orient_components(const ps_graph *g, const uint32_t *root, int n_components,
-                                   double *normals, ps_error *err) {
-    unsigned char *done = calloc(g->n ? g->n : 1, 1);
-    prim_item *heap = malloc((g->offsets[g->n] + 1) * sizeof *heap);
-    if (!done || !heap) {
-        free(done), free(heap);
+                                   const ps_progress_span *span, double *normals, ps_error *err) {
+    orient_walk w = {calloc(g->n ? g->n : 1, 1), malloc((g->offsets[g->n] + 1) * sizeof *w.heap),
+                     0, span};
+    if (!w.done || !w.heap) {
+        free(w.done), free(w.heap);
         return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
     }
-    for (int c = 0; c < n_components; c++) orient_from(g, root[c], normals, done, heap);
-    free(done), free(heap);
+    for (int c = 0; c < n_components; c++) orient_from(g, root[c], normals, &w);
+    free(w.done), free(w.heap);
     return PS_OK;
+}
+
+/* Unit normals of a block of PCA_BLOCK points, each worker counting its
+ * own noise histogram (counts: the sum does not depend on the workers). */
+typedef struct pca_job {
+    const ps_graph *g;
+    const double *points, *given;
+    double *normals;
+    ps_noise_estimate *noise; /* #threads */
+} pca_job;
+
+static void pca_block(void *ctx, size_t block, int worker) {
+    const pca_job *j = ctx;
+    size_t end = (block + 1) * PCA_BLOCK < j->g->n ? (block + 1) * PCA_BLOCK : j->g->n;
+    for (size_t p = block * PCA_BLOCK; p < end; p++) {
+        if (j->given) memcpy(j->normals + 3 * p, j->given + 3 * p, 3 * sizeof *j->normals);
+        else ps_noise_add(&j->noise[worker], pca_normal(j->g, j->points, p, j->normals + 3 * p));
+        normalize(j->normals + 3 * p);
+    }
+}
+
+/* Every point's unit normal (given or PCA) on threads, progress over span;
+ * noise out: the PCA residuals' histogram. */
+static ps_status unit_normals(const ps_graph *g, const double *points, const double *given,
+                              int threads, const ps_progress_span *span, double *normals,
+                              ps_noise_estimate *noise) {
+    pca_job j = {g, points, given, normals, calloc((size_t)threads, sizeof *j.noise)};
+    if (!j.noise) return PS_ERR_NOMEM;
+    ps_status st = ps_parallel_for_tracked(threads, (g->n + PCA_BLOCK - 1) / PCA_BLOCK, 1,
+                                           pca_block, &j, span);
+    memset(noise, 0, sizeof *noise);
+    for (int t = 0; t < threads; t++) {
+        for (size_t b = 0; b < PS_NOISE_BINS; b++) noise->counts[b] += j.noise[t].counts[b];
+        noise->n += j.noise[t].n;
+    }
+    free(j.noise);
+    return st;
 }
 
 ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
                            const int *component, int n_components, int smooth,
                            double *normals, int *smoothing, ps_error *err) {
+    ps_progress_span untracked = {NULL, PS_PHASE_KNN, 0.0, 0.0};
+    return ps_normals_build_tracked(g, points, given, component, n_components, smooth, 1,
+                                    &untracked, normals, smoothing, err);
+}
+
+ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, const double *given,
+                                   const int *component, int n_components, int smooth,
+                                   int threads, const ps_progress_span *span, double *normals,
+                                   int *smoothing, ps_error *err) {
     size_t n = g->n;
-    ps_noise_estimate noise = {{0}, 0};
-    for (size_t p = 0; p < n; p++) {
-        if (given) memcpy(normals + 3 * p, given + 3 * p, 3 * sizeof *normals);
-        else ps_noise_add(&noise, pca_normal(g, points, p, normals + 3 * p));
-        normalize(normals + 3 * p);
-    }
+    ps_noise_estimate noise;
+    ps_progress_span pca = {span->ctl, span->phase, span->lo, ps_progress_span_at(span, PCA_SHARE)};
+    ps_status pca_status = unit_normals(g, points, given, ps_parallel_threads(threads), &pca,
+                                        normals, &noise);
+    if (pca_status == PS_ERR_CANCELLED) return ps_fail(err, pca_status, "normals: cancelled");
+    if (pca_status != PS_OK) return ps_fail(err, pca_status, "normals: out of memory");
     double *centroid = calloc(4 * (size_t)n_components, sizeof *centroid); /* then the votes */
     uint32_t *root = malloc((size_t)n_components * sizeof *root);
     ps_status st = centroid && root &&
                            component_centers(n, points, component, n_components, centroid, root) == 0
                        ? PS_OK
                        : ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
-    if (st == PS_OK && !given) st = orient_components(g, root, n_components, normals, err);
+    ps_progress_span orient = {span->ctl, span->phase, pca.hi, span->hi};
+    if (st == PS_OK && !given) st = orient_components(g, root, n_components, &orient, normals, err);
     if (st == PS_OK)
         point_outward(n, points, component, n_components, centroid,
                       centroid + 3 * (size_t)n_components, normals);
@@ -209,5 +273,6 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
     if (smoothing) *smoothing = iterations;
     if (st == PS_OK) st = ps_normals_smooth(g, normals, iterations, err);
     free(centroid), free(root);
+    if (st == PS_OK) ps_control_progress(span->ctl, span->phase, span->hi);
     return st;
 }

@@ -28,4 +28,13 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
                            const int *component, int n_components, int smooth,
                            double *normals, int *smoothing, ps_error *err);
 
+/* The same with the PCA on threads (ps_parallel_threads), reporting
+ * progress from span->lo to span->hi (span->ctl may be NULL) and stopping
+ * with PS_ERR_CANCELLED when its cancel flag is raised.  The normals do
+ * not depend on threads. */
+ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, const double *given,
+                                   const int *component, int n_components, int smooth,
+                                   int threads, const ps_progress_span *span, double *normals,
+                                   int *smoothing, ps_error *err);
+
 #endif

@@ -1,52 +1,68 @@
 /*
  * outliers.c: stray points found by a median local outlier factor on the
  * kNN graph, and their removal from the distinct points (outliers.h).
- * O(E) for the medians (quickselect on each row), O(P) for the remapping.
+ * O(E) for the medians (quickselect on each row, points in parallel), O(P)
+ * for the remapping.
  */
 #include "outliers.h"
 
+#include "parallel.h"
 #include "sort_util.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-/* scale #U out: each point's median edge length (0 without edges). */
-static void median_edges(const ps_graph *g, double *scale, double *row) {
-    for (size_t p = 0; p < g->n; p++) {
+/* The three passes, each over the points in parallel; a worker's row
+ * scratch holds one row's values (#max degree). */
+typedef struct outlier_job {
+    const ps_graph *g;
+    double **row;           /* #threads */
+    double *scale;          /* #U each point's median edge length */
+    unsigned char *outlier; /* #U */
+    uint32_t *keep_for;     /* #U out */
+} outlier_job;
+
+/* scale: each point's median edge length (0 without edges). */
+static void median_edges(void *ctx, size_t begin, size_t end, int worker) {
+    const outlier_job *j = ctx;
+    const ps_graph *g = j->g;
+    for (size_t p = begin; p < end; p++) {
         size_t n = g->offsets[p + 1] - g->offsets[p];
-        memcpy(row, g->weights + g->offsets[p], n * sizeof *row);
-        scale[p] = n ? ps_select_kth(row, n, n / 2) : 0;
+        memcpy(j->row[worker], g->weights + g->offsets[p], n * sizeof *j->row[worker]);
+        j->scale[p] = n ? ps_select_kth(j->row[worker], n, n / 2) : 0;
     }
 }
 
-/* outlier #U out: 1 when the point's scale is over PS_OUTLIER_RATIO times
- * the median of its neighbours' scales. */
-static void mark_outliers(const ps_graph *g, const double *scale, double *row,
-                          unsigned char *outlier) {
-    for (size_t p = 0; p < g->n; p++) {
+/* outlier: 1 when the point's scale is over PS_OUTLIER_RATIO times the
+ * median of its neighbours' scales. */
+static void mark_outliers(void *ctx, size_t begin, size_t end, int worker) {
+    const outlier_job *j = ctx;
+    const ps_graph *g = j->g;
+    double *row = j->row[worker];
+    for (size_t p = begin; p < end; p++) {
         size_t n = 0;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            row[n++] = scale[g->neighbors[e]];
-        outlier[p] = n > 0 && scale[p] > PS_OUTLIER_RATIO * ps_select_kth(row, n, n / 2);
+            row[n++] = j->scale[g->neighbors[e]];
+        j->outlier[p] = n > 0 && j->scale[p] > PS_OUTLIER_RATIO * ps_select_kth(row, n, n / 2);
     }
 }
 
 /* keep_for[p]: p itself, or for an outlier its nearest neighbour that is
  * no outlier (ties: the lowest index); an outlier with none stays. */
-static size_t nearest_kept(const ps_graph *g, const unsigned char *outlier, uint32_t *keep_for) {
-    size_t count = 0;
-    for (size_t p = 0; p < g->n; p++) {
-        keep_for[p] = (uint32_t)p;
-        if (!outlier[p]) continue;
+static void nearest_kept(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    const outlier_job *j = ctx;
+    const ps_graph *g = j->g;
+    for (size_t p = begin; p < end; p++) {
+        j->keep_for[p] = (uint32_t)p;
+        if (!j->outlier[p]) continue;
         double best = 0;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (outlier[q] || (keep_for[p] != p && g->weights[e] >= best)) continue;
-            keep_for[p] = q, best = g->weights[e];
+            if (j->outlier[q] || (j->keep_for[p] != p && g->weights[e] >= best)) continue;
+            j->keep_for[p] = q, best = g->weights[e];
         }
-        count += keep_for[p] != p;
     }
-    return count;
 }
 
 static size_t max_degree(const ps_graph *g) {
@@ -56,29 +72,45 @@ static size_t max_degree(const ps_graph *g) {
     return most;
 }
 
-ps_status ps_outliers_find(const ps_graph *g, uint32_t *keep_for, size_t *count,
+static int rows_alloc(outlier_job *j, int threads, size_t width) {
+    j->row = calloc((size_t)threads, sizeof *j->row);
+    for (int t = 0; j->row && t < threads; t++)
+        if (!(j->row[t] = malloc(width * sizeof *j->row[t]))) return 0;
+    return j->row != NULL;
+}
+
+static void rows_free(outlier_job *j, int threads) {
+    for (int t = 0; j->row && t < threads; t++) free(j->row[t]);
+    free(j->row);
+}
+
+ps_status ps_outliers_find(const ps_graph *g, int threads, uint32_t *keep_for, size_t *count,
                            ps_error *err) {
-    double *scale = malloc((g->n ? g->n : 1) * sizeof *scale);
-    double *row = malloc((max_degree(g) + 1) * sizeof *row);
-    unsigned char *outlier = malloc(g->n ? g->n : 1);
-    ps_status st = scale && row && outlier ? PS_OK
-                                           : ps_fail(err, PS_ERR_NOMEM, "outliers: out of memory");
+    threads = ps_parallel_threads(threads);
+    outlier_job j = {g, NULL, malloc((g->n ? g->n : 1) * sizeof *j.scale), malloc(g->n ? g->n : 1),
+                     keep_for};
+    ps_status st = j.scale && j.outlier && rows_alloc(&j, threads, max_degree(g) + 1)
+                       ? PS_OK
+                       : ps_fail(err, PS_ERR_NOMEM, "outliers: out of memory");
     if (st == PS_OK) {
-        median_edges(g, scale, row);
-        mark_outliers(g, scale, row, outlier);
-        *count = nearest_kept(g, outlier, keep_for);
+        ps_parallel_for(threads, g->n, 0, median_edges, &j);
+        ps_parallel_for(threads, g->n, 0, mark_outliers, &j);
+        ps_parallel_for(threads, g->n, 0, nearest_kept, &j);
+        *count = 0;
+        for (size_t p = 0; p < g->n; p++) *count += keep_for[p] != p;
     }
-    free(scale), free(row), free(outlier);
+    rows_free(&j, threads);
+    free(j.scale), free(j.outlier);
     return st;
 }
 
 ps_status ps_outliers_drop(ps_dedup *d, size_t n_points, const uint32_t *keep_for,
                            ps_error *err) {
-    size_t *new_index = malloc((d->n_unique ? d->n_unique : 1) * sizeof *new_index);
+    uint32_t *new_index = malloc((d->n_unique ? d->n_unique : 1) * sizeof *new_index);
     if (!new_index) return ps_fail(err, PS_ERR_NOMEM, "outliers: out of memory");
     size_t kept = 0;
     for (size_t u = 0; u < d->n_unique; u++)
-        if (keep_for[u] == u) new_index[u] = kept, d->first[kept++] = d->first[u];
+        if (keep_for[u] == u) new_index[u] = (uint32_t)kept, d->first[kept++] = d->first[u];
     for (size_t u = 0; u < d->n_unique; u++) new_index[u] = new_index[keep_for[u]];
     for (size_t i = 0; i < n_points; i++) d->unique_of[i] = new_index[d->unique_of[i]];
     d->n_unique = kept;

@@ -39,10 +39,11 @@
  * 0.030, four the same. */
 #define PS_OUTLIER_ROUNDS 4
 
-/* g: kNN graph on #U distinct points, weights Euclidean lengths.
+/* g: kNN graph on #U distinct points, weights Euclidean lengths; threads
+ * as ps_parallel_threads (the answer does not depend on them).
  * keep_for #U out: for an outlier (see above), its nearest neighbour that
  * is kept; for any other point, itself.  *count out: the outliers. */
-ps_status ps_outliers_find(const ps_graph *g, uint32_t *keep_for, size_t *count,
+ps_status ps_outliers_find(const ps_graph *g, int threads, uint32_t *keep_for, size_t *count,
                            ps_error *err);
 
 /* Drops the outliers from d (built on n_points input points): its distinct

@@ -93,6 +93,10 @@ static void tracked_range(void *p, size_t begin, size_t end, int worker) {
     }
 }
 
+double ps_progress_span_at(const ps_progress_span *span, double share) {
+    return span->lo + (span->hi - span->lo) * share;
+}
+
 ps_status ps_parallel_for_tracked(int threads, size_t count, size_t chunk, ps_item_fn fn,
                                   void *ctx, const ps_progress_span *span) {
     tracked t = {.fn = fn, .ctx = ctx, .span = span, .count = count};

@@ -33,6 +33,9 @@ typedef struct ps_progress_span {
     double lo, hi;
 } ps_progress_span;
 
+/* The fraction share (in [0, 1]) of the way from span->lo to span->hi. */
+double ps_progress_span_at(const ps_progress_span *span, double share);
+
 /* fn(ctx, item, worker) for every item in [0, count), as ps_parallel_for
  * with chunk items per hand-out.  Before each item a worker checks the
  * cancel flag; once it is raised no worker starts another item.  After

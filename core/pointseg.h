@@ -81,7 +81,7 @@ typedef struct ps_params {
     ps_method method;
     int k;                    /* neighbours per point in the kNN graph (default 7) */
     ps_centrality_mode centrality;
-    int samples;              /* approx centrality samples; 0 = ceil(sqrt(n)) */
+    int samples;              /* approx centrality samples; 0 = ceil(sqrt(n)), at most 512 */
     double persistence;       /* merge sinks whose persistence is below this
                                  fraction of the range of f (persistence.h) */
     double ncut_threshold;    /* stop bisecting when NCut exceeds this; 0 = the
@@ -133,7 +133,10 @@ typedef enum ps_phase {
 const char *ps_phase_name(ps_phase phase); /* "knn", "centrality", ... */
 
 /* Called from the calling thread or a worker of the call, never concurrently
- * with itself; fraction in [0, 1] within the phase. */
+ * with itself; fraction in [0, 1] within the phase, nondecreasing.  Every
+ * phase reports 0, then fractions as its steps go (the kNN queries, the
+ * normals, the coarse graph and the Dijkstras of the centrality, the cuts
+ * of the hierarchy, the steps of supernodes and refine), then 1. */
 typedef void (*ps_progress_fn)(void *user, ps_phase phase, double fraction);
 
 typedef struct ps_control {
@@ -220,6 +223,12 @@ ps_status ps_segment(const ps_input *in, const ps_params *params,
                      const ps_control *ctl, ps_result **out, ps_error *err);
 
 void ps_result_free(ps_result *r);
+
+/* Bytes ps_segment is expected to take at its peak for n points of dim
+ * coordinates with params (the input's own arrays not included): an upper
+ * estimate from measured runs (memory_estimate.c), for a service to refuse
+ * a job that cannot fit before it starts. */
+size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params);
 
 /* ---- scoring (Princeton Segmentation Benchmark conventions) ------------ */
 

@@ -13,8 +13,8 @@ typedef struct ps_result_parts {
     size_t n_input;              /* #P input points */
     int dim;
     size_t n_unique;             /* #U distinct points */
-    const size_t *unique_of;     /* #P distinct index of each input point */
-    const size_t *first_of;      /* #U lowest input index of each distinct point */
+    const uint32_t *unique_of;   /* #P distinct index of each input point */
+    const uint32_t *first_of;    /* #U lowest input index of each distinct point */
     const double *f;             /* #U centrality */
     int n_components;
     int normal_smoothing;        /* normals.h */

@@ -35,6 +35,19 @@
 #include <string.h>
 #include <time.h>
 
+/* Progress within the knn phase after each of its steps ... */
+#define KNN_GRAPH_DONE 0.45
+#define KNN_OUTLIERS_DONE 0.55
+#define KNN_NORMALS_DONE 0.9
+#define KNN_STRENGTHS_DONE 0.95
+/* ... within the supernodes phase ... */
+#define SUPERNODES_BUILT 0.5
+#define SUPERNODES_F2_DONE 0.6
+/* ... and within the refine phase. */
+#define REFINE_GROUPS_DONE 0.2
+#define REFINE_CUT_DONE 0.7
+#define REFINE_CREASE_MERGE_DONE 0.85
+
 /* Everything the phases produce for the distinct points. */
 typedef struct pipeline {
     const ps_input *in;
@@ -90,24 +103,25 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
 }
 
 /* pl->points: the distinct points of pl->dedup (the input itself when
- * every point is distinct); an earlier copy is freed. */
+ * they are every input point in input order); an earlier copy is freed. */
 static ps_status distinct_points(pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
     size_t u = pl->dedup.n_unique;
     if (pl->points != in->points) free(pl->points);
-    if (u == in->n) {
+    if (ps_dedup_is_identity(&pl->dedup, in->n)) {
         pl->points = (double *)in->points;
         return PS_OK;
     }
     pl->points = malloc(u * (size_t)in->dim * sizeof *pl->points);
     if (!pl->points) return ps_fail(err, PS_ERR_NOMEM, "out of memory (points)");
     for (size_t i = 0; i < u; i++)
-        memcpy(pl->points + i * in->dim, in->points + pl->dedup.first[i] * in->dim,
+        memcpy(pl->points + i * in->dim, in->points + (size_t)pl->dedup.first[i] * in->dim,
                (size_t)in->dim * sizeof *pl->points);
     return PS_OK;
 }
 
-/* Distinct points; fails when fewer than k + 1 remain. */
+/* Distinct points (in Morton order for a big scan, dedup.h); fails when
+ * fewer than k + 1 remain. */
 static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
     ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
@@ -116,7 +130,8 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     if (u < (size_t)pl->params.k + 1)
         return ps_fail(err, PS_ERR_INVALID,
                        "need at least k + 1 = %d distinct points, got %zu", pl->params.k + 1, u);
-    return distinct_points(pl, err);
+    if (u >= PS_DEDUP_MORTON_MIN) st = ps_dedup_morton(&pl->dedup, in->points, in->n, in->dim, err);
+    return st == PS_OK ? distinct_points(pl, err) : st;
 }
 
 /* Normals (given, or PCA) of the distinct points, kept for the boundary
@@ -133,13 +148,17 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
         given = malloc(u * 3 * sizeof *given);
         if (!given) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
         for (size_t i = 0; i < u; i++)
-            memcpy(given + 3 * i, pl->in->normals + 3 * pl->dedup.first[i], 3 * sizeof *given);
+            memcpy(given + 3 * i, pl->in->normals + 3 * (size_t)pl->dedup.first[i],
+                   3 * sizeof *given);
     }
-    ps_status st = ps_normals_build(&pl->graph, pl->points, given, pl->component,
-                                    pl->n_components, pl->params.smooth_normals, pl->normals,
-                                    &pl->normal_smoothing, err);
+    ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_OUTLIERS_DONE, KNN_NORMALS_DONE};
+    ps_status st = ps_normals_build_tracked(&pl->graph, pl->points, given, pl->component,
+                                            pl->n_components, pl->params.smooth_normals,
+                                            pl->threads, &span, pl->normals,
+                                            &pl->normal_smoothing, err);
     if (st == PS_OK) {
         ps_crease_strengths(&pl->graph, pl->points, pl->normals, &pl->creases);
+        ps_control_progress(pl->ctl, PS_PHASE_KNN, KNN_STRENGTHS_DONE);
         ps_crease_weights(&pl->graph, pl->points, pl->normals);
     }
     free(given);
@@ -148,20 +167,25 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
 
 /* One round of the outlier removal (outliers.h): stray points leave the
  * distinct points and the kNN graph is built again on the rest, unless
- * too few would remain.  *dropped out: how many left. */
-static ps_status drop_outliers_once(pipeline *pl, size_t *dropped, ps_error *err) {
+ * too few would remain.  round's share of the knn phase's progress: the
+ * search, then the build.  *dropped out: how many left. */
+static ps_status drop_outliers_once(pipeline *pl, int round, size_t *dropped, ps_error *err) {
     size_t u = pl->dedup.n_unique, count = 0;
+    double share = (KNN_OUTLIERS_DONE - KNN_GRAPH_DONE) / PS_OUTLIER_ROUNDS;
+    ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_GRAPH_DONE + share * (round + 0.2),
+                             KNN_GRAPH_DONE + share * (round + 1)};
     *dropped = 0;
     uint32_t *keep_for = malloc(u * sizeof *keep_for);
     if (!keep_for) return ps_fail(err, PS_ERR_NOMEM, "out of memory (outliers)");
-    ps_status st = ps_outliers_find(&pl->graph, keep_for, &count, err);
+    ps_status st = ps_outliers_find(&pl->graph, pl->threads, keep_for, &count, err);
+    ps_control_progress(pl->ctl, PS_PHASE_KNN, span.lo);
     if (st == PS_OK && count > 0 && u - count >= (size_t)pl->params.k + 1) {
         st = ps_outliers_drop(&pl->dedup, pl->in->n, keep_for, err);
         if (st == PS_OK) st = distinct_points(pl, err);
         ps_graph_free(&pl->graph);
         if (st == PS_OK)
-            st = ps_knn_graph_build(pl->points, pl->dedup.n_unique, pl->in->dim, pl->params.k,
-                                    pl->threads, &pl->graph, err);
+            st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
+                                            pl->params.k, pl->threads, &span, &pl->graph, err);
         *dropped = count;
     }
     free(keep_for);
@@ -174,7 +198,7 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
     size_t dropped = 0;
     ps_status st = PS_OK;
     for (int round = 0; st == PS_OK && round < PS_OUTLIER_ROUNDS; round++) {
-        st = drop_outliers_once(pl, &dropped, err);
+        st = drop_outliers_once(pl, round, &dropped, err);
         pl->n_outliers += dropped;
         if (!dropped) break;
     }
@@ -182,8 +206,9 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
 }
 
 static ps_status phase_knn(pipeline *pl, ps_error *err) {
-    ps_status st = ps_knn_graph_build(pl->points, pl->dedup.n_unique, pl->in->dim,
-                                      pl->params.k, pl->threads, &pl->graph, err);
+    ps_progress_span span = {pl->ctl, PS_PHASE_KNN, 0.0, KNN_GRAPH_DONE};
+    ps_status st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
+                                              pl->params.k, pl->threads, &span, &pl->graph, err);
     if (st == PS_OK && pl->params.method == PS_METHOD_AUTO) st = drop_outliers(pl, err);
     if (st != PS_OK) return st;
     size_t u = pl->dedup.n_unique;
@@ -200,12 +225,13 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     if (p->centrality == PS_CENTRALITY_AUTO)
         p->centrality = u <= PS_EXACT_AUTO_LIMIT ? PS_CENTRALITY_EXACT : PS_CENTRALITY_APPROX;
     if (p->centrality == PS_CENTRALITY_APPROX && p->samples == 0)
-        p->samples = (int)ceil(sqrt((double)u));
+        p->samples = ps_centrality_default_samples(u);
     pl->f = malloc(u * sizeof *pl->f);
     if (!pl->f) return ps_fail(err, PS_ERR_NOMEM, "out of memory (centrality)");
     int used = 0;
-    ps_status st = ps_centrality(&pl->graph, pl->component, pl->n_components, p->centrality,
-                                 p->samples, pl->threads, pl->ctl, pl->f, NULL, &used, err);
+    ps_status st = ps_centrality_borrowing(&pl->graph, pl->component, pl->n_components,
+                                           p->centrality, p->samples, pl->threads, pl->ctl,
+                                           pl->f, NULL, &used, err);
     if (st == PS_OK && p->centrality == PS_CENTRALITY_APPROX) p->samples = used;
     return st;
 }
@@ -214,8 +240,10 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     ps_params *p = &pl->params;
     ps_status st = ps_supernodes_build(&pl->graph, pl->f, pl->component, pl->n_components,
                                        &p->persistence, p->use_minima, &pl->sn, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_BUILT);
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
     if (st == PS_OK && pl->normals)
         st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     return st;
@@ -299,8 +327,11 @@ static ps_status phase_refine(pipeline *pl, ps_error *err) {
                              pl->component, pl->tree, pl->n_tree, pl->params.feature_threshold,
                              pl->group_of_leaf, &pl->merges, &pl->n_merges, err);
     if (st == PS_OK) st = point_groups(pl, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CUT_DONE);
     if (st == PS_OK && pl->normals) st = crease_merge(pl, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CREASE_MERGE_DONE);
     if (st == PS_OK && pl->normals) st = patch_merge(pl, err);
     return st;
 }

@@ -13,9 +13,12 @@
 typedef enum opt_kind { OPT_INT, OPT_SIZE, OPT_TEXT, OPT_FLAG } opt_kind;
 
 /* Where an option's default comes from: its default_text read like any
- * value, the number of online cores, or default_text as a directory that is
- * the default only when it exists (else none). */
-typedef enum default_rule { DEFAULT_TEXT, DEFAULT_CORES, DEFAULT_DIR_IF_PRESENT } default_rule;
+ * value, the number of online cores, half the memory the process may use,
+ * or default_text as a directory that is the default only when it exists
+ * (else none). */
+typedef enum default_rule {
+    DEFAULT_TEXT, DEFAULT_CORES, DEFAULT_HALF_MEMORY, DEFAULT_DIR_IF_PRESENT
+} default_rule;
 
 typedef struct opt_spec {
     const char *name; /* flag without "--"; env is POINTSEG_ + upper-case, '-' -> '_' */
@@ -43,6 +46,8 @@ static const opt_spec options[] = {
     INT_OPT("queue-size", queue_size, 1, 1000000, "64", "jobs waiting for a worker; more is a 503"),
     SIZE_OPT("max-body", max_body, 1, 1e15, "268435456", "largest request body in bytes, after gzip (413)"),
     SIZE_OPT("max-points", max_points, 1, 1e12, "5000000", "most points in one request (413)"),
+    {"max-memory", OPT_SIZE, offsetof(ps_config, max_memory), 0, 1, 1e15, "half the memory",
+     DEFAULT_HALF_MEMORY, "bytes one job may need by its estimate (413)"},
     INT_OPT("job-ttl", job_ttl, 0, 1e8, "600", "seconds a finished job is kept"),
     INT_OPT("max-jobs-kept", max_jobs_kept, 1, 1e7, "1000", "finished jobs kept at most"),
     SIZE_OPT("max-kept-bytes", max_kept_bytes, 0, 1e15, "268435456",
@@ -107,6 +112,17 @@ static int is_directory(const char *path) {
     return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
+/* The machine's memory, or the cgroup's limit (a container) when lower. */
+static size_t usable_memory(void) {
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    size_t bytes = pages > 0 && page > 0 ? (size_t)pages * (size_t)page : (size_t)1 << 32;
+    unsigned long long limit;
+    FILE *f = fopen("/sys/fs/cgroup/memory.max", "r");
+    if (f && fscanf(f, "%llu", &limit) == 1 && limit < bytes) bytes = (size_t)limit;
+    if (f) fclose(f);
+    return bytes;
+}
+
 /* Every option's default, from the table (the text --help shows). */
 static int set_defaults(ps_config *c, FILE *err) {
     memset(c, 0, sizeof *c);
@@ -115,6 +131,8 @@ static int set_defaults(ps_config *c, FILE *err) {
         if (o->rule == DEFAULT_CORES) {
             long cores = sysconf(_SC_NPROCESSORS_ONLN);
             *(int *)((char *)c + o->offset) = cores > 0 ? (int)cores : 1;
+        } else if (o->rule == DEFAULT_HALF_MEMORY) {
+            *(size_t *)((char *)c + o->offset) = usable_memory() / 2;
         } else if (o->rule == DEFAULT_TEXT || is_directory(o->default_text)) {
             if (set_option(c, o, o->default_text, "built-in default", err)) return -1;
         }

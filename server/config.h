@@ -16,6 +16,7 @@ typedef struct ps_config {
     int queue_size;        /* --queue-size: waiting jobs, default 64 */
     size_t max_body;       /* --max-body: bytes (after gzip), default 256 MiB */
     size_t max_points;     /* --max-points, default 5,000,000 */
+    size_t max_memory;     /* --max-memory: bytes a job may need by its estimate, default half the memory */
     int job_ttl;           /* --job-ttl: seconds a finished job is kept, default 600 */
     int max_jobs_kept;     /* --max-jobs-kept: finished jobs kept, default 1000 */
     size_t max_kept_bytes; /* --max-kept-bytes: their results' bytes, default 256 MiB */

@@ -41,11 +41,22 @@ static int wants_ply(const char *accept) {
 int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
                      size_t n_extra, ps_request_params *rp, ps_api_error *err) {
     ps_request_params_default(rp);
-    rp->core.threads = 1;
     if (wants_ply(accept)) rp->output = PS_OUTPUT_PLY;
     for (size_t i = 0; body && i < body->n_params; i++)
         if (ps_request_param_set(rp, body->params[i].name, body->params[i].value, err)) return -1;
     for (size_t i = 0; i < n_extra; i++)
         if (ps_request_param_set(rp, extra[i].name, extra[i].value ? extra[i].value : "", err)) return -1;
     return 0;
+}
+
+int ps_intake_check_memory(const ps_pointset *ps, const ps_request_params *rp, size_t max_memory,
+                           ps_api_error *err) {
+    size_t coordinates = ps->n * (size_t)ps->dim * sizeof(double);
+    size_t need = ps_segment_memory_estimate(ps->n, ps->dim, &rp->core) + coordinates +
+                  (ps->normals ? coordinates : 0);
+    if (need <= max_memory) return 0;
+    return ps_api_fail(err, 413,
+                       "%zu points need about %zu MiB by the service's estimate, over the limit of "
+                       "%zu MiB (--max-memory)",
+                       ps->n, need >> 20, max_memory >> 20);
 }

@@ -35,12 +35,19 @@ typedef struct ps_text_param {
 int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,
                      ps_pointset *out, ps_api_error *err);
 
-/* The parameters of a request, later sources winning: defaults (threads = 1
- * so jobs run side by side), the Accept header (application/ply: PLY
+/* The parameters of a request, later sources winning: defaults (threads =
+ * 0: the job runner gives the job the cores no other job holds,
+ * core_share.h), the Accept header (application/ply: PLY
  * output; may be NULL), the body's own params, then the extra pairs
  * (multipart fields, then the query string).  Returns 0 or -1 with err (400
  * unknown name, 422 bad value). */
 int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
                      size_t n_extra, ps_request_params *rp, ps_api_error *err);
+
+/* 0 when the job's memory estimate (ps_segment_memory_estimate, plus the
+ * decoded input) is within max_memory bytes; else -1 with a 413 naming the
+ * estimate and the limit. */
+int ps_intake_check_memory(const ps_pointset *ps, const ps_request_params *rp, size_t max_memory,
+                           ps_api_error *err);
 
 #endif

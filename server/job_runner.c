@@ -1,6 +1,8 @@
-/* job_runner.c: one job: ps_segment, then its document in the requested format. */
+/* job_runner.c: one job: ps_segment on its share of the cores
+ * (core_share.h), then its document in the requested format. */
 #include "job_runner.h"
 
+#include "core_share.h"
 #include "encode.h"
 
 #include <stdio.h>
@@ -25,13 +27,23 @@ static char *encode_result(const ps_pointset *points, const ps_request_params *p
     }
 }
 
+/* ps_segment with params' thread count resolved to the job's share. */
+static ps_status segment_on_share(const ps_input *in, const ps_request_params *params,
+                                  const ps_control *ctl, ps_result **r, ps_error *err) {
+    ps_params core = params->core;
+    core.threads = ps_core_share_take(params->core.threads);
+    ps_status s = ps_segment(in, &core, ctl, r, err);
+    ps_core_share_give(core.threads);
+    return s;
+}
+
 void ps_job_run(const ps_pointset *points, const ps_request_params *params,
                 const ps_control *ctl, ps_run_outcome *out) {
     ps_input in = {points->points, points->n, points->dim, points->normals};
     ps_result *r = NULL;
     ps_error err = {0};
     memset(out, 0, sizeof *out);
-    ps_status s = ps_segment(&in, &params->core, ctl, &r, &err);
+    ps_status s = segment_on_share(&in, params, ctl, &r, &err);
     if (s == PS_ERR_CANCELLED) {
         out->state = PS_RUN_CANCELLED;
         return;

@@ -25,7 +25,8 @@ typedef struct ps_run_outcome {
     char error[512];         /* FAILED: why */
 } ps_run_outcome;
 
-/* Segments points with params under ctl (progress, cancel flag) and fills
+/* Segments points with params under ctl (progress, cancel flag), on the
+ * cores core_share.h gives the job when params leave threads at 0, and fills
  * *out. */
 void ps_job_run(const ps_pointset *points, const ps_request_params *params,
                 const ps_control *ctl, ps_run_outcome *out);

@@ -354,7 +354,8 @@ enum MHD_Result ps_routes_upload_done(ps_request *r) {
     const char *bytes = ps_body_data(r->body, &len);
     if (ps_intake_decode(bytes, len, r->media, r->srv->cfg->max_points, &ps, &r->error))
         return ps_respond_error(r, &r->error);
-    if (gather_params(r, &ps, &q, &accept, &rp)) {
+    if (gather_params(r, &ps, &q, &accept, &rp) ||
+        ps_intake_check_memory(&ps, &rp, r->srv->cfg->max_memory, &r->error)) {
         ps_pointset_free(&ps);
         return ps_respond_error(r, &r->error);
     }

@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_machine.h"
 #include "decode.h"
 #include "encode.h"
 #include "mesh_sample.h"
@@ -42,12 +43,6 @@ typedef struct speed_case {
     ps_method method;          /* PS_METHOD_AUTO unless a case says paper */
 } speed_case;
 
-static double now_ms(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
 static double peak_rss_mb(void) {
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
@@ -55,20 +50,9 @@ static double peak_rss_mb(void) {
 }
 
 static void print_machine(void) {
-    char line[512], cpu[256] = "unknown";
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    while (f && fgets(line, sizeof line, f)) {
-        char *colon = strchr(line, ':');
-        if (strncmp(line, "model name", 10) != 0 || !colon) continue;
-        snprintf(cpu, sizeof cpu, "%s", colon + 2);
-        cpu[strcspn(cpu, "\n")] = 0;
-        break;
-    }
-    if (f) fclose(f);
-    char date[64];
-    time_t t = time(NULL);
-    struct tm tm;
-    strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", gmtime_r(&t, &tm));
+    char cpu[256], date[64];
+    ps_bench_cpu_name(cpu, sizeof cpu);
+    ps_bench_utc_now(date, sizeof date);
     printf("pointseg %s bench_speed, %s\nmachine: nproc %ld, CPU %s\n", PS_VERSION, date,
            sysconf(_SC_NPROCESSORS_ONLN), cpu);
     printf("times in ms (median of %d runs; the 1M case runs once), peak RSS of the "
@@ -99,15 +83,15 @@ static int segment_and_encode(const ps_pointset *ps, const speed_case *c, run_ti
     ps_input in = {ps->points, ps->n, ps->dim, ps->normals};
     ps_result *r = NULL;
     ps_error err;
-    double start = now_ms();
+    double start = ps_bench_now_ms();
     if (ps_segment(&in, &params, NULL, &r, &err) != PS_OK) {
         fprintf(stderr, "ps_segment: %s\n", err.message);
         return -1;
     }
-    double segmented = now_ms();
+    double segmented = ps_bench_now_ms();
     size_t len = 0;
     char *json = ps_encode_json(ps, r, 0, &len);
-    t->v[COL_ENCODE] = now_ms() - segmented;
+    t->v[COL_ENCODE] = ps_bench_now_ms() - segmented;
     t->v[COL_SEGMENT] = segmented - start;
     for (int p = 0; p < PS_PHASE_COUNT; p++) t->v[COL_PHASE0 + p] = r->timings.ms[p];
     t->v[COL_SEGMENTS] = r->n_segments;
@@ -121,15 +105,15 @@ static int segment_and_encode(const ps_pointset *ps, const speed_case *c, run_ti
 static int run_once(const speed_case *c, run_times *t) {
     ps_pointset decoded;
     const ps_pointset *ps = c->points;
-    double start = now_ms();
+    double start = ps_bench_now_ms();
     memset(t, 0, sizeof *t);
     if (c->path) {
         if (load_file(c->path, &decoded) != 0) return -1;
         ps = &decoded;
     }
-    t->v[COL_DECODE] = now_ms() - start;
+    t->v[COL_DECODE] = ps_bench_now_ms() - start;
     int rc = segment_and_encode(ps, c, t);
-    t->v[COL_TOTAL] = now_ms() - start;
+    t->v[COL_TOTAL] = ps_bench_now_ms() - start;
     if (c->path) ps_pointset_free(&decoded);
     return rc;
 }

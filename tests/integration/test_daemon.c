@@ -1,7 +1,8 @@
 /*
  * test_daemon.c: pointsegd over HTTP: every endpoint and content type, the
  * same labels through /segment, /jobs and the library, bad inputs of every
- * kind (right status, problem+json, daemon healthy afterwards), 32
+ * kind (right status, problem+json, daemon healthy afterwards), every
+ * core for a job on an idle daemon, --max-memory, 32
  * concurrent clients, a full queue (503), DELETE of a running exact job,
  * token, CORS, static files, and SIGTERM draining.  Each test starts
  * pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
@@ -9,6 +10,7 @@
 #include "params_table.h"
 #include "pointseg.h"
 #include "pointseg_client.h"
+#include "progress_seen.h"
 #include "shapes.h"
 #include "daemon_run.h"
 #include "gzip_body.h"
@@ -251,6 +253,34 @@ static void test_outputs_and_includes(void) {
     CHECK_STOPS(d, 10);
 }
 
+/* params.threads of a JSON document, or -1. */
+static int document_threads(const ps_client_response *r) {
+    cJSON *doc = r->body ? cJSON_Parse(r->body) : NULL;
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(doc, "params"), "threads");
+    int threads = cJSON_IsNumber(t) ? t->valueint : -1;
+    cJSON_Delete(doc);
+    return threads;
+}
+
+/* Alone on an idle daemon a job runs on every core, as the CLI does; an
+ * explicit threads parameter is kept. */
+static void test_idle_daemon_job_gets_every_core(void) {
+    ps_daemon d;
+    ps_client_response r;
+    REQUIRE(need_small());
+    REQUIRE_STARTS(d, NULL);
+    ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && r.status == 200);
+    CHECK_MSG(document_threads(&r) == cores, "threads %d on %ld cores", document_threads(&r), cores);
+    ps_client_response_free(&r);
+    CHECK(ps_client_segment(&d.client, &body, "threads=1", &r) == 0 && r.status == 200 &&
+          document_threads(&r) == 1 && same_labels(&r, &small));
+    ps_client_response_free(&r);
+    CHECK_STOPS(d, 10);
+}
+
 static void test_service_endpoints(void) {
     ps_daemon d;
     ps_client_response r;
@@ -286,6 +316,24 @@ static void test_service_endpoints(void) {
     const char *const preflight[] = {"Origin: http://viewer.example", "Access-Control-Request-Method: POST", NULL};
     CHECK(ps_client_request(&d.client, "OPTIONS", "/segment", NULL, preflight, &r) == 0 && r.status == 204);
     ps_client_response_free(&r);
+    CHECK_STOPS(d, 10);
+}
+
+/* A job whose memory estimate is over --max-memory is refused before it
+ * runs, on /segment and /jobs alike, with a 413 naming the limit. */
+static void test_memory_limit(void) {
+    ps_daemon d;
+    ps_client_response r;
+    char id[128];
+    REQUIRE(need_small());
+    REQUIRE_STARTS(d, "--max-memory", "1000000", NULL);
+    ps_client_body body = {small.xyz, small.xyz_len, NULL, NULL};
+    CHECK(ps_client_segment(&d.client, &body, NULL, &r) == 0 && is_problem(&r, 413) &&
+          strstr(r.body, "--max-memory") && strstr(r.body, "estimate"));
+    ps_client_response_free(&r);
+    CHECK(ps_client_submit(&d.client, &body, NULL, id, sizeof id, &r) == 0 && is_problem(&r, 413));
+    ps_client_response_free(&r);
+    CHECK(ps_daemon_healthy(&d));
     CHECK_STOPS(d, 10);
 }
 
@@ -530,6 +578,57 @@ static void test_full_queue_and_cancel(void) {
     CHECK_STOPS(d, 10);
 }
 
+/* The job's progress (phase index, fraction) from a GET /jobs/{id}
+ * answer; 0, or -1 when it has none. */
+static int job_progress(const ps_client_response *r, int *phase, double *fraction) {
+    cJSON *doc = r->body ? cJSON_Parse(r->body) : NULL;
+    const cJSON *progress = cJSON_GetObjectItemCaseSensitive(doc, "progress");
+    const cJSON *name = cJSON_GetObjectItemCaseSensitive(progress, "phase");
+    const cJSON *value = cJSON_GetObjectItemCaseSensitive(progress, "fraction");
+    int ok = cJSON_IsString(name) && cJSON_IsNumber(value);
+    *phase = -1;
+    for (int p = 0; ok && p < PS_PHASE_COUNT; p++)
+        if (!strcmp(name->valuestring, ps_phase_name((ps_phase)p))) *phase = p;
+    if (ok) *fraction = value->valuedouble;
+    cJSON_Delete(doc);
+    return ok && *phase >= 0 ? 0 : -1;
+}
+
+/* Polled while it runs, a job of 150,000 points on one thread shows its
+ * knn and centrality phases move: several fractions strictly between 0
+ * and 1 in each, as the viewer's bar does. */
+static void test_job_progress_moves_within_phases(void) {
+    ps_daemon d;
+    ps_client_response r;
+    char id[128];
+    size_t n, len;
+    double *pts = ps_shape_dumbbell(5400, &n, NULL);
+    REQUIRE(pts && n > 150000);
+    char *xyz = ps_points_xyz(pts, n, &len);
+    free(pts);
+    REQUIRE(xyz);
+    REQUIRE_STARTS(d, NULL);
+    ps_client_body body = {xyz, len, NULL, NULL};
+    REQUIRE(ps_client_submit(&d.client, &body, "threads=1", id, sizeof id, &r) == 0 && r.status == 202);
+    ps_client_response_free(&r);
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    int final = 0;
+    for (double t0 = seconds_now(); !final && seconds_now() - t0 < 60; ps_test_sleep_ms(2)) {
+        int phase;
+        double fraction;
+        if (ps_client_poll(&d.client, id, &r) == 0 && job_progress(&r, &phase, &fraction) == 0)
+            ps_progress_seen_record(&seen, (ps_phase)phase, fraction);
+        final = r.body && strstr(r.body, "\"status\":\"done\"");
+        ps_client_response_free(&r);
+    }
+    CHECK_MSG(final, "the job did not finish in 60 s");
+    CHECK_MSG(seen.inside[PS_PHASE_KNN] >= 2 && seen.inside[PS_PHASE_CENTRALITY] >= 2,
+              "fractions seen inside (0, 1): knn %d, centrality %d", seen.inside[PS_PHASE_KNN],
+              seen.inside[PS_PHASE_CENTRALITY]);
+    free(xyz);
+    CHECK_STOPS(d, 10);
+}
+
 static void test_client_going_away_cancels(void) {
     ps_daemon d;
     ps_client_response r;
@@ -638,7 +737,7 @@ static void test_help_lists_flags(void) {
     size_t len = fread(out, 1, sizeof out - 1, p);
     out[len] = 0;
     CHECK(pclose(p) == 0);
-    const char *flags[] = {"--port", "--bind", "--threads", "--queue-size", "--max-body", "--max-points",
+    const char *flags[] = {"--port", "--bind", "--threads", "--queue-size", "--max-body", "--max-points", "--max-memory",
                            "--job-ttl", "--token", "--cors-origin", "--static-dir", "POINTSEG_PORT"};
     for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
         CHECK_MSG(strstr(out, flags[i]), "--help lacks %s", flags[i]);
@@ -668,10 +767,13 @@ static void test_zz_cleanup(void) {
 int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
-        TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes), TEST(test_bad_inputs_get_problems),
+        TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes),
+        TEST(test_idle_daemon_job_gets_every_core), TEST(test_bad_inputs_get_problems),
         TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_ply_header_warning_in_document),
-        TEST(test_size_limits), TEST(test_token_and_static_files), TEST(test_32_concurrent_clients),
-        TEST(test_full_queue_and_cancel), TEST(test_client_going_away_cancels),
+        TEST(test_size_limits), TEST(test_memory_limit), TEST(test_token_and_static_files),
+        TEST(test_32_concurrent_clients),
+        TEST(test_full_queue_and_cancel), TEST(test_job_progress_moves_within_phases),
+        TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_sigterm_under_incoming_connections),
         TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
     signal(SIGPIPE, SIG_IGN);

@@ -1,7 +1,8 @@
 /* test_centrality.c: exact centrality has the path graph's closed form,
  * approx (full Dijkstras and the two-level scheme) is close to exact on the
  * shapes (RMS of normalized f < 0.08), all are bit-identical for any thread
- * count, and cancel / progress behave. */
+ * count, cancel / progress behave, the default sample count is
+ * ceil(sqrt(n)) up to its cap, and borrowing the graph changes nothing. */
 #include "centrality.h"
 #include "knn_graph.h"
 #include "shapes.h"
@@ -202,12 +203,17 @@ static void check_progress_and_cancel(ps_centrality_mode mode, size_t coarse_min
     REQUIRE(shape_graph_make(pts, n, &s));
     double *f = malloc(n * sizeof *f);
     REQUIRE(f);
-    progress_log log = {0, 1, 0, 0.0, 0.0, NULL};
-    ps_control ctl = {on_progress, &log, NULL};
-    REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 40, 2, coarse_min, &ctl, f,
-                                         NULL, NULL, NULL) == PS_OK);
-    CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
-    CHECK(log.first < 0.05);
+    for (int threads = 1; threads <= 2; threads++) {
+        progress_log log = {0, 1, 0, 0.0, 0.0, NULL};
+        ps_control ctl = {on_progress, &log, NULL};
+        REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 40, threads, coarse_min,
+                                             &ctl, f, NULL, NULL, NULL) == PS_OK);
+        CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
+        /* where progress starts is pinned on one thread only: with two, the
+         * other worker may run many items before the reporting one ends
+         * its first */
+        if (threads == 1) CHECK_MSG(log.first < 0.05, "first report %g", log.first);
+    }
 
     volatile int cancel = 0;
     progress_log stop = {0, 1, 0, 0.0, 0.0, &cancel};
@@ -247,8 +253,46 @@ static void test_default_threshold(void) {
     shape_graph_free(&s);
 }
 
+static void test_default_samples_capped(void) {
+    CHECK(ps_centrality_default_samples(100) == 10);
+    CHECK(ps_centrality_default_samples(48485) == 221); /* the horse */
+    CHECK(ps_centrality_default_samples(262144) == 512);
+    CHECK(ps_centrality_default_samples(262145) == PS_MAX_DEFAULT_SAMPLES);
+    CHECK(ps_centrality_default_samples(10000000) == PS_MAX_DEFAULT_SAMPLES);
+}
+
+/* Borrowing the graph gives the same f, bit for bit, as a copy does (the
+ * two-level scheme on a star over PS_COARSE_MIN_POINTS), and the graph
+ * comes back with every byte as it was. */
+static void test_borrowing_same_f_and_graph(void) {
+    size_t n;
+    double *pts = ps_shape_star(780.0, &n, NULL);
+    ps_graph g, kept;
+    REQUIRE(pts && n >= PS_COARSE_MIN_POINTS);
+    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 2, &g, NULL) == PS_OK);
+    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 2, &kept, NULL) == PS_OK);
+    int *comp = malloc(n * sizeof *comp);
+    double *copied = malloc(n * sizeof *copied), *borrowed = malloc(n * sizeof *borrowed);
+    REQUIRE(comp && copied && borrowed);
+    int nc = ps_graph_components(&g, comp);
+    REQUIRE(ps_centrality(&kept, comp, nc, PS_CENTRALITY_APPROX, 0, 2, NULL, copied, NULL, NULL,
+                          NULL) == PS_OK);
+    REQUIRE(ps_centrality_borrowing(&g, comp, nc, PS_CENTRALITY_APPROX, 0, 2, NULL, borrowed,
+                                    NULL, NULL, NULL) == PS_OK);
+    CHECK(memcmp(copied, borrowed, n * sizeof *copied) == 0);
+    size_t edges = kept.offsets[n];
+    CHECK(g.n == n && g.offsets[n] == edges &&
+          !memcmp(g.offsets, kept.offsets, (n + 1) * sizeof *g.offsets) &&
+          !memcmp(g.neighbors, kept.neighbors, edges * sizeof *g.neighbors) &&
+          !memcmp(g.weights, kept.weights, edges * sizeof *g.weights));
+    ps_graph_free(&g), ps_graph_free(&kept);
+    free(pts), free(comp), free(copied), free(borrowed);
+}
+
 PS_TEST_MAIN(TEST(test_exact_path_closed_form), TEST(test_approx_all_samples_is_exact),
              TEST(test_approx_close_to_exact), TEST(test_two_level_close_to_exact),
              TEST(test_threads_identical_exact), TEST(test_threads_identical_approx),
              TEST(test_threads_identical_two_level), TEST(test_progress_and_cancel),
-             TEST(test_progress_and_cancel_two_level), TEST(test_default_threshold))
+             TEST(test_progress_and_cancel_two_level), TEST(test_default_threshold),
+             TEST(test_borrowing_same_f_and_graph),
+             TEST(test_default_samples_capped))

@@ -1,7 +1,9 @@
 /* test_coarse_graph.c: cells partition the vertices (seed in its own cell,
  * no cell across components), local distances from the own seed equal a full
  * Dijkstra and the others are never shorter, coarse edge weights are the
- * smaller local geodesic of the two seeds, components stay apart, cancel. */
+ * smaller local geodesic of the two seeds, components stay apart, cancel,
+ * and the cell radius grows past PS_CELL_SCALE_POINTS so that the cell
+ * count stays bounded. */
 #include "coarse_graph.h"
 #include "dijkstra.h"
 #include "knn_graph.h"
@@ -160,14 +162,26 @@ static void test_cancel(void) {
     REQUIRE(pts && ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
     REQUIRE(ps_bfs_order_build(&g, &o, NULL) == PS_OK);
     volatile int cancel = 1;
+    ps_control ctl = {.cancel = &cancel};
+    ps_progress_span span = {&ctl, PS_PHASE_CENTRALITY, 0.0, 0.3};
     ps_coarse_graph cg;
     ps_error err = {0};
-    CHECK(ps_coarse_graph_build(&o, 2, &cancel, &cg, &err) == PS_ERR_CANCELLED);
+    CHECK(ps_coarse_graph_build(&o, 2, &span, &cg, &err) == PS_ERR_CANCELLED);
     CHECK(err.status == PS_ERR_CANCELLED && cg.seed == NULL && cg.local == NULL);
     ps_bfs_order_free(&o);
     ps_graph_free(&g);
     free(pts);
 }
 
+/* Cells cover area ~ radius^2: points per cell grow as size / scale, so
+ * the cell count size / (points per cell) is the same from the scale on. */
+static void test_radius_growth_bounds_cells(void) {
+    CHECK(ps_cell_radius_growth(1000) == 1.0);
+    CHECK(ps_cell_radius_growth(PS_CELL_SCALE_POINTS) == 1.0);
+    CHECK(fabs(ps_cell_radius_growth(4 * (size_t)PS_CELL_SCALE_POINTS) - 2.0) < 1e-12);
+    double g = ps_cell_radius_growth(10 * (size_t)PS_CELL_SCALE_POINTS);
+    CHECK(fabs(10.0 * PS_CELL_SCALE_POINTS / (g * g) - PS_CELL_SCALE_POINTS) < 1e-6);
+}
+
 PS_TEST_MAIN(TEST(test_cells_partition), TEST(test_local_distances), TEST(test_coarse_edges),
-             TEST(test_two_components), TEST(test_cancel))
+             TEST(test_two_components), TEST(test_cancel), TEST(test_radius_growth_bounds_cells))

@@ -3,9 +3,12 @@
  * ps_dijkstra_lower equals the minimum of full runs.  Ball runs on a
  * hand-built graph: the radius is inclusive, a region detours around the
  * vertices outside it, the reached list is in settling order and resets
- * dist; on a random graph a ball equals Bellman-Ford within the radius. */
+ * dist; on a random graph a ball equals Bellman-Ford within the radius; a
+ * tracked run answers the same and reports its progress. */
 #include "dijkstra.h"
 #include "knn_graph.h"
+#include "progress_seen.h"
+#include "shapes.h"
 #include "testlib.h"
 
 #include <math.h>
@@ -249,7 +252,34 @@ static void test_ball_reached_list(void) {
     ps_dijkstra_free(h.w);
 }
 
+/* A tracked multi-source run gives the untracked run's distances and
+ * owners and reports rising progress over its span, ending at its end. */
+static void test_tracked_run_same_answer(void) {
+    size_t n;
+    double *pts = ps_shape_sphere(3000.0, &n, NULL);
+    ps_graph g;
+    REQUIRE(pts && n > 2 * 16384 && ps_knn_graph_build(pts, n, 3, 7, 2, &g, NULL) == PS_OK);
+    const uint32_t sources[] = {0, 17, 4242, (uint32_t)n - 1};
+    double *d1 = malloc(n * sizeof *d1), *d2 = malloc(n * sizeof *d2);
+    int *o1 = malloc(n * sizeof *o1), *o2 = malloc(n * sizeof *o2);
+    ps_dijkstra *w = ps_dijkstra_new(n);
+    REQUIRE(d1 && d2 && o1 && o2 && w);
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
+    ps_progress_span span = {&ctl, PS_PHASE_CENTRALITY, 0.2, 0.4};
+    ps_dijkstra_run(w, &g, sources, 4, d1, o1);
+    ps_dijkstra_run_tracked(w, &g, sources, 4, d2, o2, &span);
+    CHECK(memcmp(d1, d2, n * sizeof *d1) == 0 && memcmp(o1, o2, n * sizeof *o1) == 0);
+    CHECK_MSG(seen.inside[PS_PHASE_CENTRALITY] >= 2 && !seen.went_back &&
+                  seen.last[PS_PHASE_CENTRALITY] == 0.4,
+              "%d reports inside, last %g", seen.inside[PS_PHASE_CENTRALITY],
+              seen.last[PS_PHASE_CENTRALITY]);
+    ps_dijkstra_free(w);
+    ps_graph_free(&g);
+    free(pts), free(d1), free(d2), free(o1), free(o2);
+}
+
 PS_TEST_MAIN(TEST(test_single_source_and_ball), TEST(test_multi_source_owner),
              TEST(test_lower_is_min_of_runs),
              TEST(test_ball_radius_is_inclusive), TEST(test_ball_region),
-             TEST(test_ball_reached_list))
+             TEST(test_ball_reached_list), TEST(test_tracked_run_same_answer))

@@ -3,6 +3,7 @@
  * the thread count, the scale or a rotation of a grid full of ties, and
  * components are numbered by lowest vertex. */
 #include "knn_graph.h"
+#include "progress_seen.h"
 #include "shapes.h"
 #include "testlib.h"
 
@@ -193,8 +194,32 @@ static void test_rejects_bad_k(void) {
     CHECK(ps_knn_graph_build(p, 2, 3, 0, 1, &g, NULL) == PS_ERR_INVALID);
 }
 
+/* The tracked build gives the same graph, reports rising progress over
+ * its span as the query blocks go, and stops when cancelled. */
+static void test_tracked_progress_and_cancel(void) {
+    size_t n;
+    double *pts = ps_shape_star(400.0, &n, NULL);
+    ps_graph plain, tracked;
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
+    ps_progress_span span = {&ctl, PS_PHASE_KNN, 0.0, 0.45};
+    REQUIRE(pts && n > 4 * 2048);
+    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 2, &plain, NULL) == PS_OK);
+    REQUIRE(ps_knn_graph_build_tracked(pts, n, 3, 7, 2, &span, &tracked, NULL) == PS_OK);
+    CHECK(same_graph(&plain, &tracked));
+    CHECK_MSG(seen.calls[PS_PHASE_KNN] > 3 && !seen.went_back && seen.last[PS_PHASE_KNN] == 0.45,
+              "%d calls, last %g", seen.calls[PS_PHASE_KNN], seen.last[PS_PHASE_KNN]);
+    ps_graph_free(&plain), ps_graph_free(&tracked);
+    volatile int cancel = 1;
+    ctl.cancel = &cancel;
+    ps_error err = {0};
+    CHECK(ps_knn_graph_build_tracked(pts, n, 3, 7, 2, &span, &tracked, &err) == PS_ERR_CANCELLED);
+    CHECK(err.status == PS_ERR_CANCELLED && tracked.offsets == NULL);
+    free(pts);
+}
+
 PS_TEST_MAIN(TEST(test_random_3d), TEST(test_random_high_dim), TEST(test_grid_ties),
              TEST(test_rotated_grid_same_graph),
              TEST(test_hub_row),
              TEST(test_threads_and_scale_invariant), TEST(test_components),
-             TEST(test_rejects_bad_k))
+             TEST(test_rejects_bad_k), TEST(test_tracked_progress_and_cancel))

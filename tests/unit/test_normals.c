@@ -2,14 +2,17 @@
  * normals that point inward are flipped outward, a shifted, rotated copy
  * keeps its orientation (also when its most extreme point lies on a thin
  * fin, whose normal is sideways), and the normals of a noisy sphere are
- * smoothed close to the true ones. */
+ * smoothed close to the true ones; the PCA's thread count changes no
+ * byte, and the tracked build reports progress and stops when cancelled. */
 #include "knn_graph.h"
 #include "normals.h"
+#include "progress_seen.h"
 #include "shapes.h"
 #include "testlib.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Fraction of points whose normal points away from centre c. */
 static double outward_share(const double *pts, const double *nrm, size_t n, const double c[3]) {
@@ -154,6 +157,36 @@ static void test_noisy_sphere_smoothed(void) {
     free(clean), free(pts), free(comp), free(nrm);
 }
 
+/* The PCA on 1 or 3 threads gives the same bytes; progress rises through
+ * the span to its end; a raised cancel flag stops the build. */
+static void test_threads_identical_with_progress(void) {
+    size_t n;
+    double *pts = ps_shape_star(400.0, &n, NULL);
+    ps_graph g;
+    REQUIRE(pts && ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
+    int *comp = malloc(n * sizeof *comp);
+    double *one = malloc(n * 3 * sizeof *one), *three = malloc(n * 3 * sizeof *three);
+    REQUIRE(comp && one && three);
+    int nc = ps_graph_components(&g, comp);
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
+    ps_progress_span span = {&ctl, PS_PHASE_KNN, 0.5, 0.9};
+    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, 1, one, NULL, NULL) == PS_OK);
+    REQUIRE(ps_normals_build_tracked(&g, pts, NULL, comp, nc, 1, 3, &span, three, NULL, NULL) ==
+            PS_OK);
+    CHECK(memcmp(one, three, n * 3 * sizeof *one) == 0);
+    CHECK_MSG(seen.calls[PS_PHASE_KNN] >= 2 && !seen.went_back && seen.last[PS_PHASE_KNN] == 0.9,
+              "%d calls, last %g", seen.calls[PS_PHASE_KNN], seen.last[PS_PHASE_KNN]);
+    volatile int cancel = 1;
+    ctl.cancel = &cancel;
+    ps_error err = {0};
+    CHECK(ps_normals_build_tracked(&g, pts, NULL, comp, nc, 1, 2, &span, three, NULL, &err) ==
+          PS_ERR_CANCELLED);
+    ps_graph_free(&g);
+    free(pts), free(comp), free(one), free(three);
+}
+
 PS_TEST_MAIN(TEST(test_pca_sphere_outward), TEST(test_pca_moved_sphere_outward),
              TEST(test_fin_does_not_decide_the_sign),
-             TEST(test_given_inward_flipped), TEST(test_noisy_sphere_smoothed))
+             TEST(test_given_inward_flipped), TEST(test_noisy_sphere_smoothed),
+             TEST(test_threads_identical_with_progress))

@@ -2,7 +2,7 @@
  * test_outliers.c: stray points (outliers.h).  A sphere keeps every point;
  * points far off it are found, each mapped to a sphere point; a cluster of
  * its own stays; dropping remaps the distinct points and the duplicates of
- * an outlier to the kept neighbour.
+ * an outlier to the kept neighbour; the thread count changes nothing.
  */
 #include "dedup.h"
 #include "outliers.h"
@@ -28,15 +28,19 @@ static double *sphere_and(const double *more, size_t extra, size_t *n) {
     return p;
 }
 
-/* Runs ps_outliers_find on the kNN graph (k = 7) of p #n. */
-static size_t find(const double *p, size_t n, uint32_t *keep_for) {
+/* Runs ps_outliers_find on threads on the kNN graph (k = 7) of p #n. */
+static size_t find_on(const double *p, size_t n, int threads, uint32_t *keep_for) {
     ps_graph g = {0};
     ps_error err = {0};
     size_t count = 0;
     if (ps_knn_graph_build(p, n, 3, 7, 1, &g, &err) != PS_OK) return SIZE_MAX;
-    if (ps_outliers_find(&g, keep_for, &count, &err) != PS_OK) count = SIZE_MAX;
+    if (ps_outliers_find(&g, threads, keep_for, &count, &err) != PS_OK) count = SIZE_MAX;
     ps_graph_free(&g);
     return count;
+}
+
+static size_t find(const double *p, size_t n, uint32_t *keep_for) {
+    return find_on(p, n, 1, keep_for);
 }
 
 static void test_sphere_keeps_every_point(void) {
@@ -92,11 +96,23 @@ static void test_drop_remaps(void) {
     ps_error err = {0};
     REQUIRE(ps_outliers_drop(&d, 5, keep_for, &err) == PS_OK);
     CHECK(d.n_unique == 3);
-    const size_t unique_of[5] = {0, 1, 1, 1, 2}, first[3] = {0, 2, 4};
+    const uint32_t unique_of[5] = {0, 1, 1, 1, 2}, first[3] = {0, 2, 4};
     CHECK(memcmp(d.unique_of, unique_of, sizeof unique_of) == 0);
     CHECK(memcmp(d.first, first, sizeof first) == 0);
     ps_dedup_free(&d);
 }
 
-PS_TEST_MAIN(TEST(test_sphere_keeps_every_point), TEST(test_strays_are_found),
+/* The same outliers and keep_for on 1 and 3 threads. */
+static void test_threads_same_answer(void) {
+    const double strays[STRAYS * 3] = {3, 0, 0, 0, -3, 0, 0, 0, 4, 2, 2, 2, -2, 2, -2, 0, 0, -3.5};
+    size_t n;
+    double *p = sphere_and(strays, STRAYS, &n);
+    uint32_t *one = malloc(n * sizeof *one), *three = malloc(n * sizeof *three);
+    REQUIRE(p && one && three);
+    CHECK(find_on(p, n, 1, one) == STRAYS && find_on(p, n, 3, three) == STRAYS);
+    CHECK(memcmp(one, three, n * sizeof *one) == 0);
+    free(p), free(one), free(three);
+}
+
+PS_TEST_MAIN(TEST(test_threads_same_answer), TEST(test_sphere_keeps_every_point), TEST(test_strays_are_found),
              TEST(test_far_cluster_stays), TEST(test_drop_remaps))

@@ -4,7 +4,9 @@
  * scaling, permutation and any thread count, the result is self-consistent,
  * and bad input fails cleanly.
  */
+#include "centrality.h"
 #include "pointseg.h"
+#include "progress_seen.h"
 #include "shapes.h"
 #include "testlib.h"
 
@@ -527,6 +529,27 @@ static void test_progress_and_cancel(void) {
     free(pts);
 }
 
+/* A scan big enough for the two-level centrality: every phase reports
+ * progress more than once between its start (0) and end (1), never
+ * backwards, so a long job shows motion within each phase. */
+static void test_progress_moves_within_phases(void) {
+    size_t n;
+    double *pts = ps_shape_star(780.0, &n, NULL);
+    REQUIRE(pts && n > PS_COARSE_MIN_POINTS);
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_progress_seen m = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &m};
+    ps_result *r = NULL;
+    ps_error err;
+    CHECK(ps_segment(&in, NULL, &ctl, &r, &err) == PS_OK);
+    for (int p = 0; p < PS_PHASE_COUNT; p++)
+        CHECK_MSG(m.inside[p] >= 2, "%s: %d fractions inside (0, 1)", ps_phase_name(p),
+                  m.inside[p]);
+    CHECK(!m.went_back);
+    ps_result_free(r);
+    free(pts);
+}
+
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
              TEST(test_rotation_translation), TEST(test_scale_small),
@@ -534,4 +557,5 @@ PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
              TEST(test_disconnected_scans), TEST(test_bad_input), TEST(test_status_names),
-             TEST(test_ncut_threshold_method_default), TEST(test_progress_and_cancel))
+             TEST(test_ncut_threshold_method_default), TEST(test_progress_and_cancel),
+             TEST(test_progress_moves_within_phases))

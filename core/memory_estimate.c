@@ -1,0 +1,35 @@
+/*
+ * memory_estimate.c: ps_segment_memory_estimate (pointseg.h), a model of
+ * ps_segment's peak memory fitted to measured peak RSS (tests/bench/
+ * bench_scale.c prints the measured bytes per point to check it against):
+ * arrays per point that grow with k (the kNN graph in CSR with its weights,
+ * kept and scratch), the coordinates copied per dimension, and the
+ * two-level centrality's table of cell-to-sample distances (a float per
+ * sample for every cell of about CELL_POINTS points; the cell count stops
+ * growing at PS_CELL_SCALE_POINTS, coarse_graph.h), over a fixed base.
+ */
+#include "pointseg.h"
+
+#include "centrality.h"
+#include "coarse_graph.h"
+
+#define BASE_BYTES ((size_t)32 << 20) /* the process and small arrays */
+#define BYTES_PER_POINT 300           /* labels, f, flow, normals, creases, ... */
+#define BYTES_PER_NEIGHBOUR 37        /* per point and unit of k: graph, scratch */
+#define BYTES_PER_COORDINATE 16       /* the distinct points and one working copy */
+#define CELL_POINTS 15                /* points per centrality cell, low end */
+
+size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
+    size_t per_point = BYTES_PER_POINT + BYTES_PER_NEIGHBOUR * (size_t)params->k +
+                       BYTES_PER_COORDINATE * (size_t)dim;
+    size_t table = 0;
+    int approx = params->centrality == PS_CENTRALITY_APPROX ||
+                 (params->centrality == PS_CENTRALITY_AUTO && n > PS_EXACT_AUTO_LIMIT);
+    if (approx) {
+        size_t samples = params->samples > 0 ? (size_t)params->samples
+                                             : (size_t)ps_centrality_default_samples(n);
+        size_t cells = (n < PS_CELL_SCALE_POINTS ? n : PS_CELL_SCALE_POINTS) / CELL_POINTS;
+        table = cells * samples * sizeof(float);
+    }
+    return BASE_BYTES + n * per_point + table;
+}

@@ -1,0 +1,74 @@
+/* test_memory_estimate.c: ps_segment_memory_estimate is an upper estimate
+ * that is not wasteful: a child process segments a 100,000-point dumbbell
+ * and its peak RSS (getrusage of the waited children) must lie between half the estimate and the
+ * estimate; the estimate grows with n, k and the sample count.  Skipped
+ * under AddressSanitizer, whose shadow memory is no part of the model. */
+#include "pointseg.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#include <stdlib.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+#ifndef UNDER_ASAN
+#define UNDER_ASAN 0
+#endif
+
+/* Peak RSS in bytes of a child segmenting pts, or 0 when it failed. */
+static size_t child_peak_rss(const double *pts, size_t n) {
+    pid_t pid = fork();
+    if (pid == 0) {
+        ps_params p;
+        ps_params_default(&p);
+        ps_input in = {pts, n, 3, NULL};
+        ps_result *r = NULL;
+        _exit(ps_segment(&in, &p, NULL, &r, NULL) == PS_OK ? 0 : 1);
+    }
+    int status = 0;
+    struct rusage ru;
+    if (pid < 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) ||
+        getrusage(RUSAGE_CHILDREN, &ru) != 0)
+        return 0;
+    return (size_t)ru.ru_maxrss * 1024; /* the largest waited child; Linux: kilobytes */
+}
+
+static void test_estimate_bounds_measured_peak(void) {
+    if (UNDER_ASAN) SKIP("under AddressSanitizer the peak RSS includes its shadow memory");
+    size_t n = 0;
+    double *pts = ps_shape_dumbbell(100, &n, NULL);
+    REQUIRE(pts && n > 0);
+    double density = 100.0 * 100000.0 / (double)n; /* ~100,000 points */
+    free(pts);
+    pts = ps_shape_dumbbell(density, &n, NULL);
+    REQUIRE(pts && n > 50000);
+    ps_params p;
+    ps_params_default(&p);
+    size_t estimate = ps_segment_memory_estimate(n, 3, &p), measured = child_peak_rss(pts, n);
+    REQUIRE(measured > 0);
+    CHECK_MSG(measured <= estimate && estimate <= 2 * measured,
+              "%zu points: peak RSS %zu MB, estimate %zu MB", n, measured >> 20, estimate >> 20);
+    free(pts);
+}
+
+static void test_estimate_grows(void) {
+    ps_params p, more_k, more_samples;
+    ps_params_default(&p);
+    more_k = more_samples = p;
+    more_k.k = 14;
+    more_samples.samples = 4000;
+    size_t base = ps_segment_memory_estimate(1000000, 3, &p);
+    CHECK(ps_segment_memory_estimate(2000000, 3, &p) > base);
+    CHECK(ps_segment_memory_estimate(1000000, 3, &more_k) > base);
+    CHECK(ps_segment_memory_estimate(1000000, 3, &more_samples) > base);
+}
+
+PS_TEST_MAIN(TEST(test_estimate_bounds_measured_peak), TEST(test_estimate_grows))
