@@ -90,7 +90,9 @@ $(BUILD)/bench/%: $(BUILD)/obj/tests/bench/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(A
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-tests-build: $(PROGRAMS) $(UNIT_BIN) $(INTEG_BIN)
+# The benchmarks build with the tests, so that `make test` keeps them
+# compiling and build/bench/ never holds a stale one.
+tests-build: $(PROGRAMS) $(UNIT_BIN) $(INTEG_BIN) $(BENCH_BIN)
 
 # ---- running --------------------------------------------------------------
 
