@@ -85,9 +85,8 @@ static long weakest_boundary(const ps_segment_graph *sg, double threshold) {
     long best = -1;
     double best_fraction = threshold;
     for (size_t i = 0; i < sg->count; i++) {
-        if (protrudes(sg, i)) continue;
         double fraction = (double)sg->list[i].marked / (double)sg->list[i].edges;
-        if (fraction < best_fraction) best = (long)i, best_fraction = fraction;
+        if (fraction < best_fraction && !protrudes(sg, i)) best = (long)i, best_fraction = fraction;
     }
     return best;
 }

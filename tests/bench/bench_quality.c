@@ -200,10 +200,6 @@ static int parse_options(int argc, char **argv, quality_options *o) {
         }
     }
     if (o->n_modes == 0) add_mode(o, "vertices");
-    if (o->out_dir && mkdir(o->out_dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "bench_quality: --out %s: %s\n", o->out_dir, strerror(errno));
-        return -1;
-    }
     /* Models run in parallel; each one single-threaded unless asked. */
     if (o->params.core.threads == 0 && o->jobs > 1) o->params.core.threads = 1;
     return 0;
@@ -590,10 +586,17 @@ static int resolve_dirs(const quality_options *o, char dirs[][4096]) {
     return n;
 }
 
+/* Makes the --out folder when it is missing; 0, or -1 with a message. */
+static int make_out_dir(const char *dir) {
+    if (!dir || mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
+    fprintf(stderr, "bench_quality: --out %s: %s\n", dir, strerror(errno));
+    return -1;
+}
+
 int main(int argc, char **argv) {
     quality_options o;
     static char dirs[MAX_DIRS][4096];
-    if (parse_options(argc, argv, &o) != 0) return 2;
+    if (parse_options(argc, argv, &o) != 0 || make_out_dir(o.out_dir) != 0) return 2;
     int n_dirs = resolve_dirs(&o, dirs);
     if (n_dirs == 0) return 0;
     size_t n = 0;

@@ -198,5 +198,5 @@ static void test_bend_along_boundary_merges(void) {
 }
 
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_smooth_cuts_merge_back),
-             TEST(test_protruding_half_stays), TEST(test_deterministic), TEST(test_bend_across_boundary_keeps_apart),
-             TEST(test_bend_along_boundary_merges))
+             TEST(test_protruding_half_stays), TEST(test_deterministic),
+             TEST(test_bend_across_boundary_keeps_apart), TEST(test_bend_along_boundary_merges))
