@@ -71,12 +71,25 @@ static int smaller_of(const ps_segment_graph *sg, size_t i) {
     return sg->size[b] <= sg->size[a] ? b : a;
 }
 
-/* Whether the smaller segment of record i protrudes: its feature size is
- * over PS_CREASE_MERGE_PROTRUSION times the width of its boundary. */
+/* Whether segment s is a cavity: it curves inwards (ps_segment_bulge). */
+static int cavity(const ps_segment_graph *sg, int s) {
+    return ps_segment_bulge(sg, s) < -PS_CREASE_MERGE_CAVITY;
+}
+
+/* Whether the smaller segment of record i protrudes: it is no cavity, and
+ * its feature size is over PS_CREASE_MERGE_PROTRUSION times the width of
+ * its boundary. */
 static int protrudes(const ps_segment_graph *sg, size_t i) {
     int s = smaller_of(sg, i);
     double width = ps_boundary_width(&sg->list[i]);
-    return sg->f_max[s] - sg->f_min[s] > PS_CREASE_MERGE_PROTRUSION * width;
+    return !cavity(sg, s) && sg->f_max[s] - sg->f_min[s] > PS_CREASE_MERGE_PROTRUSION * width;
+}
+
+/* The creased fraction of record i's boundary; 0 when its smaller segment
+ * is a cavity, which merges whatever its creases. */
+static double creased_fraction(const ps_segment_graph *sg, size_t i) {
+    if (cavity(sg, smaller_of(sg, i))) return 0;
+    return (double)sg->list[i].marked / (double)sg->list[i].edges;
 }
 
 /* The record with the smallest creased fraction, or -1 when none is below
@@ -85,7 +98,7 @@ static long weakest_boundary(const ps_segment_graph *sg, double threshold) {
     long best = -1;
     double best_fraction = threshold;
     for (size_t i = 0; i < sg->count; i++) {
-        double fraction = (double)sg->list[i].marked / (double)sg->list[i].edges;
+        double fraction = creased_fraction(sg, i);
         if (fraction < best_fraction && !protrudes(sg, i)) best = (long)i, best_fraction = fraction;
     }
     return best;
@@ -105,7 +118,8 @@ ps_status ps_crease_merge(const ps_crease_merge_input *in, int *group_of_point,
     crease_test test = {in, PS_CREASE_MERGE_STRENGTH * in->mean_angular};
     ps_segment_graph sg;
     ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .points = in->points,
-                                  .group = group_of_point, .n_groups = in->n_groups,
+                                  .normals = in->normals, .group = group_of_point,
+                                  .n_groups = in->n_groups,
                                   .mark = creased_edge, .context = &test};
     ps_status st = ps_segment_graph_build(&sg, &sgi, err);
     for (long i; st == PS_OK && (i = weakest_boundary(&sg, in->threshold)) >= 0;)

@@ -22,7 +22,12 @@
  * sticks out (Hoffman and Singh, 1997), such as a limb joined to the body
  * over smooth surface; a segment protrudes when its feature size (max f -
  * min f) is over PS_CREASE_MERGE_PROTRUSION times the width of the
- * boundary (ps_boundary_width).  A flat surface (crease.h,
+ * boundary (ps_boundary_width).  A cavity is no part either: a smaller
+ * segment that curves inwards, its outward normals pointing towards its
+ * centre (ps_segment_bulge below -PS_CREASE_MERGE_CAVITY; the inside of a
+ * cup), merges as if none of its boundary were creased, since the concave
+ * bend of its own surface marks its boundary edges as creased wherever
+ * they run.  A flat surface (crease.h,
  * PS_CREASE_FLAT) has no creases to judge by and is left alone.
  * Deterministic; no threads.
  */
@@ -51,6 +56,8 @@
 /* A part at least this many times longer (feature size, in f) than its
  * boundary is wide (ps_boundary_width) stays without a crease. */
 #define PS_CREASE_MERGE_PROTRUSION 1.0
+/* A smaller segment whose bulge is below minus this is a cavity. */
+#define PS_CREASE_MERGE_CAVITY 0.35
 
 typedef struct ps_crease_merge_input {
     const ps_graph *graph;   /* kNN graph on #P points (weights not used) */

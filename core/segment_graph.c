@@ -15,6 +15,18 @@ double ps_boundary_width(const ps_boundary *r) {
     return variance > 0 ? 2 * sqrt(variance) : 0;
 }
 
+double ps_segment_bulge(const ps_segment_graph *sg, int s) {
+    if (!sg->sums || sg->size[s] == 0) return 0;
+    const ps_segment_sums *m = &sg->sums[s];
+    double n = (double)sg->size[s], c2 = 0, nc = 0;
+    for (int d = 0; d < 3; d++) {
+        c2 += (m->point_sum[d] / n) * (m->point_sum[d] / n);
+        nc += (m->normal_sum[d] / n) * (m->point_sum[d] / n);
+    }
+    double variance = m->norm2_sum / n - c2;
+    return variance > 0 ? (m->dot_sum / n - nc) / sqrt(variance) : 0;
+}
+
 static int compare_boundary(const void *x, const void *y) {
     const ps_boundary *p = x, *q = y;
     if (p->a != q->a) return p->a < q->a ? -1 : 1;
@@ -77,10 +89,22 @@ static int gather_boundaries(ps_segment_graph *sg, const ps_segment_graph_input 
     return 1;
 }
 
-static void measure_segments(ps_segment_graph *sg, const double *f, const int *group,
-                             size_t n) {
-    for (size_t p = 0; p < n; p++) {
-        int a = group[p];
+/* Adds point p to the sums of its segment (relative to point 0). */
+static void add_sums(ps_segment_sums *m, const double *points, const double *normals, size_t p) {
+    for (int d = 0; d < 3; d++) {
+        double x = points[3 * p + d] - points[d], nx = normals[3 * p + d];
+        m->point_sum[d] += x;
+        m->normal_sum[d] += nx;
+        m->dot_sum += nx * x;
+        m->norm2_sum += x * x;
+    }
+}
+
+static void measure_segments(ps_segment_graph *sg, const ps_segment_graph_input *in) {
+    const double *f = in->f;
+    for (size_t p = 0; p < in->graph->n; p++) {
+        int a = in->group[p];
+        if (sg->sums) add_sums(&sg->sums[a], in->points, in->normals, p);
         if (sg->size[a] == 0 || f[p] < sg->f_min[a]) sg->f_min[a] = f[p];
         if (sg->size[a] == 0 || f[p] > sg->f_max[a]) sg->f_max[a] = f[p];
         sg->size[a]++;
@@ -97,9 +121,11 @@ ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_segment_graph_in
     sg->f_min = calloc(m, sizeof *sg->f_min);
     sg->f_max = calloc(m, sizeof *sg->f_max);
     sg->alias = malloc(m * sizeof *sg->alias);
-    if (sg->size && sg->f_min && sg->f_max && sg->alias) {
+    int with_sums = in->points && in->normals;
+    if (with_sums) sg->sums = calloc(m, sizeof *sg->sums);
+    if (sg->size && sg->f_min && sg->f_max && sg->alias && (!with_sums || sg->sums)) {
         for (int i = 0; i < n_groups; i++) sg->alias[i] = i;
-        measure_segments(sg, in->f, in->group, in->graph->n);
+        measure_segments(sg, in);
         if (gather_boundaries(sg, in)) return PS_OK;
     }
     ps_segment_graph_free(sg);
@@ -121,6 +147,15 @@ int ps_segment_graph_merge(ps_segment_graph *sg, int loser, int winner, ps_merge
     sg->size[winner] += sg->size[loser];
     if (sg->f_min[loser] < sg->f_min[winner]) sg->f_min[winner] = sg->f_min[loser];
     if (sg->f_max[loser] > sg->f_max[winner]) sg->f_max[winner] = sg->f_max[loser];
+    if (sg->sums) {
+        ps_segment_sums *w = &sg->sums[winner], *l = &sg->sums[loser];
+        for (int d = 0; d < 3; d++) {
+            w->point_sum[d] += l->point_sum[d];
+            w->normal_sum[d] += l->normal_sum[d];
+        }
+        w->dot_sum += l->dot_sum;
+        w->norm2_sum += l->norm2_sum;
+    }
     sg->alias[loser] = winner;
     for (size_t j = 0; j < sg->count; j++) {
         ps_boundary *r = &sg->list[j];
@@ -154,6 +189,7 @@ void ps_segment_graph_free(ps_segment_graph *sg) {
     free(sg->f_min);
     free(sg->f_max);
     free(sg->alias);
+    free(sg->sums);
     free(sg->list);
     memset(sg, 0, sizeof *sg);
 }

@@ -31,10 +31,20 @@ typedef struct ps_boundary {
  * centroid: the diameter of a circular boundary.  0 without points. */
 double ps_boundary_width(const ps_boundary *r);
 
+/* Sums over a segment's points (relative to point 0) and their outward
+ * normals, for ps_segment_bulge; they add up when segments merge. */
+typedef struct ps_segment_sums {
+    double point_sum[3];
+    double normal_sum[3];
+    double dot_sum;   /* sum of n . p */
+    double norm2_sum; /* sum of |p|^2 */
+} ps_segment_sums;
+
 typedef struct ps_segment_graph {
     int n_groups;          /* segment ids are in [0, n_groups) */
     size_t *size;          /* #n_groups points */
     double *f_min, *f_max; /* #n_groups */
+    ps_segment_sums *sums; /* #n_groups, or NULL without points and normals */
     int *alias;            /* #n_groups the segment it merged into, or itself */
     ps_boundary *list;     /* #count, sorted by (a, b) */
     size_t count;
@@ -48,11 +58,19 @@ typedef struct ps_segment_graph_input {
     const ps_graph *graph;    /* kNN graph on #P points */
     const double *f;          /* #P centrality */
     const double *points;     /* #P by 3, or NULL: no boundary widths */
+    const double *normals;    /* #P by 3 outward unit normals, or NULL: no bulges */
     const int *group;         /* #P segment ids in [0, n_groups) */
     int n_groups;
     ps_boundary_mark_fn mark; /* may be NULL: nothing marked */
     void *context;            /* passed to mark */
 } ps_segment_graph_input;
+
+/* How segment s bulges outwards: the mean over its points of n . (p - c),
+ * c its centroid, over its RMS distance from c.  Positive for what sticks
+ * out (a limb, a dome: normals point away from the centre), negative for a
+ * cavity (the inside of a cup: they point towards it), near 0 for a flat
+ * patch; in [-1, 1].  0 without sums. */
+double ps_segment_bulge(const ps_segment_graph *sg, int s);
 
 /* On failure sg is freed. */
 ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_segment_graph_input *in,

@@ -6,7 +6,9 @@
  * true parts, with one merge per extra piece recorded (smaller piece into
  * larger, feature size from f), leaves renamed to their survivor, and the
  * same answer on every run; but an arm cut halfway keeps its far half,
- * which protrudes (longer than its boundary is wide).  On three
+ * which protrudes (longer than its boundary is wide).  With its normals
+ * turned inwards the star is a round room with six tunnels: cavities,
+ * which merge into the room although they are long.  On three
  * hand-placed points, a concave bend counts against a merge only when it
  * runs across the boundary.
  */
@@ -137,6 +139,28 @@ static void test_protruding_half_stays(void) {
     ps_star_free(&s);
 }
 
+static void test_tunnels_merge(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    for (size_t i = 0; i < 3 * s.n; i++) s.normals[i] = -s.normals[i];
+    double *f = radius(&s);
+    int *group = malloc(s.n * sizeof *group), leaf[N_PIECES];
+    REQUIRE(f && group);
+    memcpy(group, s.part, s.n * sizeof *group);
+    ps_merge *merges;
+    int n_merges;
+    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
+    CHECK_MSG(n_merges == PS_STAR_PARTS - 1, "%d merges", n_merges);
+    size_t apart = 0;
+    for (size_t p = 0; p < s.n; p++) apart += group[p] != group[0];
+    CHECK_MSG(apart == 0, "%zu points outside the room's segment", apart);
+    for (int i = 0; i < n_merges; i++) CHECK(merges[i].into == 0 && merges[i].segment > 0);
+    free(merges);
+    free(group);
+    free(f);
+    ps_star_free(&s);
+}
+
 static void test_deterministic(void) {
     ps_star s;
     REQUIRE(ps_star_build(&s));
@@ -198,5 +222,5 @@ static void test_bend_along_boundary_merges(void) {
 }
 
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_smooth_cuts_merge_back),
-             TEST(test_protruding_half_stays), TEST(test_deterministic),
+             TEST(test_protruding_half_stays), TEST(test_tunnels_merge), TEST(test_deterministic),
              TEST(test_bend_across_boundary_keeps_apart), TEST(test_bend_along_boundary_merges))

@@ -3,12 +3,15 @@
  * hand-made path: one record per adjacent pair with its edge and marked
  * counts, sizes and f ranges; a merge sums the records, renames the loser,
  * records the loser's feature size, and is applied to points and leaves;
- * a boundary's width is the spread of its edges' midpoints.
+ * a boundary's width is the spread of its edges' midpoints.  A segment's
+ * bulge is +1 on a sphere with outward normals, -1 on the inside of a
+ * sphere, 0 on a plane, and a merge sums it exactly.
  */
 #include "hand_graph.h"
 #include "segment_graph.h"
 #include "testlib.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 /* Marks the edge 3-4 only. */
@@ -76,4 +79,78 @@ static void test_merge_sums_and_applies(void) {
     ps_segment_graph_free(&sg);
 }
 
-PS_TEST_MAIN(TEST(test_records_per_pair), TEST(test_merge_sums_and_applies))
+#define BULGE_EACH 20 /* points per segment */
+
+/* Point i of BULGE_EACH spread over the unit sphere (a Fibonacci spiral). */
+static void sphere_point(int i, double *x) {
+    double z = 1 - (2.0 * i + 1) / BULGE_EACH, r = sqrt(1 - z * z), turn = 2.399963229728653 * i;
+    x[0] = r * cos(turn), x[1] = r * sin(turn), x[2] = z;
+}
+
+/* Segment 0: a sphere of radius 1 at (1000, 0, 0), normals outwards;
+ * segment 1: a sphere of radius 2 at (1000, 10, 0), normals inwards (the
+ * inside of a round room); segment 2: a square of the plane z = 5, normal
+ * +z. */
+static void bulge_shapes(double *points, double *normals, int *group) {
+    for (int i = 0; i < BULGE_EACH; i++) {
+        double u[3];
+        sphere_point(i, u);
+        for (int d = 0; d < 3; d++) {
+            points[3 * i + d] = u[d] + (d == 0 ? 1000 : 0), normals[3 * i + d] = u[d];
+            points[3 * (BULGE_EACH + i) + d] = 2 * u[d] + (d == 0 ? 1000 : d == 1 ? 10 : 0);
+            normals[3 * (BULGE_EACH + i) + d] = -u[d];
+        }
+        double *q = points + 3 * (2 * BULGE_EACH + i), *m = normals + 3 * (2 * BULGE_EACH + i);
+        q[0] = 1000 + i % 5, q[1] = i / 5, q[2] = 5, m[0] = 0, m[1] = 0, m[2] = 1;
+        group[i] = 0, group[BULGE_EACH + i] = 1, group[2 * BULGE_EACH + i] = 2;
+    }
+}
+
+/* n . (p - c) over |p - c| as RMS, directly over the points of the groups in
+ * the mask. */
+static double direct_bulge(const double *points, const double *normals, const int *group,
+                           int mask) {
+    double c[3] = {0, 0, 0}, dot = 0, r2 = 0;
+    int n = 0;
+    for (int p = 0; p < 3 * BULGE_EACH; p++)
+        if (mask >> group[p] & 1) {
+            for (int d = 0; d < 3; d++) c[d] += points[3 * p + d];
+            n++;
+        }
+    for (int d = 0; d < 3; d++) c[d] /= n;
+    for (int p = 0; p < 3 * BULGE_EACH; p++)
+        if (mask >> group[p] & 1)
+            for (int d = 0; d < 3; d++) {
+                double x = points[3 * p + d] - c[d];
+                dot += normals[3 * p + d] * x, r2 += x * x;
+            }
+    return (dot / n) / sqrt(r2 / n);
+}
+
+static void test_bulge(void) {
+    double points[9 * BULGE_EACH], normals[9 * BULGE_EACH], f[3 * BULGE_EACH] = {0};
+    int group[3 * BULGE_EACH], n_merges = 0;
+    bulge_shapes(points, normals, group);
+    ps_hand_graph h;
+    ps_hand_graph_path(&h, 3 * BULGE_EACH, 1.0, 0);
+    ps_segment_graph sg;
+    ps_error err = {0};
+    ps_segment_graph_input in = {.graph = &h.g, .f = f, .points = points, .normals = normals,
+                                 .group = group, .n_groups = 3};
+    REQUIRE(ps_segment_graph_build(&sg, &in, &err) == PS_OK);
+    CHECK_NEAR(ps_segment_bulge(&sg, 0), direct_bulge(points, normals, group, 1), 1e-9);
+    CHECK(ps_segment_bulge(&sg, 0) > 0.95);
+    CHECK(ps_segment_bulge(&sg, 1) < -0.95);
+    CHECK_NEAR(ps_segment_bulge(&sg, 2), 0, 1e-9);
+    ps_merge *merges = NULL;
+    REQUIRE(ps_segment_graph_merge(&sg, 0, 1, &merges, &n_merges));
+    CHECK_NEAR(ps_segment_bulge(&sg, 1), direct_bulge(points, normals, group, 3), 1e-9);
+    free(merges);
+    ps_segment_graph_free(&sg);
+    in.normals = NULL; /* no normals: no bulges */
+    REQUIRE(ps_segment_graph_build(&sg, &in, &err) == PS_OK);
+    CHECK(ps_segment_bulge(&sg, 0) == 0);
+    ps_segment_graph_free(&sg);
+}
+
+PS_TEST_MAIN(TEST(test_records_per_pair), TEST(test_merge_sums_and_applies), TEST(test_bulge))
