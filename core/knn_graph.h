@@ -47,7 +47,8 @@ void ps_knn_memo_free(ps_knn_memo *memo);
  * points p with keep_for[p] != p; the others keep their order, renumbered
  * 0..kept-1.  points: g's #P points, as they were before the removal.  g
  * becomes the graph ps_knn_graph_build gives on the kept points, edge for
- * edge: only the rows that lost one of their k nearest (or whose k-th
+ * edge (as exactly as the build itself: for tie sets that fit its
+ * candidates, knn_graph.c): only the rows that lost one of their k nearest (or whose k-th
  * nearest ties with what lies beyond) are searched again, on memo's index
  * with the removed points taken out of it.  *pruned out: 0 when it could
  * not (memo NULL, or fewer than k + 4 points kept, where the candidates
