@@ -25,7 +25,9 @@
  *   - per-segment sink counts say whether a cut left a segment without one.
  * The only whole-pair pass left is the terminals' "infinite" tie (one plus
  * every capacity of the pair, summed in point order as before), needed
- * when a sink point lies in the band.  Every scratch array is sized once.
+ * when a sink point lies in the band.  An arc's capacity is computed when
+ * a band or that sum first needs it (most arcs never are).  Every scratch
+ * array is sized once.
  */
 #include "boundary_cut.h"
 #include "boundary_cut_context.h"
@@ -42,9 +44,9 @@ typedef struct pair {
     size_t small, large;  /* sizes of the smaller and larger segment */
 } pair;
 
-/* capacity[e] = |p-q| / L * exp(-ang / A0) (boundary_cut.h); the first
- * pass keeps ang in capacity[e]. */
-static void edge_capacities(cut_context *cx) {
+/* The mean edge length L and angular scale A0 of the capacities
+ * (boundary_cut.h), over every arc in order. */
+static void edge_scales(cut_context *cx) {
     const ps_graph *g = cx->in->graph;
     const double *x = cx->in->points, *nx = cx->in->normals;
     size_t edges = g->offsets[g->n];
@@ -53,18 +55,23 @@ static void edge_capacities(cut_context *cx) {
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             sum_len += ps_distance3(x + 3 * p, x + 3 * q);
-            cx->capacity[e] = ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
-            sum_ang += cx->capacity[e];
+            sum_ang += ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
         }
-    double L = sum_len / (double)edges;
-    cx->mean_edge = L;
-    double A0 = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
-    int creased = sum_ang / (double)edges >= PS_CREASE_FLAT;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            double crease = creased ? exp(-cx->capacity[e] / A0) : 1;
-            cx->capacity[e] = ps_distance3(x + 3 * p, x + 3 * (size_t)g->neighbors[e]) / L * crease;
-        }
+    cx->mean_edge = sum_len / (double)edges;
+    cx->angle_scale = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
+    cx->creased = sum_ang / (double)edges >= PS_CREASE_FLAT;
+}
+
+/* capacity[e] = |p-q| / L * exp(-ang / A0) of arc e out of p, computed on
+ * first use (0 marks an arc not computed yet). */
+double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e) {
+    if (cx->capacity[e] != 0.0) return cx->capacity[e];
+    const double *x = cx->in->points, *nx = cx->in->normals;
+    size_t q = cx->in->graph->neighbors[e], i = p;
+    double ang = ps_crease_angular(x + 3 * i, nx + 3 * i, x + 3 * q, nx + 3 * q, 0.0);
+    double crease = cx->creased ? exp(-ang / cx->angle_scale) : 1;
+    cx->capacity[e] = ps_distance3(x + 3 * i, x + 3 * q) / cx->mean_edge * crease;
+    return cx->capacity[e];
 }
 
 /* Segment of p becomes g, keeping the per-segment counts. */
@@ -269,7 +276,7 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
     *cx = (cut_context){.in = in, .group = group};
     cx->size = calloc(groups, sizeof *cx->size);
     cx->sinks_in = calloc(groups, sizeof *cx->sinks_in);
-    cx->capacity = malloc(arcs * sizeof *cx->capacity);
+    cx->capacity = calloc(arcs, sizeof *cx->capacity);
     cx->is_sink = calloc(n, sizeof *cx->is_sink);
     cx->sources = malloc(n * sizeof *cx->sources);
     cx->dijkstra = ps_dijkstra_new(n);
@@ -314,7 +321,7 @@ ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supe
     ps_status st = PS_OK;
     if (context_init(&cx, in, group) != 0 || !(pairs = adjacent_pairs(&cx, &n_pairs)))
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
-    if (st == PS_OK) edge_capacities(&cx);
+    if (st == PS_OK) edge_scales(&cx);
     for (size_t i = 0; st == PS_OK && i < n_pairs; i++)
         st = cut_pair(&cx, pairs[i].a, pairs[i].b, err);
     if (st == PS_OK) reassign_supernodes(&cx, supernode_of);

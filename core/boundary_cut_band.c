@@ -95,13 +95,13 @@ double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, d
 }
 
 /* One plus the capacities of all arcs within a and b, in point order. */
-static double pair_capacity(const cut_context *cx, int a, int b) {
+static double pair_capacity(cut_context *cx, int a, int b) {
     const ps_graph *g = cx->in->graph;
     double total = 1;
-    for (size_t p = 0; p < g->n; p++) {
+    for (uint32_t p = 0; p < g->n; p++) {
         if (!in_pair(cx->group[p], a, b)) continue;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            if (in_pair(cx->group[g->neighbors[e]], a, b)) total += cx->capacity[e];
+            if (in_pair(cx->group[g->neighbors[e]], a, b)) total += ps_bc_capacity(cx, p, e);
     }
     return total;
 }
@@ -117,8 +117,8 @@ static void tie_band_point(cut_context *cx, size_t i, int a, int b, double infin
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->neighbors[e];
         if (!in_pair(cx->group[q], a, b) || cx->band_of[q] != NOT_IN_BAND) continue;
-        if (cx->group[q] == a) cx->tie_source[i] += cx->capacity[e];
-        else cx->tie_sink[i] += cx->capacity[e];
+        if (cx->group[q] == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
+        else cx->tie_sink[i] += ps_bc_capacity(cx, p, e);
     }
 }
 
@@ -156,7 +156,7 @@ int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net) {
         cx->net_offsets[i] = arcs;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t u = cx->band_of[g->neighbors[e]];
-            if (u != NOT_IN_BAND) add_arc(cx, &arcs, u, cx->capacity[e]);
+            if (u != NOT_IN_BAND) add_arc(cx, &arcs, u, ps_bc_capacity(cx, p, e));
         }
         if (cx->tie_source[i] > 0) add_arc(cx, &arcs, source, cx->tie_source[i]);
         if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->tie_sink[i]);

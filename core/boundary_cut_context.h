@@ -42,9 +42,11 @@ typedef struct cut_context {
     int *group;                /* #P in/out */
     size_t *size;              /* #groups points of each segment, kept current */
     size_t *sinks_in;          /* #groups sink points of each segment, kept current */
-    double *capacity;          /* #E cut capacity of every graph arc */
+    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed */
     unsigned char *is_sink;    /* #P */
-    double mean_edge;          /* mean Euclidean kNN edge length */
+    double mean_edge;          /* mean Euclidean kNN edge length L */
+    double angle_scale;        /* A0 of the capacities */
+    int creased;               /* 0 on a flat shape: capacities are lengths alone */
     uint32_t *sources;         /* #P the pair's boundary points, the ball's sources */
     size_t n_sources;
     ps_dijkstra *dijkstra;     /* for #P vertices */
@@ -75,6 +77,9 @@ typedef struct cut_context {
 } cut_context;
 
 /* boundary_cut.c */
+
+/* The cut capacity of graph arc e out of point p (boundary_cut.h). */
+double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e);
 
 /* Point p (< #P) joins segment g: group[p] and the per-segment
  * size and sinks_in counts of cx are updated; nothing if p is in g. */

@@ -157,8 +157,8 @@ ps_status ps_knn_query_rows(ps_knn_memo *memo, const double *points, const uint3
                             ps_error *err) {
     query_job j = {.memo = memo, .points = points, .n = n_rows, .order = rows};
     atomic_init(&j.failed, 0);
-    ps_status st = alloc_scratch(&j, threads)
-                       ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query blocks");
+    ps_status st = alloc_scratch(&j, threads) ? PS_OK
+                   : ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query blocks");
     if (st == PS_OK) {
         st = ps_parallel_for_tracked(threads, (n_rows + QUERY_BLOCK - 1) / QUERY_BLOCK, 1,
                                      query_block, &j, span);

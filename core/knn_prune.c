@@ -167,9 +167,10 @@ static int rebuild_row(prune *pr, uint32_t p) {
     uint32_t *row = pr->side + start;
     size_t len = pr->n_side - start, kept = 0;
     qsort(row, len, sizeof *row, ps_compare_u32);
-    for (size_t i = 0; i < len; i++)
-        if ((kept == 0 || row[i] != row[kept - 1]) && (listed(pr, p, row[i]) || listed(pr, row[i], p)))
-            row[kept++] = row[i];
+    for (size_t i = 0; i < len; i++) {
+        int edge = listed(pr, p, row[i]) || listed(pr, row[i], p);
+        if ((kept == 0 || row[i] != row[kept - 1]) && edge) row[kept++] = row[i];
+    }
     pr->n_side = start + kept;
     return 0;
 }
