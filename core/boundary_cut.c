@@ -32,6 +32,7 @@
 #include "boundary_cut.h"
 #include "boundary_cut_context.h"
 
+#include "control.h"
 #include "crease.h"
 #include "dijkstra.h"
 #include "maxflow.h"
@@ -140,6 +141,15 @@ static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     if (finish_pair(cx, nb, n_reached) != 0 && st == PS_OK)
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     return st;
+}
+
+/* Progress after done of count pairs; PS_ERR_CANCELLED when cancelled. */
+static ps_status report_pair(const ps_progress_span *span, size_t done, size_t count,
+                             ps_error *err) {
+    if (ps_control_cancelled(span->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
+    ps_control_progress(span->ctl, span->phase,
+                        ps_progress_span_at(span, (double)done / (double)count));
+    return PS_OK;
 }
 
 static int by_size_then_ids(const void *x, const void *y) {
@@ -322,8 +332,10 @@ ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supe
     if (context_init(&cx, in, group) != 0 || !(pairs = adjacent_pairs(&cx, &n_pairs)))
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     if (st == PS_OK) edge_scales(&cx);
-    for (size_t i = 0; st == PS_OK && i < n_pairs; i++)
+    for (size_t i = 0; st == PS_OK && i < n_pairs; i++) {
         st = cut_pair(&cx, pairs[i].a, pairs[i].b, err);
+        if (st == PS_OK && in->span) st = report_pair(in->span, i + 1, n_pairs, err);
+    }
     if (st == PS_OK) reassign_supernodes(&cx, supernode_of);
     free(pairs);
     context_free(&cx);

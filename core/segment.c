@@ -296,6 +296,7 @@ static ps_status point_groups(pipeline *pl, ps_error *err) {
 }
 
 static ps_status boundary_cut(pipeline *pl, ps_error *err) {
+    ps_progress_span span = {pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE, REFINE_CUT_DONE};
     ps_boundary_cut_input bc = {
         .graph = &pl->graph,
         .points = pl->points,
@@ -303,6 +304,7 @@ static ps_status boundary_cut(pipeline *pl, ps_error *err) {
         .n_groups = pl->n_tree,
         .n_supernodes = pl->sn.m,
         .sinks = pl->sn.sinks,
+        .span = &span,
     };
     return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
 }
