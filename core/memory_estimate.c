@@ -17,7 +17,7 @@
  * points, k = 7, 14 and 28 (bench_scale and a progress probe of VmHWM):
  * at k = 7 the peak, table and base aside, is 291 to 325 bytes a point
  * without the input, at k = 28 647; these constants give 397 and 754,
- * from 1.14 (1M, k = 7) to 1.42 (10M) times the measured peak with the
+ * about 1.15 (1M, k = 7) to 1.45 (10M) times the measured peak with the
  * input.  The peak is the boundary cut's (refine) or the centrality's. */
 #define BASE_BYTES ((size_t)32 << 20) /* the process and small arrays */
 #define BYTES_PER_POINT 230           /* labels, f, flow, normals, creases, ... */
