@@ -12,10 +12,10 @@
  *   - the shared boundary comes from the pair's boundary points found once
  *     at the start plus the points moved into A or B by earlier cuts (and
  *     their neighbours), each checked against the current segments;
- *   - one ball Dijkstra on the whole graph, kept to A and B and to the
- *     distance beyond which the band's width is capped, measures the
- *     distance from the boundary; a last graph vertex whose row is the
- *     boundary (zero lengths) is its single source;
+ *   - one ball Dijkstra on the kNN graph itself (edge lengths measured
+ *     between the points as it goes, no copy of the graph), kept to A and
+ *     B and to the distance beyond which the band's width is capped,
+ *     measures the distance from the boundary, its points the sources;
  *   - a segment's extent is that cap when the ball missed some of its points
  *     (per-segment point counts are kept up to date), else the largest
  *     distance reached, exactly as a scan of all members would give;
@@ -25,11 +25,14 @@
  *   - per-segment sink counts say whether a cut left a segment without one.
  * The only whole-pair pass left is the terminals' "infinite" tie (one plus
  * every capacity of the pair, summed in point order as before), needed
- * when a sink point lies in the band.  Every scratch array is sized once.
+ * when a sink point lies in the band.  An arc's capacity is computed when
+ * a band or that sum first needs it (most arcs never are).  Every scratch
+ * array is sized once.
  */
 #include "boundary_cut.h"
 #include "boundary_cut_context.h"
 
+#include "control.h"
 #include "crease.h"
 #include "dijkstra.h"
 #include "maxflow.h"
@@ -42,14 +45,9 @@ typedef struct pair {
     size_t small, large;  /* sizes of the smaller and larger segment */
 } pair;
 
-static double distance3(const double *p, const double *q) {
-    double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-    return sqrt(dx * dx + dy * dy + dz * dz);
-}
-
-/* capacity[e] = |p-q| / L * exp(-ang / A0) (boundary_cut.h) and the
- * Euclidean lengths of geo; the first pass keeps ang in capacity[e]. */
-static void edge_capacities(cut_context *cx) {
+/* The mean edge length L and angular scale A0 of the capacities
+ * (boundary_cut.h), over every arc in order. */
+static void edge_scales(cut_context *cx) {
     const ps_graph *g = cx->in->graph;
     const double *x = cx->in->points, *nx = cx->in->normals;
     size_t edges = g->offsets[g->n];
@@ -57,19 +55,24 @@ static void edge_capacities(cut_context *cx) {
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
-            cx->geo.weights[e] = distance3(x + 3 * p, x + 3 * q);
-            sum_len += cx->geo.weights[e];
-            cx->capacity[e] = ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
-            sum_ang += cx->capacity[e];
+            sum_len += ps_distance3(x + 3 * p, x + 3 * q);
+            sum_ang += ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
         }
-    double L = sum_len / (double)edges;
-    cx->mean_edge = L;
-    double A0 = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
-    for (size_t e = 0; e < edges; e++) {
-        double crease = sum_ang / (double)edges >= PS_CREASE_FLAT
-                            ? exp(-cx->capacity[e] / A0) : 1;
-        cx->capacity[e] = cx->geo.weights[e] / L * crease;
-    }
+    cx->mean_edge = sum_len / (double)edges;
+    cx->angle_scale = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
+    cx->creased = sum_ang / (double)edges >= PS_CREASE_FLAT;
+}
+
+/* capacity[e] = |p-q| / L * exp(-ang / A0) of arc e out of p, computed on
+ * first use (0 marks an arc not computed yet). */
+double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e) {
+    if (cx->capacity[e] != 0.0) return cx->capacity[e];
+    const double *x = cx->in->points, *nx = cx->in->normals;
+    size_t q = cx->in->graph->neighbors[e], i = p;
+    double ang = ps_crease_angular(x + 3 * i, nx + 3 * i, x + 3 * q, nx + 3 * q, 0.0);
+    double crease = cx->creased ? exp(-ang / cx->angle_scale) : 1;
+    cx->capacity[e] = ps_distance3(x + 3 * i, x + 3 * q) / cx->mean_edge * crease;
+    return cx->capacity[e];
 }
 
 /* Segment of p becomes g, keeping the per-segment counts. */
@@ -81,7 +84,6 @@ void ps_bc_set_group(cut_context *cx, uint32_t p, int g) {
     cx->sinks_in[old] -= cx->is_sink[p];
     cx->sinks_in[g] += cx->is_sink[p];
     cx->group[p] = g;
-    cx->label[p] = (uint32_t)g;
 }
 
 static int log_move(move_log *log, uint32_t p, int g) {
@@ -139,6 +141,15 @@ static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     if (finish_pair(cx, nb, n_reached) != 0 && st == PS_OK)
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     return st;
+}
+
+/* Progress after done of count pairs; PS_ERR_CANCELLED when cancelled. */
+static ps_status report_pair(const ps_progress_span *span, size_t done, size_t count,
+                             ps_error *err) {
+    if (ps_control_cancelled(span->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
+    ps_control_progress(span->ctl, span->phase,
+                        ps_progress_span_at(span, (double)done / (double)count));
+    return PS_OK;
 }
 
 static int by_size_then_ids(const void *x, const void *y) {
@@ -223,14 +234,11 @@ static void reassign_supernodes(cut_context *cx, int *supernode_of) {
 }
 
 static void context_free(cut_context *cx) {
-    free(cx->label);
     free(cx->size);
     free(cx->sinks_in);
     free(cx->capacity);
     free(cx->is_sink);
-    free(cx->geo.offsets);
-    free(cx->geo.neighbors);
-    free(cx->geo.weights);
+    free(cx->sources);
     ps_dijkstra_free(cx->dijkstra);
     free(cx->region_mark);
     free(cx->seen);
@@ -258,35 +266,17 @@ static void context_free(cut_context *cx) {
     free(cx->queue);
 }
 
-/* geo: the graph's rows, then an empty source row with room for #P. */
-static int geo_init(cut_context *cx) {
-    const ps_graph *g = cx->in->graph;
-    size_t n = g->n, arcs = g->offsets[n];
-    cx->geo.n = n + 1;
-    cx->geo.offsets = malloc((n + 2) * sizeof *cx->geo.offsets);
-    cx->geo.neighbors = malloc((arcs + n) * sizeof *cx->geo.neighbors);
-    cx->geo.weights = malloc((arcs + n) * sizeof *cx->geo.weights);
-    if (!cx->geo.offsets || !cx->geo.neighbors || !cx->geo.weights) return -1;
-    for (size_t p = 0; p <= n; p++) cx->geo.offsets[p] = g->offsets[p];
-    cx->geo.offsets[n + 1] = arcs;
-    for (size_t e = 0; e < arcs; e++) cx->geo.neighbors[e] = g->neighbors[e];
-    for (size_t e = arcs; e < arcs + n; e++) cx->geo.weights[e] = 0.0;
-    return 0;
-}
-
 /* Per-point, per-segment and per-arc state from the input segments. */
 static void context_fill(cut_context *cx) {
     const ps_boundary_cut_input *in = cx->in;
     size_t n = in->graph->n;
     for (int s = 0; s < in->n_supernodes; s++) cx->is_sink[in->sinks[s]] = 1;
     for (size_t p = 0; p < n; p++) {
-        cx->label[p] = (uint32_t)cx->group[p];
         cx->size[cx->group[p]]++;
         cx->sinks_in[cx->group[p]] += cx->is_sink[p];
         cx->band_of[p] = NOT_IN_BAND;
+        cx->dist[p] = INFINITY;
     }
-    cx->label[n] = 0;
-    for (size_t p = 0; p <= n; p++) cx->dist[p] = INFINITY;
     for (int g = 0; g < in->n_groups; g++) cx->moves.head[g] = NO_MOVE;
 }
 
@@ -294,17 +284,17 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
     size_t n = in->graph->n, arcs = in->graph->offsets[n] + 1, net_arcs = arcs + 4 * n;
     size_t groups = in->n_groups > 0 ? (size_t)in->n_groups : 1;
     *cx = (cut_context){.in = in, .group = group};
-    cx->label = malloc((n + 1) * sizeof *cx->label);
     cx->size = calloc(groups, sizeof *cx->size);
     cx->sinks_in = calloc(groups, sizeof *cx->sinks_in);
-    cx->capacity = malloc(arcs * sizeof *cx->capacity);
+    cx->capacity = calloc(arcs, sizeof *cx->capacity);
     cx->is_sink = calloc(n, sizeof *cx->is_sink);
-    cx->dijkstra = ps_dijkstra_new(n + 1);
+    cx->sources = malloc(n * sizeof *cx->sources);
+    cx->dijkstra = ps_dijkstra_new(n);
     cx->region_mark = calloc(groups, sizeof *cx->region_mark);
     cx->seen = calloc(n, sizeof *cx->seen);
     cx->visited = calloc(n, sizeof *cx->visited);
-    cx->dist = malloc((n + 1) * sizeof *cx->dist);
-    cx->reached = malloc((n + 1) * sizeof *cx->reached);
+    cx->dist = malloc(n * sizeof *cx->dist);
+    cx->reached = malloc(n * sizeof *cx->reached);
     cx->moves.head = malloc(groups * sizeof *cx->moves.head);
     cx->band_of = malloc(n * sizeof *cx->band_of);
     cx->band = malloc(n * sizeof *cx->band);
@@ -321,8 +311,8 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
     cx->piece_size = malloc(n * sizeof *cx->piece_size);
     cx->anchored = malloc(n * sizeof *cx->anchored);
     cx->queue = malloc(n * sizeof *cx->queue);
-    if (geo_init(cx) != 0 || !cx->label || !cx->size || !cx->sinks_in || !cx->capacity ||
-        !cx->is_sink || !cx->dijkstra || !cx->region_mark || !cx->seen || !cx->visited ||
+    if (!cx->size || !cx->sinks_in || !cx->capacity || !cx->is_sink || !cx->sources ||
+        !cx->dijkstra || !cx->region_mark || !cx->seen || !cx->visited ||
         !cx->dist || !cx->reached || !cx->moves.head || !cx->band_of || !cx->band ||
         !cx->old_group || !cx->tie_source || !cx->tie_sink || !cx->net_offsets ||
         !cx->net_heads || !cx->net_capacity || !cx->side || !cx->flow_space || !cx->piece ||
@@ -341,9 +331,11 @@ ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supe
     ps_status st = PS_OK;
     if (context_init(&cx, in, group) != 0 || !(pairs = adjacent_pairs(&cx, &n_pairs)))
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
-    if (st == PS_OK) edge_capacities(&cx);
-    for (size_t i = 0; st == PS_OK && i < n_pairs; i++)
+    if (st == PS_OK) edge_scales(&cx);
+    for (size_t i = 0; st == PS_OK && i < n_pairs; i++) {
         st = cut_pair(&cx, pairs[i].a, pairs[i].b, err);
+        if (st == PS_OK && in->span) st = report_pair(in->span, i + 1, n_pairs, err);
+    }
     if (st == PS_OK) reassign_supernodes(&cx, supernode_of);
     free(pairs);
     context_free(&cx);

@@ -28,7 +28,8 @@
  * Finally a point whose supernode's sink is now in another segment joins
  * the supernode of a neighbour in its own segment (breadth first), so a
  * supernode's points all lie in the segment holding its sink.
- * Deterministic; no threads.
+ * Deterministic; no threads.  Progress is reported after each pair, and a
+ * raised cancel flag stops it between pairs.
  */
 #ifndef PS_BOUNDARY_CUT_H
 #define PS_BOUNDARY_CUT_H
@@ -56,11 +57,14 @@ typedef struct ps_boundary_cut_input {
     int n_groups;            /* segment ids are in [0, n_groups) */
     int n_supernodes;        /* #S */
     const uint32_t *sinks;   /* #S sink point of each supernode */
+    const ps_progress_span *span; /* progress over the pairs, and cancel; may be NULL */
 } ps_boundary_cut_input;
 
 /* group #P in/out: each point's segment; supernode_of #P in/out: each
  * point's supernode, consistent with group on input (a supernode's points
- * share a segment).  Both are rewritten as described above. */
+ * share a segment).  Both are rewritten as described above.  Fails with
+ * PS_ERR_CANCELLED (group and supernode_of then half done) when the span's
+ * cancel flag is raised. */
 ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supernode_of,
                           ps_error *err);
 

@@ -16,9 +16,9 @@ static int in_pair(int g, int a, int b) {
     return g == a || g == b;
 }
 
-/* p joins the boundary row (geo's last) if it lies in a or b next to the
- * other one; each point is checked once per pair. */
-static void consider(cut_context *cx, uint32_t p, int a, int b, size_t *n_sources) {
+/* p joins the boundary points if it lies in a or b next to the other one;
+ * each point is checked once per pair. */
+static void consider(cut_context *cx, uint32_t p, int a, int b) {
     const ps_graph *g = cx->in->graph;
     if (cx->seen[p] == cx->stamp) return;
     cx->seen[p] = cx->stamp;
@@ -26,7 +26,7 @@ static void consider(cut_context *cx, uint32_t p, int a, int b, size_t *n_source
     int other = cx->group[p] == a ? b : a;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
         if (cx->group[g->neighbors[e]] == other) {
-            cx->geo.neighbors[g->offsets[g->n] + (*n_sources)++] = p;
+            cx->sources[cx->n_sources++] = p;
             return;
         }
 }
@@ -43,37 +43,38 @@ static size_t first_initial(const cut_context *cx, int a, int b) {
     return lo;
 }
 
-/* The current boundary of (a, b) becomes geo's source row; returns its
- * size.  A point is on it now only if it was at the start or it or a
+/* The current boundary of (a, b) becomes the sources; returns their
+ * count.  A point is on it now only if it was at the start or it or a
  * neighbour has moved into a or b since. */
 size_t ps_bc_boundary_points(cut_context *cx, int a, int b) {
     const ps_graph *g = cx->in->graph;
-    size_t n_sources = 0;
+    cx->n_sources = 0;
     cx->stamp++;
     for (size_t i = first_initial(cx, a, b);
          i < cx->n_initial && cx->initial[i].a == a && cx->initial[i].b == b; i++)
-        consider(cx, cx->initial[i].point, a, b, &n_sources);
+        consider(cx, cx->initial[i].point, a, b);
     int ends[2] = {a, b};
     for (int k = 0; k < 2; k++)
         for (size_t m = cx->moves.head[ends[k]]; m != NO_MOVE; m = cx->moves.next[m]) {
             uint32_t p = cx->moves.point[m];
-            consider(cx, p, a, b, &n_sources);
+            consider(cx, p, a, b);
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-                consider(cx, g->neighbors[e], a, b, &n_sources);
+                consider(cx, g->neighbors[e], a, b);
         }
-    cx->geo.offsets[g->n + 1] = g->offsets[g->n] + n_sources;
-    return n_sources;
+    return cx->n_sources;
 }
 
 /* dist of the points of a and b within reach of the boundary (the extent
  * from which the band's width is capped); returns the reached count, the
- * boundary row's vertex first. */
+ * boundary points first.  Segment ids are the ball's region labels (a
+ * group is never negative, so it reads the same as a uint32_t). */
 size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach) {
     cx->region_mark[a] = cx->region_mark[b] = cx->stamp;
-    ps_dijkstra_limits limits = {.radius = reach, .label = cx->label,
-                                 .mark = cx->region_mark, .stamp = cx->stamp};
-    return ps_dijkstra_ball(cx->dijkstra, &cx->geo, (uint32_t)cx->in->graph->n, &limits,
-                            cx->dist, cx->reached);
+    ps_dijkstra_limits limits = {.radius = reach, .label = (const uint32_t *)cx->group,
+                                 .mark = cx->region_mark, .stamp = cx->stamp,
+                                 .points = cx->in->points};
+    return ps_dijkstra_ball_from(cx->dijkstra, cx->in->graph, cx->sources, cx->n_sources,
+                                 &limits, cx->dist, cx->reached);
 }
 
 /* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
@@ -82,25 +83,25 @@ size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach) {
 double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, double reach) {
     double extent_a = 0, extent_b = 0;
     size_t reached_a = 0;
-    for (size_t i = 1; i < n_reached; i++) {
+    for (size_t i = 0; i < n_reached; i++) {
         uint32_t p = cx->reached[i];
         if (cx->group[p] == a) extent_a = fmax(extent_a, cx->dist[p]), reached_a++;
         else extent_b = fmax(extent_b, cx->dist[p]);
     }
     if (reached_a < cx->size[a]) extent_a = fmax(extent_a, reach);
-    if (n_reached - 1 - reached_a < cx->size[b]) extent_b = fmax(extent_b, reach);
+    if (n_reached - reached_a < cx->size[b]) extent_b = fmax(extent_b, reach);
     return fmin(PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b),
                 PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
 }
 
 /* One plus the capacities of all arcs within a and b, in point order. */
-static double pair_capacity(const cut_context *cx, int a, int b) {
+static double pair_capacity(cut_context *cx, int a, int b) {
     const ps_graph *g = cx->in->graph;
     double total = 1;
-    for (size_t p = 0; p < g->n; p++) {
+    for (uint32_t p = 0; p < g->n; p++) {
         if (!in_pair(cx->group[p], a, b)) continue;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            if (in_pair(cx->group[g->neighbors[e]], a, b)) total += cx->capacity[e];
+            if (in_pair(cx->group[g->neighbors[e]], a, b)) total += ps_bc_capacity(cx, p, e);
     }
     return total;
 }
@@ -116,8 +117,8 @@ static void tie_band_point(cut_context *cx, size_t i, int a, int b, double infin
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->neighbors[e];
         if (!in_pair(cx->group[q], a, b) || cx->band_of[q] != NOT_IN_BAND) continue;
-        if (cx->group[q] == a) cx->tie_source[i] += cx->capacity[e];
-        else cx->tie_sink[i] += cx->capacity[e];
+        if (cx->group[q] == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
+        else cx->tie_sink[i] += ps_bc_capacity(cx, p, e);
     }
 }
 
@@ -125,7 +126,7 @@ static void tie_band_point(cut_context *cx, size_t i, int a, int b, double infin
  * terminals; returns the count. */
 size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b) {
     size_t nb = 0;
-    for (size_t i = 1; i < n_reached; i++)
+    for (size_t i = 0; i < n_reached; i++)
         if (cx->dist[cx->reached[i]] <= width) cx->band[nb++] = cx->reached[i];
     qsort(cx->band, nb, sizeof *cx->band, ps_compare_u32);
     int has_sink = 0;
@@ -155,7 +156,7 @@ int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net) {
         cx->net_offsets[i] = arcs;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t u = cx->band_of[g->neighbors[e]];
-            if (u != NOT_IN_BAND) add_arc(cx, &arcs, u, cx->capacity[e]);
+            if (u != NOT_IN_BAND) add_arc(cx, &arcs, u, ps_bc_capacity(cx, p, e));
         }
         if (cx->tie_source[i] > 0) add_arc(cx, &arcs, source, cx->tie_source[i]);
         if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->tie_sink[i]);

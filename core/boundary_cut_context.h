@@ -40,21 +40,22 @@ typedef struct move_log {
 typedef struct cut_context {
     const ps_boundary_cut_input *in;
     int *group;                /* #P in/out */
-    uint32_t *label;           /* #P+1 group as uint32_t, the ball's region labels */
     size_t *size;              /* #groups points of each segment, kept current */
     size_t *sinks_in;          /* #groups sink points of each segment, kept current */
-    double *capacity;          /* #E cut capacity of every graph arc */
+    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed */
     unsigned char *is_sink;    /* #P */
-    double mean_edge;          /* mean Euclidean kNN edge length */
-    ps_graph geo;              /* #P+1 vertices: the graph, Euclidean lengths, and a
-                                * source vertex whose row is the pair's boundary */
-    ps_dijkstra *dijkstra;     /* for #P+1 vertices */
+    double mean_edge;          /* mean Euclidean kNN edge length L */
+    double angle_scale;        /* A0 of the capacities */
+    int creased;               /* 0 on a flat shape: capacities are lengths alone */
+    uint32_t *sources;         /* #P the pair's boundary points, the ball's sources */
+    size_t n_sources;
+    ps_dijkstra *dijkstra;     /* for #P vertices */
     uint32_t stamp;            /* bumped for each ball, boundary and piece search */
     uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
     uint32_t *seen;            /* #P stamp of the boundary candidates checked */
     uint32_t *visited;         /* #P stamp of the points a piece search reached */
-    double *dist;              /* #P+1 INFINITY outside a pair's ball */
-    uint32_t *reached;         /* #P+1 */
+    double *dist;              /* #P INFINITY outside a pair's ball */
+    uint32_t *reached;         /* #P */
     boundary_entry *initial;   /* #I initial boundary points, sorted by (a, b, point) */
     size_t n_initial;
     move_log moves;
@@ -77,21 +78,24 @@ typedef struct cut_context {
 
 /* boundary_cut.c */
 
-/* Point p (< #P) joins segment g: group[p], label[p] and the per-segment
+/* The cut capacity of graph arc e out of point p (boundary_cut.h). */
+double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e);
+
+/* Point p (< #P) joins segment g: group[p] and the per-segment
  * size and sinks_in counts of cx are updated; nothing if p is in g. */
 void ps_bc_set_group(cut_context *cx, uint32_t p, int g);
 
 /* boundary_cut_band.c; a < b are the pair's segments throughout. */
 
-/* Writes the pair's current boundary points (in a or b, next to the other)
- * as geo's source row (vertex #P), bumping cx->stamp.  Returns the row's
- * size, 0 when the pair no longer touches. */
+/* Lists the pair's current boundary points (in a or b, next to the other)
+ * in sources, bumping cx->stamp.  Returns their count, 0 when the pair no
+ * longer touches. */
 size_t ps_bc_boundary_points(cut_context *cx, int a, int b);
 
-/* Ball Dijkstra from geo's source row within a and b, out to distance
- * reach: fills dist for the reached points and reached[0..count) (the
- * source vertex first).  Returns that count.  Call after
- * ps_bc_boundary_points (it uses the stamp set there). */
+/* Ball Dijkstra from the boundary points within a and b, out to distance
+ * reach along Euclidean edge lengths: fills dist for the reached points and
+ * reached[0..count) (the boundary points first).  Returns that count.  Call
+ * after ps_bc_boundary_points (it uses the stamp set there). */
 size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach);
 
 /* Band half-width from the n_reached ball of ps_bc_boundary_distances:

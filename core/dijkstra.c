@@ -5,7 +5,8 @@
  * The workspace keeps the heap and positions between runs; every run empties
  * the heap, so positions are back to NOT_IN_HEAP and nothing is reset or
  * allocated per run.  All runs share one settling loop; a ball run adds its
- * limits (checked only on an improving edge) and its reached list.
+ * limits (checked only on an improving edge), its reached list and, with
+ * points, edge lengths measured between the points.
  */
 #include "dijkstra.h"
 
@@ -118,6 +119,7 @@ static int within(const ps_dijkstra_limits *l, double nd, uint32_t v) {
  * with span, reporting the share of g's vertices settled so far. */
 static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, ball *b,
                    const ps_progress_span *span) {
+    const double *points = b ? b->limits->points : NULL;
     size_t settled = 0;
     while (w->size > 0) {
         uint32_t u = heap_pop(w);
@@ -128,7 +130,8 @@ static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, 
         double du = dist[u];
         for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
             uint32_t v = g->neighbors[e];
-            double nd = du + g->weights[e];
+            double nd = du + (points ? ps_distance3(points + 3 * (size_t)u, points + 3 * (size_t)v)
+                                     : g->weights[e]);
             if (!improves(w, nd, dist[v], owner, u, v)) continue;
             if (b && !within(b->limits, nd, v)) continue;
             dist[v] = nd;
@@ -170,9 +173,17 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, doubl
 
 size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
                         const ps_dijkstra_limits *limits, double *dist, uint32_t *reached) {
+    return ps_dijkstra_ball_from(w, g, &source, 1, limits, dist, reached);
+}
+
+size_t ps_dijkstra_ball_from(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
+                             size_t n_sources, const ps_dijkstra_limits *limits, double *dist,
+                             uint32_t *reached) {
     ball b = {limits, reached, 0};
-    dist[source] = 0.0;
-    heap_set(w, source, 0.0);
+    for (size_t s = 0; s < n_sources; s++) {
+        dist[sources[s]] = 0.0;
+        heap_set(w, sources[s], 0.0);
+    }
     settle(w, g, dist, NULL, &b, NULL);
     return b.count;
 }

@@ -5,12 +5,22 @@
  * runs allocate nothing.  Unreachable vertices get INFINITY.  A ball run
  * (ps_dijkstra_ball) stays within a radius and a region and lists the
  * vertices it reaches, so a caller can run many small searches on a large
- * graph and reset only what each one touched.
+ * graph and reset only what each one touched; it may start from several
+ * sources and may measure edges as Euclidean lengths between 3-D points
+ * instead of reading g->weights, so a caller needs no copy of the graph.
  */
 #ifndef PS_DIJKSTRA_H
 #define PS_DIJKSTRA_H
 
 #include "knn_graph.h"
+
+#include <math.h>
+
+/* |p - q| for 3-D points, the edge length of a ball run with points. */
+static inline double ps_distance3(const double *p, const double *q) {
+    double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
 
 typedef struct ps_dijkstra ps_dijkstra;
 
@@ -37,12 +47,15 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source,
 /* Where a ball run may go: vertices at distance <= radius (inclusive;
  * INFINITY for no bound) and, when label is not NULL, only the vertices v
  * with mark[label[v]] == stamp (label #P, e.g. the cell of each vertex;
- * mark #L, e.g. a stamp on the cells the run may enter). */
+ * mark #L, e.g. a stamp on the cells the run may enter).  points, when not
+ * NULL, #P by 3: an edge's length is then ps_distance3 of its ends, and
+ * g->weights is not read (it may be NULL). */
 typedef struct ps_dijkstra_limits {
     double radius;
     const uint32_t *label;
     const uint32_t *mark;
     uint32_t stamp;
+    const double *points;
 } ps_dijkstra_limits;
 
 /* Dijkstra from source (always reached) within limits.  dist #P must be
@@ -53,5 +66,11 @@ typedef struct ps_dijkstra_limits {
  * readies dist for the next ball. */
 size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
                         const ps_dijkstra_limits *limits, double *dist, uint32_t *reached);
+
+/* The same from every one of sources (#S distinct vertices, all reached at
+ * distance 0 and listed first in reached, in no set order). */
+size_t ps_dijkstra_ball_from(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
+                             size_t n_sources, const ps_dijkstra_limits *limits, double *dist,
+                             uint32_t *reached);
 
 #endif

@@ -3,32 +3,31 @@
  * components.
  *
  * FLANN's single kd-tree (an exact search) on the double coordinates finds
- * k + EXTRA candidates per point; their distances are recomputed here in
+ * k + PS_KNN_EXTRA candidates per point; their distances are recomputed here in
  * double, rounded to single precision, and the k nearest other points kept
  * by (rounded distance, index): the equal distances of a regular grid stay
  * ties broken by index when a rotation moves them apart in the last bits
- * (for tie sets that fit in the EXTRA candidates), and the thread count
+ * (for tie sets that fit in the extra candidates), and the thread count
  * never changes the graph.  Queries go in Morton order
  * (morton.h), blocks of them per worker, which keeps the tree walks in
  * cache for inputs in any order.  The directed lists are then
  * mirrored into CSR rows, sorted by neighbour index and freed of duplicates
- * row by row in parallel.
+ * row by row in parallel.  A build may keep its index and directed lists
+ * (ps_knn_memo, knn_memo.h) for ps_knn_graph_prune (knn_prune.c).
  */
 #include "knn_graph.h"
-
+#include "knn_memo.h"
 
 #include "control.h"
 #include "morton.h"
 #include "sort_util.h"
 #include "union_find.h"
 
-#include <flann/flann.h>
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define EXTRA 3               /* candidates beyond k + 1, for exact tie breaks */
 #define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
 #define INDEX_SHARE 0.25      /* progress of the span after the index build ... */
 #define QUERIES_SHARE 0.8     /* ... after the queries ... */
@@ -39,7 +38,7 @@ typedef struct candidate {
     uint32_t index;
 } candidate;
 
-static double point_distance(const double *a, const double *b, int dim) {
+double ps_knn_distance(const double *a, const double *b, int dim) {
     double s = 0.0;
     for (int i = 0; i < dim; i++) {
         double d = a[i] - b[i];
@@ -72,57 +71,58 @@ static struct FLANNParameters search_parameters(void) {
 }
 
 /* Queries blocks of rows on the shared index, each worker with its own
- * scratch, and keeps the k nearest other points of each row in knn. */
+ * scratch, and keeps the k nearest other points of each row in memo->knn. */
 typedef struct query_job {
-    flann_index_t index;
-    const double *points;
-    size_t n;
-    int dim, k, m;          /* m candidates per query row */
-    const uint32_t *order;  /* #P query order (Morton: nearby queries in a row) */
+    ps_knn_memo *memo;
+    const double *points;   /* current points, #P by dim */
+    size_t n;               /* rows to query */
+    const uint32_t *order;  /* #n rows to query (Morton order: nearby queries in a row) */
     double **rows;          /* per worker: #QUERY_BLOCK by dim query points */
     int **found;            /* per worker: #QUERY_BLOCK by m FLANN indices */
     double **squared;       /* per worker: #QUERY_BLOCK by m FLANN distances */
-    uint32_t *knn;          /* #P by k out */
     atomic_int failed;
 } query_job;
 
 /* Row p's candidates by (exact distance, index), self left out; 0, or -1
  * when FLANN returned fewer than k usable neighbours. */
 static int keep_nearest(const query_job *j, size_t p, const int *found) {
-    candidate c[PS_MAX_K + EXTRA + 1];
-    const double *x = j->points + p * (size_t)j->dim;
+    const ps_knn_memo *mm = j->memo;
+    candidate c[PS_MAX_K + PS_KNN_EXTRA + 1];
+    const double *x = j->points + p * (size_t)mm->dim;
     int m = 0;
-    for (int t = 0; t < j->m; t++) {
-        int q = found[t];
-        if (q < 0 || (size_t)q == p) continue;
-        c[m].index = (uint32_t)q;
-        c[m].dist = (float)point_distance(x, j->points + (size_t)q * (size_t)j->dim, j->dim);
+    for (int t = 0; t < mm->m; t++) {
+        if (found[t] < 0) continue;
+        uint32_t q = mm->current_of ? mm->current_of[found[t]] : (uint32_t)found[t];
+        if (q == p) continue;
+        c[m].index = q;
+        c[m].dist = (float)ps_knn_distance(x, j->points + (size_t)q * (size_t)mm->dim, mm->dim);
         m++;
     }
-    if (m < j->k) return -1;
+    if (m < mm->k) return -1;
     sort_candidates(c, m);
-    for (int t = 0; t < j->k; t++) j->knn[p * (size_t)j->k + (size_t)t] = c[t].index;
+    for (int t = 0; t < mm->k; t++) mm->knn[p * (size_t)mm->k + (size_t)t] = c[t].index;
+    if (mm->saturated) mm->saturated[p] = c[m - 1].dist == c[mm->k - 1].dist;
     return 0;
 }
 
-/* Query block b: QUERY_BLOCK rows in Morton order. */
+/* Query block b: QUERY_BLOCK rows of the order. */
 static void query_block(void *ctx, size_t b, int worker) {
     query_job *j = ctx;
     struct FLANNParameters fp = search_parameters();
-    size_t width = (size_t)j->dim;
+    size_t width = (size_t)j->memo->dim;
     size_t first = b * QUERY_BLOCK;
     size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
     for (size_t r = 0; r < rows; r++)
         memcpy(j->rows[worker] + r * width, j->points + j->order[first + r] * width,
                width * sizeof *j->points);
-    if (flann_find_nearest_neighbors_index_double(j->index, j->rows[worker], (int)rows,
-                                                  j->found[worker], j->squared[worker], j->m,
-                                                  &fp) != 0) {
+    if (flann_find_nearest_neighbors_index_double(j->memo->index, j->rows[worker], (int)rows,
+                                                  j->found[worker], j->squared[worker],
+                                                  j->memo->m, &fp) != 0) {
         atomic_store(&j->failed, 1);
         return;
     }
     for (size_t r = 0; r < rows; r++)
-        if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->m) != 0) {
+        if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->memo->m) != 0) {
             atomic_store(&j->failed, 1);
             return;
         }
@@ -138,49 +138,83 @@ static void free_scratch(query_job *j, int threads) {
 }
 
 static int alloc_scratch(query_job *j, int threads) {
+    size_t dim = (size_t)j->memo->dim, m = (size_t)j->memo->m;
     j->rows = calloc((size_t)threads, sizeof *j->rows);
     j->found = calloc((size_t)threads, sizeof *j->found);
     j->squared = calloc((size_t)threads, sizeof *j->squared);
     if (!j->rows || !j->found || !j->squared) return 0;
     for (int t = 0; t < threads; t++) {
-        j->rows[t] = malloc(QUERY_BLOCK * (size_t)j->dim * sizeof *j->rows[t]);
-        j->found[t] = malloc(QUERY_BLOCK * (size_t)j->m * sizeof *j->found[t]);
-        j->squared[t] = malloc(QUERY_BLOCK * (size_t)j->m * sizeof *j->squared[t]);
+        j->rows[t] = malloc(QUERY_BLOCK * dim * sizeof *j->rows[t]);
+        j->found[t] = malloc(QUERY_BLOCK * m * sizeof *j->found[t]);
+        j->squared[t] = malloc(QUERY_BLOCK * m * sizeof *j->squared[t]);
         if (!j->rows[t] || !j->found[t] || !j->squared[t]) return 0;
     }
     return 1;
 }
 
-/* knn #P by k: each point's k nearest other points; progress through
- * span up to QUERIES_SHARE. */
-static ps_status directed_knn(const double *points, size_t n, int dim, int k, int threads,
-                              const ps_progress_span *span, uint32_t *knn, ps_error *err) {
+ps_status ps_knn_query_rows(ps_knn_memo *memo, const double *points, const uint32_t *rows,
+                            size_t n_rows, int threads, const ps_progress_span *span,
+                            ps_error *err) {
+    query_job j = {.memo = memo, .points = points, .n = n_rows, .order = rows};
+    atomic_init(&j.failed, 0);
+    ps_status st = alloc_scratch(&j, threads) ? PS_OK
+                   : ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query blocks");
+    if (st == PS_OK) {
+        st = ps_parallel_for_tracked(threads, (n_rows + QUERY_BLOCK - 1) / QUERY_BLOCK, 1,
+                                     query_block, &j, span);
+        if (st != PS_OK) st = ps_fail(err, st, "knn: cancelled");
+        else if (atomic_load(&j.failed))
+            st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
+    }
+    free_scratch(&j, threads);
+    return st;
+}
+
+/* memo->index on the points and memo->knn: each point's k nearest other
+ * points, queried in Morton order; progress through span up to
+ * QUERIES_SHARE. */
+static ps_status directed_knn(ps_knn_memo *memo, const double *points, size_t n, int threads,
+                              const ps_progress_span *span, ps_error *err) {
     struct FLANNParameters fp = search_parameters();
     float speedup = 0.0f;
     uint32_t *order = malloc(n * sizeof *order);
-    query_job j = {.points = points, .n = n, .dim = dim, .k = k, .knn = knn, .order = order,
-                   .m = k + 1 + EXTRA < (int)n ? k + 1 + EXTRA : (int)n};
-    atomic_init(&j.failed, 0);
-    if (!order || !alloc_scratch(&j, threads) || ps_morton_order(points, n, dim, order) != PS_OK) {
-        free_scratch(&j, threads);
+    if (!order || ps_morton_order(points, n, memo->dim, order) != PS_OK) {
         free(order);
-        return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query blocks");
+        return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query order");
     }
-    j.index = flann_build_index_double((double *)points, (int)n, dim, &speedup, &fp);
-    ps_status st = j.index ? PS_OK : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
+    memo->index = flann_build_index_double((double *)points, (int)n, memo->dim, &speedup, &fp);
+    ps_status st = memo->index ? PS_OK
+                               : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
     if (st == PS_OK) {
         ps_progress_span queries = {span->ctl, span->phase, ps_progress_span_at(span, INDEX_SHARE),
                                     ps_progress_span_at(span, QUERIES_SHARE)};
         ps_control_progress(span->ctl, span->phase, queries.lo);
-        st = ps_parallel_for_tracked(threads, (n + QUERY_BLOCK - 1) / QUERY_BLOCK, 1, query_block,
-                                     &j, &queries);
-        if (st != PS_OK) st = ps_fail(err, st, "knn: cancelled");
-        else if (atomic_load(&j.failed)) st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
-        flann_free_index_double(j.index, &fp);
+        st = ps_knn_query_rows(memo, points, order, n, threads, &queries, err);
     }
-    free_scratch(&j, threads);
     free(order);
     return st;
+}
+
+void ps_knn_memo_free(ps_knn_memo *memo) {
+    if (!memo) return;
+    struct FLANNParameters fp = search_parameters();
+    if (memo->index) flann_free_index_double(memo->index, &fp);
+    free(memo->knn), free(memo->saturated), free(memo->current_of);
+    free(memo);
+}
+
+/* A memo for n points: no index yet, directed lists (and saturation flags
+ * when it is to be kept) allocated; NULL when out of memory. */
+static ps_knn_memo *memo_new(size_t n, int dim, int k, int keep) {
+    ps_knn_memo *memo = calloc(1, sizeof *memo);
+    if (!memo) return NULL;
+    *memo = (ps_knn_memo){.n_first = n, .dim = dim, .k = k,
+                          .m = k + 1 + PS_KNN_EXTRA < (int)n ? k + 1 + PS_KNN_EXTRA : (int)n,
+                          .knn = malloc(n * (size_t)k * sizeof *memo->knn),
+                          .saturated = keep ? malloc(n ? n : 1) : NULL};
+    if (memo->knn && (!keep || memo->saturated)) return memo;
+    ps_knn_memo_free(memo);
+    return NULL;
 }
 
 /* Insertion sort for the usual short row; qsort for a hub's long one. */
@@ -254,9 +288,9 @@ static void weigh_rows(void *ctx, size_t begin, size_t end, int worker) {
     const ps_graph *g = j->g;
     for (size_t p = begin; p < end; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            g->weights[e] = point_distance(j->points + p * (size_t)j->dim,
-                                           j->points + (size_t)g->neighbors[e] * (size_t)j->dim,
-                                           j->dim);
+            g->weights[e] = ps_knn_distance(j->points + p * (size_t)j->dim,
+                                            j->points + (size_t)g->neighbors[e] * (size_t)j->dim,
+                                            j->dim);
 }
 
 static ps_status check_arguments(const double *points, size_t n, int dim, int k, ps_error *err) {
@@ -277,23 +311,35 @@ ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int
 
 ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, int k, int threads,
                                      const ps_progress_span *span, ps_graph *g, ps_error *err) {
+    return ps_knn_graph_build_memo(points, n, dim, k, threads, span, g, NULL, err);
+}
+
+ps_status ps_knn_graph_build_memo(const double *points, size_t n, int dim, int k, int threads,
+                                  const ps_progress_span *span, ps_graph *g, ps_knn_memo **memo,
+                                  ps_error *err) {
     memset(g, 0, sizeof *g);
+    if (memo) *memo = NULL;
     ps_status st = check_arguments(points, n, dim, k, err);
     if (st != PS_OK) return st;
     threads = ps_parallel_threads(threads);
     size_t directed = n * (size_t)k;
-    uint32_t *knn = malloc(directed * sizeof *knn);
+    ps_knn_memo *mm = memo_new(n, dim, k, memo != NULL);
     size_t *fill = malloc(n * sizeof *fill);
     g->n = n;
     g->offsets = malloc((n + 1) * sizeof *g->offsets);
     g->neighbors = malloc(2 * directed * sizeof *g->neighbors);
-    if (!knn || !fill || !g->offsets || !g->neighbors) {
+    if (!mm || !fill || !g->offsets || !g->neighbors) {
         st = ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for %zu points", n);
         goto done;
     }
-    st = directed_knn(points, n, dim, k, threads, span, knn, err);
+    st = directed_knn(mm, points, n, threads, span, err);
     if (st != PS_OK) goto done;
-    symmetrize(knn, n, k, threads, g, fill);
+    if (!memo) { /* the index is not needed beyond the queries */
+        struct FLANNParameters fp = search_parameters();
+        flann_free_index_double(mm->index, &fp);
+        mm->index = NULL;
+    }
+    symmetrize(mm->knn, n, k, threads, g, fill);
     ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, ROWS_SHARE));
     size_t edges = g->offsets[n];
     uint32_t *shrunk = realloc(g->neighbors, edges * sizeof *shrunk);
@@ -307,8 +353,10 @@ ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, in
     ps_parallel_for(threads, n, 0, weigh_rows, &wj);
     ps_control_progress(span->ctl, span->phase, span->hi);
 done:
-    free(knn), free(fill);
+    free(fill);
     if (st != PS_OK) ps_graph_free(g);
+    if (st == PS_OK && memo) *memo = mm;
+    else ps_knn_memo_free(mm);
     return st;
 }
 

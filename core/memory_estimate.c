@@ -13,9 +13,15 @@
 #include "centrality.h"
 #include "coarse_graph.h"
 
+/* Fitted 2026-11-24 to the peaks of the horse sampled at 300,000 to 10M
+ * points, k = 7, 14 and 28 (bench_scale and a progress probe of VmHWM):
+ * at k = 7 the peak, table and base aside, is 291 to 325 bytes a point
+ * without the input, at k = 28 647; these constants give 397 and 754,
+ * about 1.15 (1M, k = 7) to 1.45 (10M) times the measured peak with the
+ * input.  The peak is the boundary cut's (refine) or the centrality's. */
 #define BASE_BYTES ((size_t)32 << 20) /* the process and small arrays */
-#define BYTES_PER_POINT 300           /* labels, f, flow, normals, creases, ... */
-#define BYTES_PER_NEIGHBOUR 37        /* per point and unit of k: graph, scratch */
+#define BYTES_PER_POINT 230           /* labels, f, flow, normals, creases, ... */
+#define BYTES_PER_NEIGHBOUR 17        /* per point and unit of k: graph, cut capacities */
 #define BYTES_PER_COORDINATE 16       /* the distinct points and one working copy */
 #define CELL_POINTS 15                /* points per centrality cell, low end */
 

@@ -57,6 +57,7 @@ typedef struct pipeline {
     ps_dedup dedup;
     double *points;        /* #U by dim distinct points (in->points when no dups) */
     ps_graph graph;
+    ps_knn_memo *knn_memo; /* method auto, until the stray points are out */
     int *component;        /* #U */
     int n_components;
     double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
@@ -166,9 +167,10 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
 }
 
 /* One round of the outlier removal (outliers.h): stray points leave the
- * distinct points and the kNN graph is built again on the rest, unless
- * too few would remain.  round's share of the knn phase's progress: the
- * search, then the build.  *dropped out: how many left. */
+ * distinct points and the kNN graph (pruned, knn_graph.h, or where it
+ * cannot be, built again on the rest), unless too few would remain.
+ * round's share of the knn phase's progress: the search, then the graph.
+ * *dropped out: how many left. */
 static ps_status drop_outliers_once(pipeline *pl, int round, size_t *dropped, ps_error *err) {
     size_t u = pl->dedup.n_unique, count = 0;
     double share = (KNN_OUTLIERS_DONE - KNN_GRAPH_DONE) / PS_OUTLIER_ROUNDS;
@@ -180,12 +182,19 @@ static ps_status drop_outliers_once(pipeline *pl, int round, size_t *dropped, ps
     ps_status st = ps_outliers_find(&pl->graph, pl->threads, keep_for, &count, err);
     ps_control_progress(pl->ctl, PS_PHASE_KNN, span.lo);
     if (st == PS_OK && count > 0 && u - count >= (size_t)pl->params.k + 1) {
+        int pruned = 0;
         st = ps_outliers_drop(&pl->dedup, pl->in->n, keep_for, err);
-        if (st == PS_OK) st = distinct_points(pl, err);
-        ps_graph_free(&pl->graph);
         if (st == PS_OK)
+            st = ps_knn_graph_prune(&pl->graph, pl->knn_memo, pl->points, keep_for, pl->threads,
+                                    &span, &pruned, err);
+        if (st == PS_OK) st = distinct_points(pl, err);
+        if (st == PS_OK && !pruned) {
+            ps_knn_memo_free(pl->knn_memo);
+            pl->knn_memo = NULL;
+            ps_graph_free(&pl->graph);
             st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
                                             pl->params.k, pl->threads, &span, &pl->graph, err);
+        }
         *dropped = count;
     }
     free(keep_for);
@@ -207,9 +216,13 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
 
 static ps_status phase_knn(pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_KNN, 0.0, KNN_GRAPH_DONE};
-    ps_status st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
-                                              pl->params.k, pl->threads, &span, &pl->graph, err);
-    if (st == PS_OK && pl->params.method == PS_METHOD_AUTO) st = drop_outliers(pl, err);
+    int strays = pl->params.method == PS_METHOD_AUTO;
+    ps_status st = ps_knn_graph_build_memo(pl->points, pl->dedup.n_unique, pl->in->dim,
+                                           pl->params.k, pl->threads, &span, &pl->graph,
+                                           strays ? &pl->knn_memo : NULL, err);
+    if (st == PS_OK && strays) st = drop_outliers(pl, err);
+    ps_knn_memo_free(pl->knn_memo);
+    pl->knn_memo = NULL;
     if (st != PS_OK) return st;
     size_t u = pl->dedup.n_unique;
     pl->component = malloc(u * sizeof *pl->component);
@@ -238,9 +251,10 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
 
 static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     ps_params *p = &pl->params;
-    ps_status st = ps_supernodes_build(&pl->graph, pl->f, pl->component, pl->n_components,
-                                       &p->persistence, p->use_minima, &pl->sn, err);
-    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_BUILT);
+    ps_progress_span span = {pl->ctl, PS_PHASE_SUPERNODES, 0.0, SUPERNODES_BUILT};
+    ps_status st = ps_supernodes_build_tracked(&pl->graph, pl->f, pl->component,
+                                               pl->n_components, &p->persistence,
+                                               p->use_minima, &span, &pl->sn, err);
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
@@ -283,6 +297,7 @@ static ps_status point_groups(pipeline *pl, ps_error *err) {
 }
 
 static ps_status boundary_cut(pipeline *pl, ps_error *err) {
+    ps_progress_span span = {pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE, REFINE_CUT_DONE};
     ps_boundary_cut_input bc = {
         .graph = &pl->graph,
         .points = pl->points,
@@ -290,6 +305,7 @@ static ps_status boundary_cut(pipeline *pl, ps_error *err) {
         .n_groups = pl->n_tree,
         .n_supernodes = pl->sn.m,
         .sinks = pl->sn.sinks,
+        .span = &span,
     };
     return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
 }

@@ -5,6 +5,7 @@
  */
 #include "supernodes.h"
 
+#include "control.h"
 #include "flow.h"
 #include "persistence.h"
 #include "union_find.h"
@@ -12,6 +13,16 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* Shares of the span reached after the ascent flow, the shallow tops'
+ * merge and the descent flow. */
+#define UP_DONE 0.35
+#define TOPS_DONE 0.5
+#define DOWN_DONE 0.85
+
+static void report(const ps_progress_span *span, double share) {
+    if (span) ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, share));
+}
 
 static ps_status simplified_flow(const ps_graph *g, const double *f, const int *component,
                                  int n_components, double persistence, int direction,
@@ -177,14 +188,17 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
 
 static ps_status build_once(const ps_graph *g, const double *f, const int *component,
                             int n_components, double persistence, int use_minima,
-                            ps_supernodes *out, ps_error *err) {
+                            const ps_progress_span *span, ps_supernodes *out, ps_error *err) {
     memset(out, 0, sizeof *out);
     ps_flow up = {0}, down = {0};
     ps_status st = simplified_flow(g, f, component, n_components, persistence, +1, &up, err);
+    report(span, UP_DONE);
     if (st == PS_OK && use_minima && persistence > 0)
         st = merge_shallow_tops(g, f, &up, PS_PERSISTENCE_MIN_BASIN, err);
+    report(span, TOPS_DONE);
     if (st == PS_OK && use_minima)
         st = simplified_flow(g, f, component, n_components, persistence, -1, &down, err);
+    report(span, DOWN_DONE);
     size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;
     if (st == PS_OK) st = combine(g, f, &up, use_minima ? &down : NULL, min_size, out, err);
     ps_flow_free(&up);
@@ -195,9 +209,18 @@ static ps_status build_once(const ps_graph *g, const double *f, const int *compo
 ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
                               int n_components, double *persistence, int use_minima,
                               ps_supernodes *out, ps_error *err) {
-    for (;;) {
-        ps_status st =
-            build_once(g, f, component, n_components, *persistence, use_minima, out, err);
+    return ps_supernodes_build_tracked(g, f, component, n_components, persistence, use_minima,
+                                       NULL, out, err);
+}
+
+ps_status ps_supernodes_build_tracked(const ps_graph *g, const double *f, const int *component,
+                                      int n_components, double *persistence, int use_minima,
+                                      const ps_progress_span *span, ps_supernodes *out,
+                                      ps_error *err) {
+    for (int first = 1;; first = 0) {
+        ps_status st = build_once(g, f, component, n_components, *persistence, use_minima,
+                                  first ? span : NULL, out, err);
+        report(span, 1.0);
         if (st != PS_OK || out->m <= PS_MAX_SUPERNODES || *persistence >= 1) return st;
         ps_supernodes_free(out);
         *persistence = *persistence > 0 ? fmin(1.0, *persistence * 2) : 0.01;

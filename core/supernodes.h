@@ -34,6 +34,13 @@ typedef struct ps_supernodes {
 ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
                               int n_components, double *persistence, int use_minima,
                               ps_supernodes *out, ps_error *err);
+
+/* The same, reporting progress over span (span->ctl may be NULL) after
+ * each flow and merge step of the first try. */
+ps_status ps_supernodes_build_tracked(const ps_graph *g, const double *f, const int *component,
+                                      int n_components, double *persistence, int use_minima,
+                                      const ps_progress_span *span, ps_supernodes *out,
+                                      ps_error *err);
 void ps_supernodes_free(ps_supernodes *s);
 
 /* Replaces sn by a refinement of it: label #P gives each point its new

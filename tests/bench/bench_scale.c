@@ -8,14 +8,18 @@
  * time (user + system: comparable on a shared machine), peak RSS, bytes per
  * point and ps_segment_memory_estimate beside it, as the markdown table of
  * docs/benchmarks.md, then the growth from the smallest size to the
- * largest against linear.  See tests/bench/README.md.
+ * largest against linear.  --out DIR also writes each size's labels as
+ * DIR/N.lab (one per line), for cmp against another build's.  See
+ * tests/bench/README.md.
  */
 #define _DEFAULT_SOURCE /* wait4 */
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -44,8 +48,21 @@ typedef struct scale_row {
     double estimate_mb;
 } scale_row;
 
-/* In the child: sample, segment, encode; the figures go to fd. */
-static void run_child(const ps_pointset *horse, size_t n, int threads, int fd) {
+/* labels (len bytes) as out_dir/N.lab; 0, or -1 when it cannot. */
+static int save_labels(const char *out_dir, size_t n, const char *labels, size_t len) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%zu.lab", out_dir, n);
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(labels, 1, len, f) == len;
+    if (f && fclose(f) != 0) ok = 0;
+    if (!ok) fprintf(stderr, "bench_scale: cannot write %s\n", path);
+    return ok ? 0 : -1;
+}
+
+/* In the child: sample, segment, encode (and save when out_dir is set);
+ * the figures go to fd. */
+static void run_child(const ps_pointset *horse, size_t n, int threads, const char *out_dir,
+                      int fd) {
     scale_run run = {0};
     double *points = NULL;
     ps_params params;
@@ -64,7 +81,7 @@ static void run_child(const ps_pointset *horse, size_t n, int threads, int fd) {
             run.total_ms = ps_bench_now_ms() - start;
             memcpy(run.phase_ms, r->timings.ms, sizeof run.phase_ms);
             run.segments = r->n_segments;
-            run.ok = labels != NULL;
+            run.ok = labels != NULL && (!out_dir || save_labels(out_dir, n, labels, len) == 0);
             free(labels);
         } else {
             fprintf(stderr, "%zu points: %s\n", n, err.message);
@@ -75,14 +92,15 @@ static void run_child(const ps_pointset *horse, size_t n, int threads, int fd) {
 }
 
 /* One size in a child; 0, or -1 when it failed. */
-static int measure(const ps_pointset *horse, size_t n, int threads, scale_row *row) {
+static int measure(const ps_pointset *horse, size_t n, int threads, const char *out_dir,
+                   scale_row *row) {
     int fds[2];
     if (pipe(fds) != 0) return -1;
     fflush(stdout);
     pid_t pid = fork();
     if (pid == 0) {
         close(fds[0]);
-        run_child(horse, n, threads, fds[1]);
+        run_child(horse, n, threads, out_dir, fds[1]);
     }
     close(fds[1]);
     memset(row, 0, sizeof *row);
@@ -165,15 +183,22 @@ static int load_horse(ps_pointset *horse) {
 int main(int argc, char **argv) {
     size_t sizes[MAX_SIZES] = {1000000, 2000000, 4000000, 10000000}, n_sizes = 4;
     int threads = 0;
+    const char *out_dir = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--sizes") && i + 1 < argc) {
             n_sizes = parse_sizes(argv[++i], sizes);
         } else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
             threads = atoi(argv[++i]);
+        } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
+            out_dir = argv[++i];
         } else {
-            fprintf(stderr, "usage: bench_scale [--sizes N,N,...] [--threads N]\n");
+            fprintf(stderr, "usage: bench_scale [--sizes N,N,...] [--threads N] [--out DIR]\n");
             return strcmp(argv[i], "--help") ? 2 : 0;
         }
+    }
+    if (out_dir && mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "bench_scale: cannot make %s\n", out_dir);
+        return 2;
     }
     if (n_sizes == 0) {
         fprintf(stderr, "bench_scale: --sizes wants comma-separated counts of at least 100\n");
@@ -186,7 +211,7 @@ int main(int argc, char **argv) {
     scale_row rows[MAX_SIZES];
     size_t done = 0;
     for (size_t i = 0; i < n_sizes; i++) {
-        if (measure(&horse, sizes[i], threads, &rows[done]) != 0) {
+        if (measure(&horse, sizes[i], threads, out_dir, &rows[done]) != 0) {
             printf("| %zu | FAILED (out of memory or killed) |\n", sizes[i]);
             continue;
         }

@@ -8,9 +8,12 @@
  * on every run.  Starting from the true parts, the cut keeps them.  From
  * messy segments (blobs of other segments, two of them split in pieces,
  * and scattered points), sinks keep their segments and every point the cut
- * moves lies within the band's cap of a boundary it started next to.
+ * moves lies within the band's cap of a boundary it started next to.  With
+ * a progress span it answers the same, reports rising progress pair by
+ * pair up to the span's end, and stops when cancelled.
  */
 #include "boundary_cut.h"
+#include "progress_seen.h"
 #include "star_fixture.h"
 #include "testlib.h"
 
@@ -84,14 +87,19 @@ static double boundary_on_crease(const star *s, const int *group, double toleran
     return crossing ? (double)on_crease / (double)crossing : 0;
 }
 
-static ps_status run_cut(const star *s, int *group, int *supernode_of) {
+static ps_status run_tracked(const star *s, int *group, int *supernode_of,
+                             const ps_progress_span *span) {
     ps_boundary_cut_input in = {.graph = &s->shape.graph, .points = s->shape.points,
                                 .normals = s->shape.normals, .n_groups = N_PARTS,
-                                .n_supernodes = N_PARTS, .sinks = s->sinks};
+                                .n_supernodes = N_PARTS, .sinks = s->sinks, .span = span};
     for (size_t p = 0; p < s->shape.n; p++) supernode_of[p] = group[p];
     ps_error err = {0};
-    ps_status st = ps_boundary_cut(&in, group, supernode_of, &err);
-    CHECK_MSG(st == PS_OK, "ps_boundary_cut: %s", err.message);
+    return ps_boundary_cut(&in, group, supernode_of, &err);
+}
+
+static ps_status run_cut(const star *s, int *group, int *supernode_of) {
+    ps_status st = run_tracked(s, group, supernode_of, NULL);
+    CHECK_MSG(st == PS_OK, "ps_boundary_cut: status %d", (int)st);
     return st;
 }
 
@@ -145,6 +153,32 @@ static void test_deterministic(void) {
     free(b);
     free(sa);
     free(sb);
+    star_free(&s);
+}
+
+static void test_progress_and_cancel(void) {
+    star s;
+    REQUIRE(star_build(&s));
+    size_t n = s.shape.n;
+    int *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    int *sa = malloc(n * sizeof *sa), *sb = malloc(n * sizeof *sb);
+    REQUIRE(a && b && sa && sb);
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
+    ps_progress_span span = {&ctl, PS_PHASE_REFINE, 0.2, 0.7};
+    shifted_groups(&s, a);
+    shifted_groups(&s, b);
+    REQUIRE(run_cut(&s, a, sa) == PS_OK);
+    REQUIRE(run_tracked(&s, b, sb, &span) == PS_OK);
+    CHECK(memcmp(a, b, n * sizeof *a) == 0 && memcmp(sa, sb, n * sizeof *sa) == 0);
+    CHECK_MSG(seen.calls[PS_PHASE_REFINE] >= N_PARTS - 1 && !seen.went_back &&
+                  seen.last[PS_PHASE_REFINE] == 0.7,
+              "%d calls, last %g", seen.calls[PS_PHASE_REFINE], seen.last[PS_PHASE_REFINE]);
+    volatile int cancel = 1;
+    ctl.cancel = &cancel;
+    shifted_groups(&s, b);
+    CHECK(run_tracked(&s, b, sb, &span) == PS_ERR_CANCELLED);
+    free(a), free(b), free(sa), free(sb);
     star_free(&s);
 }
 
@@ -242,4 +276,5 @@ static void test_messy_segments_move_only_near_boundaries(void) {
 }
 
 PS_TEST_MAIN(TEST(test_star_boundaries_move_to_creases), TEST(test_true_parts_stay),
+             TEST(test_progress_and_cancel),
              TEST(test_deterministic), TEST(test_messy_segments_move_only_near_boundaries))

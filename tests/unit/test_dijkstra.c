@@ -4,6 +4,9 @@
  * hand-built graph: the radius is inclusive, a region detours around the
  * vertices outside it, the reached list is in settling order and resets
  * dist; on a random graph a ball equals Bellman-Ford within the radius; a
+ * ball from several sources measuring edges between the points equals,
+ * bit for bit, a ball from one added vertex joined to those sources by
+ * zero-length edges over a copy of the graph weighted with the lengths; a
  * tracked run answers the same and reports its progress. */
 #include "dijkstra.h"
 #include "knn_graph.h"
@@ -64,7 +67,7 @@ static void bellman_ford(const ps_graph *g, uint32_t source, double *d) {
  * after.  Returns how many vertices are exactly at R. */
 static size_t check_ball(ps_dijkstra *w, const ps_graph *g, uint32_t s, const double *ref,
                          double radius, double *dist, uint32_t *reached) {
-    ps_dijkstra_limits limits = {radius, NULL, NULL, 0};
+    ps_dijkstra_limits limits = {radius, NULL, NULL, 0, NULL};
     size_t count = ps_dijkstra_ball(w, g, s, &limits, dist, reached), inside = 0, at = 0;
     for (size_t v = 0; v < g->n; v++) {
         inside += ref[v] <= radius, at += ref[v] == radius;
@@ -163,6 +166,64 @@ static void test_lower_is_min_of_runs(void) {
     ps_graph_free(&g);
 }
 
+/* g's rows weighted with Euclidean lengths, plus vertex #P whose row is
+ * sources (zero lengths): the copy a multi-source ball makes needless. */
+static void with_source_vertex(const ps_graph *g, const double *pts, const uint32_t *sources,
+                               size_t n_sources, ps_graph *geo) {
+    size_t n = g->n, arcs = g->offsets[n];
+    geo->n = n + 1;
+    geo->offsets = malloc((n + 2) * sizeof *geo->offsets);
+    geo->neighbors = malloc((arcs + n_sources) * sizeof *geo->neighbors);
+    geo->weights = malloc((arcs + n_sources) * sizeof *geo->weights);
+    if (!geo->offsets || !geo->neighbors || !geo->weights) return;
+    memcpy(geo->offsets, g->offsets, (n + 1) * sizeof *geo->offsets);
+    geo->offsets[n + 1] = arcs + n_sources;
+    for (size_t p = 0; p < n; p++)
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            geo->neighbors[e] = g->neighbors[e];
+            geo->weights[e] = ps_distance3(pts + 3 * p, pts + 3 * (size_t)g->neighbors[e]);
+        }
+    for (size_t s = 0; s < n_sources; s++)
+        geo->neighbors[arcs + s] = sources[s], geo->weights[arcs + s] = 0.0;
+}
+
+/* Sources in a region of two labels out to a radius, on a kNN graph
+ * without weights: the same reached set and the same distances, bit for
+ * bit, as the ball from a joining vertex on the weighted copy. */
+static void test_ball_from_sources_between_points(void) {
+    size_t n = 2000;
+    double *pts = malloc(n * 3 * sizeof *pts);
+    rng r = {9};
+    for (size_t i = 0; pts && i < 3 * n; i++) pts[i] = next_u(&r, 1000000) / 1e6;
+    ps_graph g, geo = {0};
+    REQUIRE(pts && ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
+    const uint32_t sources[] = {5, 77, 1200, 640};
+    size_t ns = sizeof sources / sizeof sources[0];
+    with_source_vertex(&g, pts, sources, ns, &geo);
+    uint32_t *label = malloc((n + 1) * sizeof *label), mark[3] = {4, 4, 0};
+    double *d_geo = malloc((n + 1) * sizeof *d_geo), *d = malloc(n * sizeof *d);
+    uint32_t *r_geo = malloc((n + 1) * sizeof *r_geo), *reached = malloc(n * sizeof *reached);
+    ps_dijkstra *w = ps_dijkstra_new(n + 1);
+    REQUIRE(geo.weights && label && d_geo && d && r_geo && reached && w);
+    for (size_t p = 0; p <= n; p++) label[p] = pts[3 * (p < n ? p : 0)] < 0.8 ? (p % 2) : 2;
+    for (size_t s = 0; s < ns; s++) label[sources[s]] = 0;
+    for (size_t p = 0; p <= n; p++) d_geo[p] = p < n ? (d[p] = INFINITY) : INFINITY;
+    ps_dijkstra_limits on_geo = {0.12, label, mark, 4, NULL}, on_points = on_geo;
+    on_points.points = pts;
+    size_t c_geo = ps_dijkstra_ball(w, &geo, (uint32_t)n, &on_geo, d_geo, r_geo);
+    free(g.weights);
+    g.weights = NULL; /* a ball between points never reads them */
+    size_t count = ps_dijkstra_ball_from(w, &g, sources, ns, &on_points, d, reached);
+    CHECK(count == c_geo - 1 && count > 4 * ns && count < n / 2);
+    for (size_t p = 0; p < n; p++)
+        CHECK_MSG(d[p] == d_geo[p], "point %zu: %.17g, want %.17g", p, d[p], d_geo[p]);
+    for (size_t i = 0; i < ns; i++) CHECK(d[reached[i]] == 0.0);
+    free(label), free(d_geo), free(d), free(r_geo), free(reached), free(pts);
+    ps_dijkstra_free(w);
+    ps_graph_free(&geo);
+    ps_graph_free(&g);
+}
+
 /* Hand-built: a path 0-1-2-3-4 of unit edges and a detour 0-5-2 of two
  * edges of length 2.  From 0: d = 0 1 2 3 4 2. */
 static const size_t hand_offsets[] = {0, 2, 4, 7, 9, 10, 12};
@@ -197,7 +258,7 @@ static void hand_reset(hand_ball *h) {
 static void hand_run(hand_ball *h, uint32_t source, double radius, const uint32_t *label,
                      const uint32_t *mark, uint32_t stamp) {
     hand_reset(h);
-    ps_dijkstra_limits limits = {radius, label, mark, stamp};
+    ps_dijkstra_limits limits = {radius, label, mark, stamp, NULL};
     h->count = ps_dijkstra_ball(h->w, &h->g, source, &limits, h->dist, h->reached);
 }
 
@@ -282,4 +343,5 @@ static void test_tracked_run_same_answer(void) {
 PS_TEST_MAIN(TEST(test_single_source_and_ball), TEST(test_multi_source_owner),
              TEST(test_lower_is_min_of_runs),
              TEST(test_ball_radius_is_inclusive), TEST(test_ball_region),
-             TEST(test_ball_reached_list), TEST(test_tracked_run_same_answer))
+             TEST(test_ball_reached_list), TEST(test_ball_from_sources_between_points),
+             TEST(test_tracked_run_same_answer))

@@ -263,6 +263,35 @@ static void test_stray_points_left_out(void) {
     free(pts), free(part), free(noisy);
 }
 
+/* The same star with its strays on 1, 2 and 3 threads: the stray points
+ * leave the kNN graph (knn_graph.h's prune) and the labels are the same. */
+static void test_threads_with_strays(void) {
+    size_t n;
+    double *pts = ps_shape_star(0, &n, NULL);
+    REQUIRE(pts);
+    double *noisy = realloc(pts, (n + 4) * 3 * sizeof *noisy);
+    REQUIRE(noisy);
+    static const double strays[4][3] = {{2, 2, 2}, {-2, 2, -2}, {2, -2.5, 0}, {0, 2.5, -2.5}};
+    memcpy(noisy + 3 * n, strays, sizeof strays);
+    n += 4;
+    ps_params p;
+    ps_params_default(&p);
+    p.threads = 1;
+    ps_result *one = segment_with(noisy, n, &p);
+    REQUIRE(one);
+    CHECK(one->n_outliers == 4);
+    for (int threads = 2; threads <= 3; threads++) {
+        p.threads = threads;
+        ps_result *many = segment_with(noisy, n, &p);
+        REQUIRE(many);
+        CHECK(many->n_outliers == 4);
+        CHECK(memcmp(one->labels, many->labels, n * sizeof *one->labels) == 0);
+        ps_result_free(many);
+    }
+    ps_result_free(one);
+    free(noisy);
+}
+
 /* A flat surface has no creases: the crease steps leave it alone and the
  * fingers still come out apart (they used to merge into one segment). */
 static void test_flat_hand_in_3d(void) {
@@ -551,7 +580,7 @@ static void test_progress_moves_within_phases(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
+             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
              TEST(test_threads_exact),

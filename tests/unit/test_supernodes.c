@@ -1,14 +1,17 @@
 /* test_supernodes.c: supernodes with and without minima on the star (its
- * centre becomes a minimum's supernode), and the f2 split (a supernode whose
- * far ends lie on two sides of its sink splits in two). */
+ * centre becomes a minimum's supernode; the tracked build gives the same
+ * and reports rising progress up to its span's end), and the f2 split (a
+ * supernode whose far ends lie on two sides of its sink splits in two). */
 #include "centrality.h"
 #include "f2_split.h"
 #include "knn_graph.h"
+#include "progress_seen.h"
 #include "shapes.h"
 #include "supernodes.h"
 #include "testlib.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct star_case {
     size_t n;
@@ -70,6 +73,30 @@ static void test_star_centre_is_a_minimum(void) {
     CHECK(total == c.n);
     ps_supernodes_free(&plain);
     ps_supernodes_free(&with_min);
+    star_free(&c);
+}
+
+static void test_tracked_same_and_progress(void) {
+    star_case c;
+    int nc = star_setup(&c);
+    REQUIRE(nc == 1);
+    ps_supernodes plain, tracked;
+    double persistence = 0.1, again = 0.1;
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
+    ps_progress_span span = {&ctl, PS_PHASE_SUPERNODES, 0.0, 0.5};
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, &plain, NULL) == PS_OK);
+    REQUIRE(ps_supernodes_build_tracked(&c.g, c.f, c.comp, nc, &again, 1, &span, &tracked,
+                                        NULL) == PS_OK);
+    REQUIRE(tracked.m == plain.m);
+    CHECK(memcmp(tracked.supernode_of, plain.supernode_of, c.n * sizeof(int)) == 0);
+    CHECK(memcmp(tracked.sinks, plain.sinks, (size_t)plain.m * sizeof(uint32_t)) == 0);
+    CHECK_MSG(seen.inside[PS_PHASE_SUPERNODES] >= 3 && !seen.went_back &&
+                  seen.last[PS_PHASE_SUPERNODES] == 0.5,
+              "%d fractions inside, last %g", seen.inside[PS_PHASE_SUPERNODES],
+              seen.last[PS_PHASE_SUPERNODES]);
+    ps_supernodes_free(&plain);
+    ps_supernodes_free(&tracked);
     star_free(&c);
 }
 
@@ -137,5 +164,6 @@ static void test_supernode_cap(void) {
     free(off), free(nbr), free(w), free(f), free(comp);
 }
 
-PS_TEST_MAIN(TEST(test_star_centre_is_a_minimum), TEST(test_f2_splits_two_ends),
+PS_TEST_MAIN(TEST(test_star_centre_is_a_minimum), TEST(test_tracked_same_and_progress),
+             TEST(test_f2_splits_two_ends),
              TEST(test_supernode_cap))
