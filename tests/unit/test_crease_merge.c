@@ -63,102 +63,100 @@ static double *radius(const ps_star *s) {
     return f;
 }
 
-static void test_true_parts_stay_apart(void) {
+/* The star, f = distance from the origin, each point's segment and the
+ * merge's outputs. */
+typedef struct star_run {
     ps_star s;
-    REQUIRE(ps_star_build(&s));
-    double *f = radius(&s);
-    int *group = malloc(s.n * sizeof *group), leaf[N_PIECES];
-    REQUIRE(f && group);
-    memcpy(group, s.part, s.n * sizeof *group);
+    double *f;
+    int *group; /* #n, the true parts until changed */
+    int leaf[N_PIECES];
     ps_merge *merges;
     int n_merges;
-    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
-    CHECK_MSG(n_merges == 0, "%d merges", n_merges);
-    CHECK(memcmp(group, s.part, s.n * sizeof *group) == 0);
-    free(merges);
-    free(group);
-    free(f);
-    ps_star_free(&s);
+} star_run;
+
+static int star_run_init(star_run *r) {
+    memset(r, 0, sizeof *r);
+    if (!ps_star_build(&r->s)) return 0;
+    r->f = radius(&r->s);
+    r->group = malloc(r->s.n * sizeof *r->group);
+    if (r->group) memcpy(r->group, r->s.part, r->s.n * sizeof *r->group);
+    return r->f && r->group;
+}
+
+static ps_status star_run_merge(star_run *r) {
+    return run_merge(&r->s, r->f, r->group, r->leaf, &r->merges, &r->n_merges);
+}
+
+static void star_run_free(star_run *r) {
+    free(r->merges);
+    free(r->group);
+    free(r->f);
+    ps_star_free(&r->s);
+}
+
+static void test_true_parts_stay_apart(void) {
+    star_run r;
+    REQUIRE(star_run_init(&r));
+    CHECK(star_run_merge(&r) == PS_OK);
+    CHECK_MSG(r.n_merges == 0, "%d merges", r.n_merges);
+    CHECK(memcmp(r.group, r.s.part, r.s.n * sizeof *r.group) == 0);
+    star_run_free(&r);
 }
 
 static void test_smooth_cuts_merge_back(void) {
-    ps_star s;
-    REQUIRE(ps_star_build(&s));
-    double *f = radius(&s);
-    int *group = malloc(s.n * sizeof *group), leaf[N_PIECES];
-    REQUIRE(f && group);
-    split_parts(&s, TIP_CUT, group);
-    ps_merge *merges;
-    int n_merges;
-    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
-    CHECK_MSG(n_merges == PS_STAR_PARTS, "%d merges", n_merges);
+    star_run r;
+    REQUIRE(star_run_init(&r));
+    split_parts(&r.s, TIP_CUT, r.group);
+    CHECK(star_run_merge(&r) == PS_OK);
+    CHECK_MSG(r.n_merges == PS_STAR_PARTS, "%d merges", r.n_merges);
     /* every part is one group again, and no two parts share one */
     int group_of_part[PS_STAR_PARTS];
     for (int k = 0; k < PS_STAR_PARTS; k++) group_of_part[k] = -1;
     size_t wrong = 0;
-    for (size_t p = 0; p < s.n; p++) {
-        int k = s.part[p];
-        if (group_of_part[k] < 0) group_of_part[k] = group[p];
-        wrong += group[p] != group_of_part[k];
+    for (size_t p = 0; p < r.s.n; p++) {
+        int k = r.s.part[p];
+        if (group_of_part[k] < 0) group_of_part[k] = r.group[p];
+        wrong += r.group[p] != group_of_part[k];
     }
     CHECK_MSG(wrong == 0, "%zu points off their part's group", wrong);
     for (int a = 0; a < PS_STAR_PARTS; a++)
         for (int b = a + 1; b < PS_STAR_PARTS; b++) CHECK(group_of_part[a] != group_of_part[b]);
-    for (int i = 0; i < n_merges; i++) {
-        CHECK(merges[i].segment != merges[i].into);
-        CHECK(merges[i].feature_size > 0);
-        CHECK(leaf[merges[i].segment] == leaf[merges[i].into]);
+    for (int i = 0; i < r.n_merges; i++) {
+        CHECK(r.merges[i].segment != r.merges[i].into);
+        CHECK(r.merges[i].feature_size > 0);
+        CHECK(r.leaf[r.merges[i].segment] == r.leaf[r.merges[i].into]);
     }
-    free(merges);
-    free(group);
-    free(f);
-    ps_star_free(&s);
+    star_run_free(&r);
 }
 
 static void test_protruding_half_stays(void) {
-    ps_star s;
-    REQUIRE(ps_star_build(&s));
-    double *f = radius(&s);
-    int *group = malloc(s.n * sizeof *group), *cut = malloc(s.n * sizeof *cut);
-    int leaf[N_PIECES];
-    REQUIRE(f && group && cut);
-    split_parts(&s, HALF_CUT, group);
-    memcpy(cut, group, s.n * sizeof *cut);
-    ps_merge *merges;
-    int n_merges;
-    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
-    CHECK_MSG(n_merges == 1, "%d merges", n_merges); /* the two hemispheres only */
+    star_run r;
+    REQUIRE(star_run_init(&r));
+    int *cut = malloc(r.s.n * sizeof *cut);
+    REQUIRE(cut);
+    split_parts(&r.s, HALF_CUT, r.group);
+    memcpy(cut, r.group, r.s.n * sizeof *cut);
+    CHECK(star_run_merge(&r) == PS_OK);
+    CHECK_MSG(r.n_merges == 1, "%d merges", r.n_merges); /* the two hemispheres only */
     size_t moved = 0;
-    for (size_t p = 0; p < s.n; p++)
-        if (s.part[p] != 0) moved += group[p] != cut[p];
+    for (size_t p = 0; p < r.s.n; p++)
+        if (r.s.part[p] != 0) moved += r.group[p] != cut[p];
     CHECK_MSG(moved == 0, "%zu arm points changed segment", moved);
-    free(merges);
     free(cut);
-    free(group);
-    free(f);
-    ps_star_free(&s);
+    star_run_free(&r);
 }
 
 static void test_tunnels_merge(void) {
-    ps_star s;
-    REQUIRE(ps_star_build(&s));
-    for (size_t i = 0; i < 3 * s.n; i++) s.normals[i] = -s.normals[i];
-    double *f = radius(&s);
-    int *group = malloc(s.n * sizeof *group), leaf[N_PIECES];
-    REQUIRE(f && group);
-    memcpy(group, s.part, s.n * sizeof *group);
-    ps_merge *merges;
-    int n_merges;
-    CHECK(run_merge(&s, f, group, leaf, &merges, &n_merges) == PS_OK);
-    CHECK_MSG(n_merges == PS_STAR_PARTS - 1, "%d merges", n_merges);
+    star_run r;
+    REQUIRE(star_run_init(&r));
+    for (size_t i = 0; i < 3 * r.s.n; i++) r.s.normals[i] = -r.s.normals[i];
+    CHECK(star_run_merge(&r) == PS_OK);
+    CHECK_MSG(r.n_merges == PS_STAR_PARTS - 1, "%d merges", r.n_merges);
     size_t apart = 0;
-    for (size_t p = 0; p < s.n; p++) apart += group[p] != group[0];
+    for (size_t p = 0; p < r.s.n; p++) apart += r.group[p] != r.group[0];
     CHECK_MSG(apart == 0, "%zu points outside the room's segment", apart);
-    for (int i = 0; i < n_merges; i++) CHECK(merges[i].into == 0 && merges[i].segment > 0);
-    free(merges);
-    free(group);
-    free(f);
-    ps_star_free(&s);
+    for (int i = 0; i < r.n_merges; i++) CHECK(r.merges[i].into == 0 && r.merges[i].segment > 0);
+    star_run_free(&r);
 }
 
 static void test_deterministic(void) {
