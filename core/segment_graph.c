@@ -8,22 +8,26 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The mean squared distance of n points from their centroid, from the sum
+ * of the points and of their squared norms (<= 0 when rounding leaves
+ * no spread). */
+static double spread2(const double sum[3], double norm2_sum, double n) {
+    double centroid2 = 0;
+    for (int d = 0; d < 3; d++) centroid2 += (sum[d] / n) * (sum[d] / n);
+    return norm2_sum / n - centroid2;
+}
+
 double ps_boundary_width(const ps_boundary *r) {
-    double n = (double)r->edges, centroid2 = 0;
-    for (int d = 0; d < 3; d++) centroid2 += (r->midpoint_sum[d] / n) * (r->midpoint_sum[d] / n);
-    double variance = r->norm2_sum / n - centroid2;
+    double variance = spread2(r->midpoint_sum, r->norm2_sum, (double)r->edges);
     return variance > 0 ? 2 * sqrt(variance) : 0;
 }
 
 double ps_segment_bulge(const ps_segment_graph *sg, int s) {
     if (!sg->sums || sg->size[s] == 0) return 0;
     const ps_segment_sums *m = &sg->sums[s];
-    double n = (double)sg->size[s], c2 = 0, nc = 0;
-    for (int d = 0; d < 3; d++) {
-        c2 += (m->point_sum[d] / n) * (m->point_sum[d] / n);
-        nc += (m->normal_sum[d] / n) * (m->point_sum[d] / n);
-    }
-    double variance = m->norm2_sum / n - c2;
+    double n = (double)sg->size[s], nc = 0;
+    for (int d = 0; d < 3; d++) nc += (m->normal_sum[d] / n) * (m->point_sum[d] / n);
+    double variance = spread2(m->point_sum, m->norm2_sum, n);
     return variance > 0 ? (m->dot_sum / n - nc) / sqrt(variance) : 0;
 }
 
