@@ -3,7 +3,12 @@
  * OpenBLAS is kept to one thread: the core parallelizes on its own (and the
  * daemon runs several jobs side by side), and a BLAS whose reductions split
  * differently with the thread count could change an eigenvector's last bits
- * and so a split: results must not depend on the machine's core count. */
+ * and so a split: results must not depend on the machine's core count.
+ * OpenBLAS starts its worker threads when it is loaded, and they spin
+ * (sched_yield) for about 0.1 s before they sleep, taking a core from the
+ * first phases of every process; ps_eigen_setup also ends them, through
+ * blas_thread_shutdown_, which OpenBLAS exports for its fork handler (weak:
+ * a BLAS without it keeps its threads, asleep after their spin). */
 #include "eigen.h"
 
 #include <lapacke.h>
@@ -11,11 +16,17 @@
 #include <pthread.h>
 #include <stdlib.h>
 
-void openblas_set_num_threads(int num_threads); /* OpenBLAS's own API */
+void openblas_set_num_threads(int num_threads);       /* OpenBLAS's own API */
+int blas_thread_shutdown_(void) __attribute__((weak)); /* OpenBLAS, not declared */
 
 static pthread_once_t blas_once = PTHREAD_ONCE_INIT;
 
-static void single_threaded_blas(void) { openblas_set_num_threads(1); }
+static void single_threaded_blas(void) {
+    openblas_set_num_threads(1);
+    if (blas_thread_shutdown_) blas_thread_shutdown_();
+}
+
+void ps_eigen_setup(void) { pthread_once(&blas_once, single_threaded_blas); }
 
 static void swap_columns(double *vectors, int m) {
     for (int i = 0; i < m; i++) {
@@ -44,7 +55,7 @@ static ps_status call_dsyevr(double *a, int m, double *all_values, lapack_int *s
 ps_status ps_eigen_top2(double *a, int m, double values[2], double *vectors,
                         ps_error *err) {
     if (m < 2) return ps_fail(err, PS_ERR_INVALID, "eigen: need m >= 2, got %d", m);
-    pthread_once(&blas_once, single_threaded_blas);
+    ps_eigen_setup();
     double *all_values = malloc((size_t)m * sizeof *all_values);
     lapack_int *support = malloc(2 * (size_t)m * sizeof *support);
     ps_status st = all_values && support

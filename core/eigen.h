@@ -11,6 +11,12 @@
 
 #include "pointseg.h"
 
+/* Puts the BLAS in one thread and ends its idle worker threads; once per
+ * process (later calls return at once).  ps_eigen_top2 calls it; ps_segment
+ * calls it first, so that those threads take no core from the first
+ * phases. */
+void ps_eigen_setup(void);
+
 /* a: #m by #m, a full symmetric matrix (row or column major alike), m >= 2;
  * it is overwritten.  values: 2 out, values[0] >= values[1], the two largest
  * eigenvalues.  vectors: #m by 2 out, column major: vectors[0..m) is the unit

@@ -18,6 +18,7 @@
 #include "crease_merge.h"
 #include "crease_split.h"
 #include "dedup.h"
+#include "eigen.h"
 #include "f2_split.h"
 #include "knn_graph.h"
 #include "ncut.h"
@@ -421,6 +422,7 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
                      ps_result **out, ps_error *err) {
     double start = now_ms();
     *out = NULL;
+    ps_eigen_setup();
     pipeline pl = {.in = in, .ctl = ctl};
     if (params) pl.params = *params;
     else ps_params_default(&pl.params);
