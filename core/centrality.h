@@ -26,7 +26,9 @@
 #define PS_COARSE_MIN_POINTS 20000 /* approx uses the two-level scheme from here (-D to tune) */
 #endif
 
+#ifndef PS_MAX_DEFAULT_SAMPLES
 #define PS_MAX_DEFAULT_SAMPLES 512 /* the default sample count's cap */
+#endif
 
 /* The default approx sample count for n points: ceil(sqrt(n)), at most
  * PS_MAX_DEFAULT_SAMPLES.  The error of a mean distance over samples that

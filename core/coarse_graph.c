@@ -4,8 +4,9 @@
  *
  * Steps: the median edge length per component (quickselect), the greedy
  * cover (sequential: each seed depends on the cover so far; one
- * ps_dijkstra_ball within the radius per seed), the cells (one
- * multi-source ps_dijkstra_run), the near lists (cell members by counting
+ * ps_dijkstra_ball within the radius per seed, which also gives every
+ * vertex it reaches its distance to that seed, so the nearest seed's cell
+ * is known when the cover ends), the near lists (cell members by counting
  * sort), the local distances (one ps_dijkstra_ball per seed over its near
  * cells, in parallel; the run from c writes only the slots (p, c), so no
  * two workers share a slot) and the coarse graph read off the seeds' rows.
@@ -25,9 +26,8 @@
 #define NO_SLOT UINT32_MAX
 #define CANCEL_POLL 256 /* seeds between cancel checks and progress in the cover */
 #define RADII_SHARE 0.05  /* progress of the span after the cell radii ... */
-#define COVER_SHARE 0.3   /* ... after the cover ... */
-#define ASSIGN_SHARE 0.55 /* ... after the cells ... */
-#define CELLS_SHARE 0.6   /* ... after the near lists; local distances follow */
+#define COVER_SHARE 0.45  /* ... after the cover and the cells ... */
+#define CELLS_SHARE 0.5   /* ... after the near lists; local distances follow */
 
 /* ---- a bounded Dijkstra (one thread's workspace) ------------------------ */
 
@@ -93,46 +93,35 @@ static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
     return PS_OK;
 }
 
-/* Greedy cover in vertex order: seed #M out (sized #P), cell_start out. */
+/* Greedy cover in vertex order: seed #M out (sized #P), cell_start out,
+ * and cell_of: each vertex's nearest seed, read off the balls (a vertex's
+ * nearest seed is within the radius, so that seed's ball reached it; ties
+ * go to the lower cell).  nearest #P scratch, INFINITY on entry. */
 static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
-                       const ps_progress_span *span, unsigned char *covered, ps_coarse_graph *cg) {
+                       const ps_progress_span *span, double *nearest, ps_coarse_graph *cg) {
     size_t m = 0;
     for (int k = 0; k < o->n_components; k++) {
         cg->cell_start[k] = m;
         for (size_t v = o->start[k]; v < o->start[k + 1]; v++) {
-            if (covered[v]) continue;
+            if (nearest[v] < INFINITY) continue;
             if (m % CANCEL_POLL == 0) {
                 if (ps_control_cancelled(span->ctl)) return PS_ERR_CANCELLED;
                 ps_control_progress(span->ctl, span->phase,
                                     span->lo + (span->hi - span->lo) * (double)v / (double)o->g.n);
             }
-            cg->seed[m++] = (uint32_t)v;
+            cg->seed[m] = (uint32_t)v;
             ball_run(b, &o->g, (uint32_t)v, radius[k], NULL, 0);
-            for (size_t i = 0; i < b->n_reached; i++) covered[b->reached[i]] = 1;
+            for (size_t i = 0; i < b->n_reached; i++) {
+                uint32_t p = b->reached[i];
+                if (b->dist[p] < nearest[p]) nearest[p] = b->dist[p], cg->cell_of[p] = (uint32_t)m;
+            }
             ball_clear(b);
+            m++;
         }
     }
     cg->cell_start[o->n_components] = m;
     cg->n_cells = m;
     return PS_OK;
-}
-
-/* cell_of from one multi-source Dijkstra over all seeds, progress over
- * span. */
-static ps_status assign_cells(const ps_bfs_order *o, const ps_progress_span *span,
-                              ps_coarse_graph *cg) {
-    size_t n = o->g.n;
-    ps_dijkstra *dij = ps_dijkstra_new(n);
-    double *dist = malloc(n * sizeof *dist);
-    int *owner = malloc(n * sizeof *owner);
-    ps_status st = dij && dist && owner ? PS_OK : PS_ERR_NOMEM;
-    if (st == PS_OK) {
-        ps_dijkstra_run_tracked(dij, &o->g, cg->seed, cg->n_cells, dist, owner, span);
-        for (size_t v = 0; v < n; v++) cg->cell_of[v] = (uint32_t)owner[v];
-    }
-    ps_dijkstra_free(dij);
-    free(dist), free(owner);
-    return st;
 }
 
 /* ---- near lists ------------------------------------------------------------ */
@@ -295,23 +284,24 @@ static ps_status build_cells(const ps_bfs_order *o, ball *b, const ps_progress_s
                              ps_coarse_graph *cg) {
     double *radius = malloc(((size_t)o->n_components + 1) * sizeof *radius);
     ps_status st = radius ? cell_radii(o, radius) : PS_ERR_NOMEM;
-    unsigned char *covered = st == PS_OK ? calloc(o->g.n ? o->g.n : 1, 1) : NULL;
+    double *nearest = st == PS_OK ? malloc((o->g.n ? o->g.n : 1) * sizeof *nearest) : NULL;
     ps_progress_span cover_span = {span->ctl, span->phase, ps_progress_span_at(span, RADII_SHARE),
                                    ps_progress_span_at(span, COVER_SHARE)};
     ps_control_progress(span->ctl, span->phase, cover_span.lo);
-    if (st == PS_OK) st = covered ? cover(o, radius, b, &cover_span, covered, cg) : PS_ERR_NOMEM;
-    free(radius), free(covered);
+    if (st == PS_OK && !nearest) st = PS_ERR_NOMEM;
+    if (st == PS_OK) {
+        for (size_t v = 0; v < o->g.n; v++) nearest[v] = INFINITY;
+        st = cover(o, radius, b, &cover_span, nearest, cg);
+    }
+    free(radius), free(nearest);
     if (st != PS_OK) return st;
     cg->near_offsets = malloc((cg->n_cells + 1) * sizeof *cg->near_offsets);
-    if (!cg->near_offsets) return PS_ERR_NOMEM;
-    ps_progress_span assign = {span->ctl, span->phase, cover_span.hi,
-                               ps_progress_span_at(span, ASSIGN_SHARE)};
-    st = assign_cells(o, &assign, cg);
-    uint32_t *mark = st == PS_OK ? malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mark) : NULL;
-    if (st == PS_OK && !mark) st = PS_ERR_NOMEM;
-    if (st == PS_OK) {
+    uint32_t *mark = malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mark);
+    if (cg->near_offsets && mark) {
         for (size_t c = 0; c < cg->n_cells; c++) mark[c] = NO_SLOT;
         st = build_near(&o->g, mark, cg);
+    } else {
+        st = PS_ERR_NOMEM;
     }
     free(mark);
     return st;

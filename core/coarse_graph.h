@@ -33,7 +33,9 @@
  * PS_CELL_SCALE_POINTS), so its cell count (~70,000 here) stops growing: the
  * coarse Dijkstras' cost is then bounded, and the cells keep the size in
  * the model's own units they have at this many points. */
+#ifndef PS_CELL_SCALE_POINTS
 #define PS_CELL_SCALE_POINTS 1000000
+#endif
 
 /* The factor on the cell radius of a component of size points. */
 double ps_cell_radius_growth(size_t size);

@@ -1,5 +1,5 @@
 /* test_coarse_graph.c: cells partition the vertices (seed in its own cell,
- * no cell across components), local distances from the own seed equal a full
+ * no cell across components, each vertex with its nearest seed), local distances from the own seed equal a full
  * Dijkstra and the others are never shorter, coarse edge weights are the
  * smaller local geodesic of the two seeds, components stay apart, cancel,
  * and the cell radius grows past PS_CELL_SCALE_POINTS so that the cell
@@ -83,6 +83,26 @@ static void test_cells_partition(void) {
     CHECK(sum == n && cg->seed[0] == 0);
     CHECK(cg->cell_start[0] == 0 && cg->cell_start[1] == m);
     free(size);
+    fixture_free(&fx);
+}
+
+/* Each vertex is in the cell of its nearest seed (ties: the lower cell),
+ * as a multi-source Dijkstra from all the seeds assigns it. */
+static void test_cells_are_nearest_seed(void) {
+    fixture fx;
+    REQUIRE(fixture_make(1, &fx));
+    const ps_coarse_graph *cg = &fx.cg;
+    size_t n = fx.o.g.n;
+    ps_dijkstra *dij = ps_dijkstra_new(n);
+    double *dist = malloc(n * sizeof *dist);
+    int *owner = malloc(n * sizeof *owner);
+    REQUIRE(dij && dist && owner);
+    ps_dijkstra_run(dij, &fx.o.g, cg->seed, cg->n_cells, dist, owner);
+    size_t same = 0;
+    for (size_t v = 0; v < n; v++) same += cg->cell_of[v] == (uint32_t)owner[v];
+    CHECK_MSG(same == n, "%zu of %zu vertices in their nearest seed's cell", same, n);
+    ps_dijkstra_free(dij);
+    free(dist), free(owner);
     fixture_free(&fx);
 }
 
@@ -183,5 +203,6 @@ static void test_radius_growth_bounds_cells(void) {
     CHECK(fabs(10.0 * PS_CELL_SCALE_POINTS / (g * g) - PS_CELL_SCALE_POINTS) < 1e-6);
 }
 
-PS_TEST_MAIN(TEST(test_cells_partition), TEST(test_local_distances), TEST(test_coarse_edges),
+PS_TEST_MAIN(TEST(test_cells_partition), TEST(test_cells_are_nearest_seed),
+             TEST(test_local_distances), TEST(test_coarse_edges),
              TEST(test_two_components), TEST(test_cancel), TEST(test_radius_growth_bounds_cells))
