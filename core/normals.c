@@ -75,69 +75,85 @@ static void normalize(double n[3]) {
     else n[0] = 1, n[1] = n[2] = 0;
 }
 
-/* A binary min-heap of (cost, vertex, parent) for Prim's algorithm. */
-typedef struct prim_item {
-    double cost;
-    uint32_t vertex, parent;
-} prim_item;
+/* Prim's tree over the graph: an indexed 4-ary min-heap of the vertices
+ * reached but not yet in the tree, keyed by (cost, vertex), each with the
+ * tree vertex it would hang from. */
+#define IN_TREE UINT32_MAX
+#define UNREACHED (UINT32_MAX - 1)
 
-static int item_less(const prim_item *a, const prim_item *b) {
-    return a->cost < b->cost || (a->cost == b->cost && a->vertex < b->vertex);
+typedef struct orient_walk {
+    uint32_t *heap;    /* #P vertices, heap-ordered */
+    uint32_t *pos;     /* #P heap slot, UNREACHED or IN_TREE */
+    double *cost;      /* #P 1 - |n_parent . n_v| of the best edge so far */
+    uint32_t *parent;  /* #P that edge's tree end */
+    size_t len, reached;
+    const ps_progress_span *span;
+} orient_walk;
+
+static int key_less(const orient_walk *w, uint32_t a, uint32_t b) {
+    return w->cost[a] < w->cost[b] || (w->cost[a] == w->cost[b] && a < b);
 }
 
-static void heap_push(prim_item *h, size_t *len, prim_item x) {
-    size_t i = (*len)++;
-    while (i > 0 && item_less(&x, &h[(i - 1) / 2])) h[i] = h[(i - 1) / 2], i = (i - 1) / 2;
-    h[i] = x;
+static void heap_place(orient_walk *w, size_t i, uint32_t v) {
+    w->heap[i] = v;
+    w->pos[v] = (uint32_t)i;
 }
 
-static prim_item heap_pop(prim_item *h, size_t *len) {
-    prim_item top = h[0], x = h[--*len];
+static void sift_up(orient_walk *w, size_t i, uint32_t v) {
+    while (i > 0 && key_less(w, v, w->heap[(i - 1) / 4])) {
+        heap_place(w, i, w->heap[(i - 1) / 4]);
+        i = (i - 1) / 4;
+    }
+    heap_place(w, i, v);
+}
+
+static uint32_t heap_pop(orient_walk *w) {
+    uint32_t top = w->heap[0], v = w->heap[--w->len];
     size_t i = 0;
     for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= *len) break;
-        if (c + 1 < *len && item_less(&h[c + 1], &h[c])) c++;
-        if (!item_less(&h[c], &x)) break;
-        h[i] = h[c], i = c;
+        size_t first = 4 * i + 1, last = first + 4 < w->len ? first + 4 : w->len, best = i;
+        uint32_t best_v = v;
+        for (size_t c = first; c < last; c++)
+            if (key_less(w, w->heap[c], best_v)) best = c, best_v = w->heap[c];
+        if (best == i) break;
+        heap_place(w, i, best_v);
+        i = best;
     }
-    if (*len > 0) h[i] = x;
+    if (w->len > 0) heap_place(w, i, v);
+    w->pos[top] = IN_TREE;
     return top;
+}
+
+/* q reached from tree vertex v at cost c: kept if cheaper than before. */
+static void offer(orient_walk *w, uint32_t q, uint32_t v, double c) {
+    if (w->pos[q] == UNREACHED) {
+        w->cost[q] = c, w->parent[q] = v;
+        sift_up(w, w->len++, q);
+    } else if (c < w->cost[q]) {
+        w->cost[q] = c, w->parent[q] = v;
+        sift_up(w, w->pos[q], q);
+    }
 }
 
 static double dot3(const double *a, const double *b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* The orientation's walk: progress over span as vertices are reached. */
-typedef struct orient_walk {
-    unsigned char *done; /* #P */
-    prim_item *heap;     /* #E+1 */
-    size_t reached;
-    const ps_progress_span *span;
-} orient_walk;
-
-/* Prim's tree from root over the unvisited part of its component: each
- * vertex is flipped to agree with its tree parent. */
+/* Prim's tree from root over its component: each vertex is flipped to
+ * agree with its tree parent. */
 static void orient_from(const ps_graph *g, uint32_t root, double *n, orient_walk *w) {
-    unsigned char *done = w->done;
-    prim_item *heap = w->heap;
-    size_t len = 0;
-    heap_push(heap, &len, (prim_item){0, root, root});
-    while (len > 0) {
-        prim_item it = heap_pop(heap, &len);
-        uint32_t v = it.vertex;
-        if (done[v]) continue;
-        done[v] = 1;
+    w->cost[root] = 0, w->parent[root] = root;
+    sift_up(w, w->len++, root);
+    while (w->len > 0) {
+        uint32_t v = heap_pop(w), up = w->parent[v];
         if (++w->reached % PROGRESS_STEP == 0)
             ps_control_progress(w->span->ctl, w->span->phase,
                                 ps_progress_span_at(w->span, (double)w->reached / (double)g->n));
-        if (v != it.parent && dot3(n + 3 * v, n + 3 * it.parent) < 0)
+        if (v != up && dot3(n + 3 * v, n + 3 * up) < 0)
             for (int i = 0; i < 3; i++) n[3 * v + i] = -n[3 * v + i];
         for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (!done[q])
-                heap_push(heap, &len, (prim_item){1 - fabs(dot3(n + 3 * v, n + 3 * q)), q, v});
+            if (w->pos[q] != IN_TREE) offer(w, q, v, 1 - fabs(dot3(n + 3 * v, n + 3 * q)));
         }
     }
 }
@@ -191,15 +207,17 @@ static void point_outward(size_t n, const double *points, const int *component,
  * the tree. */
 static ps_status orient_components(const ps_graph *g, const uint32_t *root, int n_components,
                                    const ps_progress_span *span, double *normals, ps_error *err) {
-    orient_walk w = {calloc(g->n ? g->n : 1, 1), malloc((g->offsets[g->n] + 1) * sizeof *w.heap),
-                     0, span};
-    if (!w.done || !w.heap) {
-        free(w.done), free(w.heap);
-        return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
-    }
-    for (int c = 0; c < n_components; c++) orient_from(g, root[c], normals, &w);
-    free(w.done), free(w.heap);
-    return PS_OK;
+    size_t alloc_n = g->n ? g->n : 1;
+    orient_walk w = {malloc(alloc_n * sizeof *w.heap), malloc(alloc_n * sizeof *w.pos),
+                     malloc(alloc_n * sizeof *w.cost), malloc(alloc_n * sizeof *w.parent),
+                     0, 0, span};
+    ps_status st = w.heap && w.pos && w.cost && w.parent
+                       ? PS_OK
+                       : ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
+    for (size_t v = 0; st == PS_OK && v < g->n; v++) w.pos[v] = UNREACHED;
+    for (int c = 0; st == PS_OK && c < n_components; c++) orient_from(g, root[c], normals, &w);
+    free(w.heap), free(w.pos), free(w.cost), free(w.parent);
+    return st;
 }
 
 /* Unit normals of a block of PCA_BLOCK points, each worker counting its
