@@ -30,11 +30,11 @@
 #define PS_CELL_RADIUS_EDGES 3.0 /* cell radius in median kNN edge lengths (-D to tune) */
 #endif
 /* Above this many points a component's cell radius grows by sqrt(points /
- * PS_CELL_SCALE_POINTS), so its cell count (~70,000 here) stops growing: the
+ * PS_CELL_SCALE_POINTS), so its cell count (~35,000 here) stops growing: the
  * coarse Dijkstras' cost is then bounded, and the cells keep the size in
  * the model's own units they have at this many points. */
 #ifndef PS_CELL_SCALE_POINTS
-#define PS_CELL_SCALE_POINTS 1000000
+#define PS_CELL_SCALE_POINTS 500000
 #endif
 
 /* The factor on the cell radius of a component of size points. */
