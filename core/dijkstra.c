@@ -116,9 +116,12 @@ static int within(const ps_dijkstra_limits *l, double nd, uint32_t v) {
 
 /* Pops the heap until it is empty, relaxing each popped vertex's edges;
  * with b, only into vertices within its limits, listing each popped one;
- * with span, reporting the share of g's vertices settled so far. */
-static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, ball *b,
-                   const ps_progress_span *span) {
+ * with span, reporting the share of g's vertices settled so far.  Always
+ * inlined into the callers below, each with constant NULLs where it has no
+ * owner, ball or span, so that each gets a loop without their tests. */
+static inline __attribute__((always_inline)) void settle_with(ps_dijkstra *w, const ps_graph *g,
+                                                              double *dist, int *owner, ball *b,
+                                                              const ps_progress_span *span) {
     const double *points = b ? b->limits->points : NULL;
     size_t settled = 0;
     while (w->size > 0) {
@@ -141,6 +144,20 @@ static void settle(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner, 
     }
 }
 
+/* A plain run: no owner, ball or progress. */
+static void settle(ps_dijkstra *w, const ps_graph *g, double *dist) {
+    settle_with(w, g, dist, NULL, NULL, NULL);
+}
+
+static void settle_owned(ps_dijkstra *w, const ps_graph *g, double *dist, int *owner,
+                         const ps_progress_span *span) {
+    settle_with(w, g, dist, owner, NULL, span);
+}
+
+static void settle_ball(ps_dijkstra *w, const ps_graph *g, double *dist, ball *b) {
+    settle_with(w, g, dist, NULL, b, NULL);
+}
+
 void ps_dijkstra_run(ps_dijkstra *w, const ps_graph *g, const uint32_t *sources,
                      size_t n_sources, double *dist, int *owner) {
     ps_dijkstra_run_tracked(w, g, sources, n_sources, dist, owner, NULL);
@@ -159,7 +176,8 @@ void ps_dijkstra_run_tracked(ps_dijkstra *w, const ps_graph *g, const uint32_t *
         if (owner) owner[v] = (int)s;
         heap_set(w, v, 0.0);
     }
-    settle(w, g, dist, owner, NULL, span);
+    if (owner || span) settle_owned(w, g, dist, owner, span);
+    else settle(w, g, dist);
     if (span) ps_control_progress(span->ctl, span->phase, span->hi);
 }
 
@@ -168,7 +186,7 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source, doubl
         dist[source] = 0.0;
         heap_set(w, source, 0.0);
     }
-    settle(w, g, dist, NULL, NULL, NULL);
+    settle(w, g, dist);
 }
 
 size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
@@ -184,6 +202,6 @@ size_t ps_dijkstra_ball_from(ps_dijkstra *w, const ps_graph *g, const uint32_t *
         dist[sources[s]] = 0.0;
         heap_set(w, sources[s], 0.0);
     }
-    settle(w, g, dist, NULL, &b, NULL);
+    settle_ball(w, g, dist, &b);
     return b.count;
 }
