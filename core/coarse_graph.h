@@ -8,10 +8,12 @@
  * bfs_order.h); an uncovered vertex becomes a seed and covers every vertex
  * within geodesic distance r of it, r = PS_CELL_RADIUS_EDGES x the median
  * edge length of its component (x sqrt(size / PS_CELL_SCALE_POINTS) for a
- * component bigger than that).  One multi-source Dijkstra from all seeds
- * then gives every vertex its cell: that of its nearest seed (ties to the
- * lower cell).  Cells are connected, never span two components, and are
- * numbered in the order of their seeds.
+ * component bigger than that).  Every vertex's cell is that of its
+ * nearest seed (ties to the lower cell), read off the cover's balls (the
+ * nearest seed is within r, so its ball reached the vertex): the cells a
+ * multi-source Dijkstra from all seeds gives.  Cells are connected (in
+ * exact arithmetic: a shortest path from a seed stays in its cell), never
+ * span two components, and are numbered in the order of their seeds.
  * Near cells: cell a and cell b are adjacent when a graph edge joins them;
  * near(a) is a with its adjacent cells, increasing.
  * Local distances: for each vertex p and each cell c in near(cell of p),
