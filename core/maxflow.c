@@ -1,5 +1,11 @@
 /*
- * maxflow.c: Dinic's maximum flow on a symmetric CSR graph (maxflow.h).
+ * maxflow.c: maximum flow on a symmetric CSR graph (maxflow.h) by the
+ * Boykov-Kolmogorov algorithm: a search tree grows from the source and one
+ * from the sink over unsaturated arcs; where they touch, the path through
+ * both is augmented; nodes cut off from their tree by a saturated arc
+ * (orphans) look for a new parent in the same tree or are freed.  When no
+ * tree can grow the flow is maximum, and a breadth-first search from the
+ * source over unsaturated arcs gives the cut's source side.
  *
  * Residual capacities live per arc: pushing x along p->q lowers r(p->q) and
  * raises r(q->p) by x, which is exactly an undirected edge of capacity c
@@ -11,127 +17,173 @@
 
 #include <stdlib.h>
 
+#define FREE 0
+#define SOURCE_TREE 1
+#define SINK_TREE 2
+#define NO_ARC SIZE_MAX /* parent arc of a root or an orphan */
+
 struct ps_maxflow_workspace {
-    size_t nodes, arcs;  /* sizes the arrays below hold */
-    size_t *reverse;     /* arcs: index of the reverse arc */
-    double *residual;    /* arcs */
-    int *level;          /* nodes: BFS depth from the source, -1 unreached or dead */
-    size_t *next_arc;    /* nodes: current arc of each node in the blocking flow */
-    uint32_t *queue;     /* nodes */
-    size_t *path;        /* nodes: arcs of the current path from the source */
+    size_t nodes, arcs;      /* sizes the arrays below hold */
+    size_t *reverse;         /* arcs: index of the reverse arc */
+    double *residual;        /* arcs */
+    unsigned char *tree;     /* nodes: FREE, SOURCE_TREE or SINK_TREE */
+    unsigned char *queued;   /* nodes: in the active queue */
+    size_t *parent_arc;      /* nodes: source tree: the arc parent -> v;
+                                sink tree: the arc v -> parent; NO_ARC */
+    uint32_t *parent;        /* nodes */
+    uint64_t *checked;       /* nodes: stamp of the last round v's origin was
+                                found to be its tree's root */
+    uint32_t *active;        /* nodes: FIFO ring of active nodes */
+    uint32_t *orphans;       /* nodes: stack */
 };
 
 typedef struct flow_state {
     const ps_flow_graph *g;
-    size_t *reverse;   /* #E */
-    double *residual;  /* #E */
-    int *level;        /* #V */
-    size_t *next_arc;  /* #V */
-    uint32_t *queue;   /* #V */
-    size_t *path;      /* #V */
+    ps_maxflow_workspace *w;
+    uint32_t source, sink;
     double tolerance;
+    size_t head, count;      /* active ring */
+    size_t n_orphans;
+    uint64_t round;          /* one per augmentation */
 } flow_state;
 
 /* Reverse arcs in one pass over the rows in order: as the rows are sorted,
  * the arcs into q met for increasing p are row q's entries in order, so a
- * cursor per row (next_arc, reset by each phase) finds each one.  -1 if
+ * cursor per row (the parent arcs, reset afterwards) finds each one.  -1 if
  * the graph is not symmetric. */
 static int find_reverse_arcs(flow_state *st) {
     const ps_flow_graph *g = st->g;
-    size_t *cursor = st->next_arc;
+    size_t *cursor = st->w->parent_arc;
     for (size_t v = 0; v < g->n; v++) cursor[v] = g->offsets[v];
     for (uint32_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->heads[e];
             if (q >= g->n || cursor[q] == g->offsets[q + 1] || g->heads[cursor[q]] != p)
                 return -1;
-            st->reverse[e] = cursor[q]++;
+            st->w->reverse[e] = cursor[q]++;
         }
     return 0;
 }
 
-/* Levels from the source over unsaturated arcs; 1 if the sink is reached.
- * The search stops as soon as the sink has its level d: every node nearer
- * than d has its level by then, and the nodes left unreached (at d or
- * beyond) could never lead to the sink in this phase, so the blocking flow
- * finds the same paths as after a full search.  When the sink is not
- * reached the levels are complete: the source side of the cut. */
-static int build_levels(flow_state *st, uint32_t source, uint32_t sink) {
+static void activate(flow_state *st, uint32_t v) {
+    ps_maxflow_workspace *w = st->w;
+    if (w->queued[v]) return;
+    w->queued[v] = 1;
+    w->active[(st->head + st->count++) % st->g->n] = v;
+}
+
+/* The next active node still in a tree, or UINT32_MAX. */
+static uint32_t next_active(flow_state *st) {
+    ps_maxflow_workspace *w = st->w;
+    while (st->count > 0) {
+        uint32_t v = w->active[st->head];
+        st->head = (st->head + 1) % st->g->n, st->count--;
+        w->queued[v] = 0;
+        if (w->tree[v] != FREE) return v;
+    }
+    return UINT32_MAX;
+}
+
+/* The arc along which tree t's flow would enter q from p (source tree:
+ * p -> q, arc e of row p; sink tree: q -> p, its reverse). */
+static size_t tree_arc(const flow_state *st, unsigned char t, size_t e) {
+    return t == SOURCE_TREE ? e : st->w->reverse[e];
+}
+
+/* Grows p's tree by its free neighbours; returns the first arc from the
+ * source tree into the sink tree met on the way, or NO_ARC. */
+static size_t grow(flow_state *st, uint32_t p) {
     const ps_flow_graph *g = st->g;
-    for (size_t v = 0; v < g->n; v++) st->level[v] = -1;
-    size_t head = 0, tail = 0;
-    st->level[source] = 0;
-    st->queue[tail++] = source;
-    while (head < tail) {
-        uint32_t v = st->queue[head++];
-        for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
-            uint32_t u = g->heads[e];
-            if (st->level[u] >= 0 || st->residual[e] <= st->tolerance) continue;
-            st->level[u] = st->level[v] + 1;
-            if (u == sink) return 1;
-            st->queue[tail++] = u;
+    ps_maxflow_workspace *w = st->w;
+    unsigned char t = w->tree[p];
+    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+        size_t a = tree_arc(st, t, e);
+        if (w->residual[a] <= st->tolerance) continue;
+        uint32_t q = g->heads[e];
+        if (w->tree[q] == FREE) {
+            w->tree[q] = t, w->parent[q] = p, w->parent_arc[q] = a;
+            activate(st, q);
+        } else if (w->tree[q] != t) {
+            return a;
         }
     }
-    return 0;
+    return NO_ARC;
 }
 
-/* Node at depth k of the current path. */
-static uint32_t path_node(const flow_state *st, uint32_t source, size_t k) {
-    return k == 0 ? source : st->g->heads[st->path[k - 1]];
+static void make_orphan(flow_state *st, uint32_t v) {
+    st->w->parent_arc[v] = NO_ARC;
+    st->w->orphans[st->n_orphans++] = v;
 }
 
-/* Pushes the bottleneck along the path; returns it and the depth of the
- * first arc it saturated. */
-static double push_path(flow_state *st, size_t depth, size_t *saturated) {
-    double bottleneck = st->residual[st->path[0]];
-    for (size_t i = 1; i < depth; i++)
-        if (st->residual[st->path[i]] < bottleneck) bottleneck = st->residual[st->path[i]];
-    *saturated = depth;
-    for (size_t i = 0; i < depth; i++) {
-        size_t e = st->path[i];
-        st->residual[e] -= bottleneck;
-        st->residual[st->reverse[e]] += bottleneck;
-        if (*saturated == depth && st->residual[e] <= st->tolerance) *saturated = i;
+static double path_bottleneck(const flow_state *st, uint32_t v, uint32_t root, double least) {
+    const ps_maxflow_workspace *w = st->w;
+    for (; v != root; v = w->parent[v])
+        if (w->residual[w->parent_arc[v]] < least) least = w->residual[w->parent_arc[v]];
+    return least;
+}
+
+/* Pushes x along the tree path from v to root; the nodes whose parent arc
+ * it saturates become orphans. */
+static void push_path(flow_state *st, uint32_t v, uint32_t root, double x) {
+    ps_maxflow_workspace *w = st->w;
+    while (v != root) {
+        size_t a = w->parent_arc[v];
+        uint32_t up = w->parent[v];
+        w->residual[a] -= x;
+        w->residual[w->reverse[a]] += x;
+        if (w->residual[a] <= st->tolerance) make_orphan(st, v);
+        v = up;
     }
-    return bottleneck;
 }
 
-/* An admissible arc out of v (unsaturated, one level deeper), advancing
- * v's current arc; the row's end when there is none. */
-static size_t admissible_arc(flow_state *st, uint32_t v) {
+/* Augments source -> ... -> tail -bridge-> head -> ... -> sink. */
+static double augment(flow_state *st, size_t bridge) {
+    ps_maxflow_workspace *w = st->w;
+    uint32_t head = st->g->heads[bridge], tail = st->g->heads[w->reverse[bridge]];
+    double x = path_bottleneck(st, tail, st->source, w->residual[bridge]);
+    x = path_bottleneck(st, head, st->sink, x);
+    w->residual[bridge] -= x;
+    w->residual[w->reverse[bridge]] += x;
+    push_path(st, tail, st->source, x);
+    push_path(st, head, st->sink, x);
+    return x;
+}
+
+/* 1 when q's parent chain reaches its tree's root (then every node on it
+ * is stamped with this round, which ends later walks early). */
+static int rooted(flow_state *st, uint32_t q) {
+    ps_maxflow_workspace *w = st->w;
+    uint32_t v = q;
+    while (v != st->source && v != st->sink && w->checked[v] != st->round) {
+        if (w->parent_arc[v] == NO_ARC) return 0;
+        v = w->parent[v];
+    }
+    for (v = q; v != st->source && v != st->sink && w->checked[v] != st->round; v = w->parent[v])
+        w->checked[v] = st->round;
+    return 1;
+}
+
+/* Orphan p takes the first neighbour of its tree that reaches it along an
+ * unsaturated arc and is rooted; failing that it is freed, its children
+ * become orphans and the neighbours that could reach it become active. */
+static void adopt(flow_state *st, uint32_t p) {
     const ps_flow_graph *g = st->g;
-    for (; st->next_arc[v] < g->offsets[v + 1]; st->next_arc[v]++) {
-        size_t e = st->next_arc[v];
-        if (st->residual[e] > st->tolerance && st->level[g->heads[e]] == st->level[v] + 1)
-            break;
+    ps_maxflow_workspace *w = st->w;
+    unsigned char t = w->tree[p];
+    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+        uint32_t q = g->heads[e];
+        size_t a = tree_arc(st, t, w->reverse[e]); /* the arc q's tree would use into p */
+        if (w->tree[q] != t || w->residual[a] <= st->tolerance || !rooted(st, q)) continue;
+        w->parent[p] = q, w->parent_arc[p] = a;
+        return;
     }
-    return st->next_arc[v];
-}
-
-/* One phase: augment along shortest paths until none is left. */
-static double blocking_flow(flow_state *st, uint32_t source, uint32_t sink) {
-    const ps_flow_graph *g = st->g;
-    for (size_t v = 0; v < g->n; v++) st->next_arc[v] = g->offsets[v];
-    double total = 0;
-    size_t depth = 0;
-    uint32_t v = source;
-    for (;;) {
-        if (v == sink) {
-            total += push_path(st, depth, &depth);
-            v = path_node(st, source, depth);
-            continue;
-        }
-        size_t e = admissible_arc(st, v);
-        if (e < g->offsets[v + 1]) {
-            st->path[depth++] = e;
-            v = g->heads[e];
-            continue;
-        }
-        if (v == source) return total;
-        st->level[v] = -1;
-        v = path_node(st, source, --depth);
-        st->next_arc[v]++;
+    for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+        uint32_t q = g->heads[e];
+        if (w->tree[q] != t) continue;
+        if (w->residual[tree_arc(st, t, w->reverse[e])] > st->tolerance) activate(st, q);
+        if (w->parent_arc[q] != NO_ARC && w->parent[q] == p) make_orphan(st, q);
     }
+    w->tree[p] = FREE;
 }
 
 static double largest_capacity(const ps_flow_graph *g) {
@@ -139,6 +191,41 @@ static double largest_capacity(const ps_flow_graph *g) {
     for (size_t e = 0; e < g->offsets[g->n]; e++)
         if (g->capacity[e] > largest) largest = g->capacity[e];
     return largest;
+}
+
+/* Grows the trees and augments until neither can grow; the flow value. */
+static double max_flow(flow_state *st) {
+    double total = 0;
+    activate(st, st->source);
+    activate(st, st->sink);
+    for (uint32_t p; (p = next_active(st)) != UINT32_MAX;) {
+        for (size_t bridge; st->w->tree[p] != FREE && (bridge = grow(st, p)) != NO_ARC;) {
+            st->round++;
+            total += augment(st, bridge);
+            while (st->n_orphans > 0) adopt(st, st->w->orphans[--st->n_orphans]);
+        }
+    }
+    return total;
+}
+
+/* source_side: the nodes reachable from the source over unsaturated arcs
+ * (the active ring serves as the queue). */
+static void source_side_of(flow_state *st, unsigned char *side) {
+    const ps_flow_graph *g = st->g;
+    uint32_t *queue = st->w->active;
+    size_t head = 0, tail = 0;
+    for (size_t v = 0; v < g->n; v++) side[v] = 0;
+    side[st->source] = 1;
+    queue[tail++] = st->source;
+    while (head < tail) {
+        uint32_t v = queue[head++];
+        for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
+            uint32_t q = g->heads[e];
+            if (side[q] || st->w->residual[e] <= st->tolerance) continue;
+            side[q] = 1;
+            queue[tail++] = q;
+        }
+    }
 }
 
 static void *fresh_array(void *old, size_t count, size_t size) {
@@ -151,17 +238,21 @@ static int workspace_reserve(ps_maxflow_workspace *ws, const ps_flow_graph *g) {
     size_t nodes = g->n, arcs = g->offsets[g->n] ? g->offsets[g->n] : 1;
     if (nodes > ws->nodes) {
         ws->nodes = nodes;
-        ws->level = fresh_array(ws->level, nodes, sizeof *ws->level);
-        ws->next_arc = fresh_array(ws->next_arc, nodes, sizeof *ws->next_arc);
-        ws->queue = fresh_array(ws->queue, nodes, sizeof *ws->queue);
-        ws->path = fresh_array(ws->path, nodes, sizeof *ws->path);
+        ws->tree = fresh_array(ws->tree, nodes, sizeof *ws->tree);
+        ws->queued = fresh_array(ws->queued, nodes, sizeof *ws->queued);
+        ws->parent_arc = fresh_array(ws->parent_arc, nodes, sizeof *ws->parent_arc);
+        ws->parent = fresh_array(ws->parent, nodes, sizeof *ws->parent);
+        ws->checked = fresh_array(ws->checked, nodes, sizeof *ws->checked);
+        ws->active = fresh_array(ws->active, nodes, sizeof *ws->active);
+        ws->orphans = fresh_array(ws->orphans, nodes, sizeof *ws->orphans);
     }
     if (arcs > ws->arcs) {
         ws->arcs = arcs;
         ws->reverse = fresh_array(ws->reverse, arcs, sizeof *ws->reverse);
         ws->residual = fresh_array(ws->residual, arcs, sizeof *ws->residual);
     }
-    if (ws->level && ws->next_arc && ws->queue && ws->path && ws->reverse && ws->residual)
+    if (ws->tree && ws->queued && ws->parent_arc && ws->parent && ws->checked && ws->active &&
+        ws->orphans && ws->reverse && ws->residual)
         return 0;
     ws->nodes = ws->arcs = 0;
     return -1;
@@ -173,20 +264,23 @@ ps_maxflow_workspace *ps_maxflow_workspace_new(void) {
 
 void ps_maxflow_workspace_free(ps_maxflow_workspace *ws) {
     if (!ws) return;
-    free(ws->reverse);
-    free(ws->residual);
-    free(ws->level);
-    free(ws->next_arc);
-    free(ws->queue);
-    free(ws->path);
+    free(ws->reverse), free(ws->residual), free(ws->tree), free(ws->queued);
+    free(ws->parent_arc), free(ws->parent), free(ws->checked), free(ws->active);
+    free(ws->orphans);
     free(ws);
 }
 
-static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_graph *g) {
-    *st = (flow_state){.g = g, .reverse = ws->reverse, .residual = ws->residual,
-                       .level = ws->level, .next_arc = ws->next_arc, .queue = ws->queue,
-                       .path = ws->path, .tolerance = 1e-12 * largest_capacity(g)};
-    for (size_t e = 0; e < g->offsets[g->n]; e++) st->residual[e] = g->capacity[e];
+static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_graph *g,
+                       uint32_t source, uint32_t sink) {
+    *st = (flow_state){.g = g, .w = ws, .source = source, .sink = sink,
+                       .tolerance = 1e-12 * largest_capacity(g)};
+    for (size_t e = 0; e < g->offsets[g->n]; e++) ws->residual[e] = g->capacity[e];
+    for (size_t v = 0; v < g->n; v++) {
+        ws->tree[v] = FREE, ws->queued[v] = 0, ws->checked[v] = 0;
+        ws->parent_arc[v] = NO_ARC;
+    }
+    ws->tree[source] = SOURCE_TREE;
+    ws->tree[sink] = SINK_TREE;
 }
 
 ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_flow_graph *g, uint32_t source,
@@ -198,14 +292,12 @@ ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_flow_graph *g, uint
     if (workspace_reserve(ws, g) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (max flow)");
     flow_state st;
-    state_init(&st, ws, g);
+    state_init(&st, ws, g, source, sink);
     if (find_reverse_arcs(&st) != 0)
         return ps_fail(err, PS_ERR_INVALID, "max flow: the graph is not symmetric");
-    double total = 0;
-    while (build_levels(&st, source, sink)) total += blocking_flow(&st, source, sink);
-    if (source_side)
-        for (size_t v = 0; v < g->n; v++) source_side[v] = st.level[v] >= 0;
-    *flow = total;
+    for (size_t v = 0; v < g->n; v++) ws->parent_arc[v] = NO_ARC;
+    *flow = max_flow(&st);
+    if (source_side) source_side_of(&st, source_side);
     return PS_OK;
 }
 

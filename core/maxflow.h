@@ -1,9 +1,11 @@
 /*
  * maxflow.h: maximum flow and minimum s-t cut on an undirected graph in CSR
- * form (Dinic's algorithm: breadth-first level graph, then blocking flows by
- * depth-first search with current-arc pointers; O(V^2 E), fast on the small
- * band graphs of boundary_cut.h).  Deterministic: arcs are visited in row
- * order, no threads, no randomness.
+ * form (the Boykov-Kolmogorov algorithm: search trees from both terminals,
+ * augmenting where they meet, orphans re-adopted; fast on the small,
+ * grid-like band graphs of boundary_cut.h).  Deterministic: arcs are
+ * visited in row order, no threads, no randomness.  The cut does not depend
+ * on the algorithm: the nodes reachable from the source in the residual
+ * graph are the same for every maximum flow (up to the tolerance below).
  *
  * The graph is symmetric: row p holds q iff row q holds p, each row sorted
  * by neighbour index (as ps_graph rows are).  capacity[e] is the capacity of

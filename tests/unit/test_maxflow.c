@@ -1,8 +1,11 @@
 /*
- * test_maxflow.c: Dinic's max flow (maxflow.h) on small undirected graphs
+ * test_maxflow.c: the max flow of maxflow.h on small undirected graphs
  * whose maximum flow and minimum cut are known by hand: a chain, a diamond,
  * a grid with a weak column, a graph the sink cannot be reached in; the same
- * answer on every run; a graph that is not symmetric is refused.  One
+ * answer on every run; a graph that is not symmetric is refused.  On random
+ * grids, random sparse graphs and band-like random geometric graphs the
+ * flow and the cut equal those of a plain shortest-augmenting-path
+ * reference (Edmonds-Karp) written here.  One
  * workspace reused over graphs of growing and shrinking sizes gives the
  * same flow and cut, bit for bit, as fresh calls; a path of 200k nodes (a
  * deep search) does not overflow the stack.
@@ -10,6 +13,8 @@
 #include "maxflow.h"
 #include "testlib.h"
 
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -178,6 +183,151 @@ static void test_workspace_reuse_matches_fresh_calls(void) {
     ps_maxflow_workspace_free(NULL);
 }
 
+/* Edmonds-Karp on g: the reference flow and source side (#V), with the
+ * same saturation tolerance as maxflow.c (1e-12 of the largest capacity). */
+static double reference_flow(const ps_flow_graph *g, uint32_t s, uint32_t t,
+                             unsigned char *side) {
+    size_t n = g->n, arcs = g->offsets[n];
+    double *residual = malloc((arcs + 1) * sizeof *residual), total = 0, largest = 0;
+    size_t *reverse = malloc((arcs + 1) * sizeof *reverse), *via = malloc(n * sizeof *via);
+    uint32_t *queue = malloc(n * sizeof *queue);
+    if (!residual || !reverse || !via || !queue) {
+        CHECK_MSG(0, "reference: out of memory");
+        free(residual), free(reverse), free(via), free(queue);
+        return NAN;
+    }
+    for (uint32_t p = 0; p < n; p++)
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            residual[e] = g->capacity[e];
+            if (g->capacity[e] > largest) largest = g->capacity[e];
+            for (size_t r = g->offsets[g->heads[e]]; r < g->offsets[g->heads[e] + 1]; r++)
+                if (g->heads[r] == p) reverse[e] = r;
+        }
+    for (;;) {
+        memset(side, 0, n);
+        size_t head = 0, tail = 0;
+        side[s] = 1, queue[tail++] = s;
+        while (head < tail) {
+            uint32_t v = queue[head++];
+            for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
+                uint32_t q = g->heads[e];
+                if (side[q] || residual[e] <= 1e-12 * largest) continue;
+                side[q] = 1, via[q] = e, queue[tail++] = q;
+            }
+        }
+        if (!side[t]) break;
+        double x = INFINITY;
+        for (uint32_t v = t; v != s; v = g->heads[reverse[via[v]]])
+            if (residual[via[v]] < x) x = residual[via[v]];
+        for (uint32_t v = t; v != s; v = g->heads[reverse[via[v]]])
+            residual[via[v]] -= x, residual[reverse[via[v]]] += x;
+        total += x;
+    }
+    free(residual), free(reverse), free(via), free(queue);
+    return total;
+}
+
+static void check_against_reference(const ps_flow_graph *g, uint32_t s, uint32_t t,
+                                    const char *what) {
+    unsigned char *side = malloc(g->n), *expected = malloc(g->n);
+    REQUIRE(side && expected);
+    double flow = -1, want = reference_flow(g, s, t, expected);
+    ps_error err = {0};
+    CHECK(ps_maxflow(g, s, t, &flow, side, &err) == PS_OK);
+    CHECK_MSG(fabs(flow - want) <= 1e-9 * (1 + want), "%s: flow %.17g, reference %.17g", what,
+              flow, want);
+    CHECK_MSG(memcmp(side, expected, g->n) == 0, "%s: the cut differs", what);
+    free(side), free(expected);
+}
+
+/* Random grids and random sparse graphs: the same flow (to rounding) and
+ * the same cut as the reference. */
+static void test_matches_reference_on_random_graphs(void) {
+    uint32_t seed = 12345;
+    for (int k = 0; k < 200; k++) {
+        csr c;
+        uint32_t n, s, t;
+        if (k % 2 == 0) {
+            uint32_t rows = 2 + (uint32_t)k % 5, cols = 2 + (uint32_t)k % 7;
+            build_random_grid(&c, rows, cols, (uint32_t)k);
+            s = rows * cols, t = s + 1, n = t + 1;
+        } else {
+            edge edges[MAX_EDGES];
+            size_t m = 0;
+            n = 8 + (uint32_t)k % 40, s = 0, t = n - 1;
+            for (uint32_t a = 0; a < n; a++)
+                for (int j = 0; j < 3 && m < MAX_EDGES; j++) {
+                    seed = seed * 1103515245u + 12345u;
+                    uint32_t b = (seed >> 8) % n;
+                    int dup = b == a;
+                    for (size_t i = 0; i < m && !dup; i++)
+                        dup = (edges[i].a == a && edges[i].b == b) ||
+                              (edges[i].a == b && edges[i].b == a);
+                    if (!dup) edges[m++] = (edge){a, b, 0.01 + (double)(seed >> 20) / 64.0};
+                }
+            build_csr(&c, n, edges, m);
+        }
+        char what[32];
+        snprintf(what, sizeof what, "graph %d of %u nodes", k, n);
+        check_against_reference(&c.g, s, t, what);
+    }
+}
+
+/* Random points in the unit square, each joined to its 6 nearest (both
+ * ways), random capacities, the source tied to the left tenth and the sink
+ * to the right tenth, like the boundary cut's bands: thousands of
+ * augmentations and orphans, the same flow and cut as the reference. */
+static void test_matches_reference_on_band_like_graphs(void) {
+    enum { N = 1500, K = 6 };
+    for (uint32_t round = 0; round < 3; round++) {
+        double *xy = malloc(2 * N * sizeof *xy);
+        unsigned char *adj = calloc((size_t)(N + 2) * (N + 2), 1);
+        REQUIRE(xy && adj);
+        uint32_t seed = 99 + round;
+        for (size_t i = 0; i < 2 * N; i++) {
+            seed = seed * 1103515245u + 12345u;
+            xy[i] = (double)(seed >> 8) / 16777216.0;
+        }
+        for (uint32_t p = 0; p < N; p++) {
+            for (int j = 0; j < K; j++) {
+                uint32_t best = p;
+                double best_d = INFINITY;
+                for (uint32_t q = 0; q < N; q++) {
+                    double dx = xy[2 * p] - xy[2 * q], dy = xy[2 * p + 1] - xy[2 * q + 1];
+                    double d = dx * dx + dy * dy;
+                    if (q != p && !adj[(size_t)p * (N + 2) + q] && d < best_d) best = q, best_d = d;
+                }
+                adj[(size_t)p * (N + 2) + best] = adj[(size_t)best * (N + 2) + p] = 1;
+            }
+            if (xy[2 * p] < 0.1) adj[(size_t)p * (N + 2) + N] = adj[(size_t)N * (N + 2) + p] = 1;
+            if (xy[2 * p] > 0.9)
+                adj[(size_t)p * (N + 2) + N + 1] = adj[(size_t)(N + 1) * (N + 2) + p] = 1;
+        }
+        size_t *offsets = malloc((N + 3) * sizeof *offsets), arcs = 0;
+        for (size_t p = 0; p < N + 2; p++)
+            for (size_t q = 0; q < N + 2; q++) arcs += adj[p * (N + 2) + q];
+        uint32_t *heads = malloc(arcs * sizeof *heads);
+        double *capacity = malloc(arcs * sizeof *capacity);
+        REQUIRE(offsets && heads && capacity);
+        arcs = 0;
+        for (uint32_t p = 0; p < N + 2; p++) {
+            offsets[p] = arcs;
+            for (uint32_t q = 0; q < N + 2; q++) {
+                if (!adj[(size_t)p * (N + 2) + q]) continue;
+                uint32_t lo = p < q ? p : q, hi = p < q ? q : p, h = lo * 2654435761u ^ hi * 40503u;
+                heads[arcs] = q;
+                capacity[arcs++] = hi >= N ? 100.0 : 0.05 + (double)(h >> 12 & 0xfff) / 4096.0;
+            }
+        }
+        offsets[N + 2] = arcs;
+        ps_flow_graph g = {.n = N + 2, .offsets = offsets, .heads = heads, .capacity = capacity};
+        char what[32];
+        snprintf(what, sizeof what, "band-like graph %u", round);
+        check_against_reference(&g, N, N + 1, what);
+        free(xy), free(adj), free(offsets), free(heads), free(capacity);
+    }
+}
+
 /* 0 - 1 - ... - n-1 with one weak edge in the middle: the only augmenting
  * path is n nodes deep. */
 static void test_long_path_no_stack_overflow(void) {
@@ -211,4 +361,7 @@ static void test_long_path_no_stack_overflow(void) {
 PS_TEST_MAIN(TEST(test_chain_bottleneck), TEST(test_diamond), TEST(test_grid_weak_column),
              TEST(test_unreachable_sink), TEST(test_rejects_asymmetric_and_bad_terminals),
              TEST(test_rejects_cycle_without_reverse_arcs),
-             TEST(test_workspace_reuse_matches_fresh_calls), TEST(test_long_path_no_stack_overflow))
+             TEST(test_workspace_reuse_matches_fresh_calls),
+             TEST(test_matches_reference_on_random_graphs),
+             TEST(test_matches_reference_on_band_like_graphs),
+             TEST(test_long_path_no_stack_overflow))
