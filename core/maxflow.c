@@ -49,8 +49,8 @@ typedef struct flow_state {
 
 /* Reverse arcs in one pass over the rows in order: as the rows are sorted,
  * the arcs into q met for increasing p are row q's entries in order, so a
- * cursor per row (the parent arcs, reset afterwards) finds each one.  -1 if
- * the graph is not symmetric. */
+ * cursor per row (the parent arcs, left at NO_ARC afterwards) finds each
+ * one.  -1 if the graph is not symmetric. */
 static int find_reverse_arcs(flow_state *st) {
     const ps_flow_graph *g = st->g;
     size_t *cursor = st->w->parent_arc;
@@ -62,6 +62,7 @@ static int find_reverse_arcs(flow_state *st) {
                 return -1;
             st->w->reverse[e] = cursor[q]++;
         }
+    for (size_t v = 0; v < g->n; v++) cursor[v] = NO_ARC;
     return 0;
 }
 
@@ -275,10 +276,7 @@ static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_g
     *st = (flow_state){.g = g, .w = ws, .source = source, .sink = sink,
                        .tolerance = 1e-12 * largest_capacity(g)};
     for (size_t e = 0; e < g->offsets[g->n]; e++) ws->residual[e] = g->capacity[e];
-    for (size_t v = 0; v < g->n; v++) {
-        ws->tree[v] = FREE, ws->queued[v] = 0, ws->checked[v] = 0;
-        ws->parent_arc[v] = NO_ARC;
-    }
+    for (size_t v = 0; v < g->n; v++) ws->tree[v] = FREE, ws->queued[v] = 0, ws->checked[v] = 0;
     ws->tree[source] = SOURCE_TREE;
     ws->tree[sink] = SINK_TREE;
 }
@@ -295,7 +293,6 @@ ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_flow_graph *g, uint
     state_init(&st, ws, g, source, sink);
     if (find_reverse_arcs(&st) != 0)
         return ps_fail(err, PS_ERR_INVALID, "max flow: the graph is not symmetric");
-    for (size_t v = 0; v < g->n; v++) ws->parent_arc[v] = NO_ARC;
     *flow = max_flow(&st);
     if (source_side) source_side_of(&st, source_side);
     return PS_OK;
