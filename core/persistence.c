@@ -10,33 +10,27 @@
 #include "union_find.h"
 #include <stdlib.h>
 
-typedef struct saddle {
-    double height;  /* min(f(p), f(q)) */
-    uint32_t p, q;  /* the edge, p < q */
-} saddle;
-
 static int by_height_desc(const void *a, const void *b) {
-    const saddle *x = a, *y = b;
+    const ps_saddle *x = a, *y = b;
     if (x->height != y->height) return x->height > y->height ? -1 : 1;
     if (x->p != y->p) return x->p < y->p ? -1 : 1;
     return (x->q > y->q) - (x->q < y->q);
 }
 
-/* Edges whose ends lie in different basins, sorted; *count out. */
-static saddle *border_saddles(const ps_graph *g, const double *f, const ps_flow *flow,
-                              size_t *count) {
+ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_flow *flow,
+                                  size_t *count) {
     size_t n_border = 0;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
             n_border += g->neighbors[e] > p && flow->sink_of[g->neighbors[e]] != flow->sink_of[p];
-    saddle *s = malloc((n_border ? n_border : 1) * sizeof *s);
+    ps_saddle *s = malloc((n_border ? n_border : 1) * sizeof *s);
     if (!s) return NULL;
     size_t k = 0;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
             if (q <= p || flow->sink_of[q] == flow->sink_of[p]) continue;
-            s[k++] = (saddle){f[p] < f[q] ? f[p] : f[q], (uint32_t)p, q};
+            s[k++] = (ps_saddle){f[p] < f[q] ? f[p] : f[q], (uint32_t)p, q};
         }
     qsort(s, n_border, sizeof *s, by_height_desc);
     *count = n_border;
@@ -62,7 +56,7 @@ static int peak_below(const ps_flow *flow, const double *f, int a, int b) {
     return fa < fb || (fa == fb && flow->sinks[a] > flow->sinks[b]);
 }
 
-static void merge_sweep(const saddle *s, size_t count, const double *f, const int *component,
+static void merge_sweep(const ps_saddle *s, size_t count, const double *f, const int *component,
                         const double *threshold, const ps_flow *flow, int *parent,
                         size_t *size, size_t min_size) {
     for (size_t i = 0; i < count; i++) {
@@ -95,7 +89,7 @@ ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *compon
                            ps_flow *flow, ps_error *err) {
     if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     size_t count = 0;
-    saddle *s = border_saddles(g, f, flow, &count);
+    ps_saddle *s = ps_flow_border_saddles(g, f, flow, &count);
     double *threshold = component_thresholds(g, f, component, n_components, fraction);
     int m = flow->n_sinks;
     int *parent = malloc((size_t)m * sizeof *parent), *new_id = malloc((size_t)m * sizeof *new_id);

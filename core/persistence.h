@@ -28,6 +28,18 @@ ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *compon
                            int n_components, double fraction, size_t min_size,
                            ps_flow *flow, ps_error *err);
 
+/* A kNN edge joining two basins, at the height where they meet there. */
+typedef struct ps_saddle {
+    double height; /* min(f(p), f(q)) */
+    uint32_t p, q; /* the edge, p < q */
+} ps_saddle;
+
+/* Every edge whose ends lie in different basins of flow, sorted from high to
+ * low (ties: by p, then q).  *count out.  Returns NULL when out of memory;
+ * the caller frees. */
+ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_flow *flow,
+                                  size_t *count);
+
 /* Merges the basins as the union-find forest parent (#S) says: each tree
  * becomes its root's basin; surviving sinks keep increasing order and
  * sink_of (#n) is remapped.  new_id #S scratch. */

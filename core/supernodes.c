@@ -1,12 +1,14 @@
 /*
  * supernodes.c: supernodes from the simplified ascent flow, and with
  * use_minima the split of each basin at its highest saddle, the points
- * below going to the simplified descent flow's minima (supernodes.h).
+ * below going to the merge tree's parts or else to the simplified descent
+ * flow's minima (supernodes.h).
  */
 #include "supernodes.h"
 
 #include "control.h"
 #include "flow.h"
+#include "merge_tree.h"
 #include "persistence.h"
 #include "union_find.h"
 
@@ -160,10 +162,13 @@ static void absorb_tiny(const ps_graph *g, ps_supernodes *out, size_t min_size) 
     }
 }
 
+/* Supernodes: the basins (above their highest saddles, with use_minima),
+ * then the merge tree's parts, then the minima.  part_of #P: -1 or a part
+ * in [0, n_parts). */
 static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
-                         const ps_flow *down, size_t min_size, ps_supernodes *out,
-                         ps_error *err) {
-    int n_up = up->n_sinks, n_down = down ? down->n_sinks : 0;
+                         const ps_flow *down, const int *part_of, int n_parts, size_t min_size,
+                         ps_supernodes *out, ps_error *err) {
+    int n_up = up->n_sinks + n_parts, n_down = down ? down->n_sinks : 0;
     ps_status st = allocate(out, g->n, n_up + n_down, err);
     double *level = down ? malloc((size_t)n_up * sizeof *level) : NULL;
     if (st != PS_OK || (down && !level)) {
@@ -176,6 +181,7 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
     for (size_t p = 0; p < g->n; p++) {
         int a = up->sink_of[p];
         int s = down && f[p] < level[a] ? n_up + down->sink_of[p] : a;
+        if (part_of && part_of[p] >= 0) s = up->n_sinks + part_of[p];
         out->supernode_of[p] = s;
         out->sizes[s]++;
     }
@@ -199,8 +205,16 @@ static ps_status build_once(const ps_graph *g, const double *f, const int *compo
     if (st == PS_OK && use_minima)
         st = simplified_flow(g, f, component, n_components, persistence, -1, &down, err);
     report(span, DOWN_DONE);
+    int *part_of = st == PS_OK && use_minima ? malloc(g->n * sizeof *part_of) : NULL;
+    int n_parts = 0;
+    if (st == PS_OK && use_minima)
+        st = part_of ? ps_merge_tree_parts(g, f, component, n_components, persistence, &up,
+                                           part_of, &n_parts, err)
+                     : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;
-    if (st == PS_OK) st = combine(g, f, &up, use_minima ? &down : NULL, min_size, out, err);
+    if (st == PS_OK)
+        st = combine(g, f, &up, use_minima ? &down : NULL, part_of, n_parts, min_size, out, err);
+    free(part_of);
     ps_flow_free(&up);
     ps_flow_free(&down);
     return st;

@@ -7,7 +7,8 @@
  * its highest saddle (where it meets another basin, the root of a limb),
  * and the points below it, the central regions that have no maximum of
  * their own, form supernodes around the minima of f instead (descent flow,
- * simplified the same way).
+ * simplified the same way), except where several basins make a part
+ * together (a head topped by ears: merge_tree.h).
  */
 #ifndef PS_SUPERNODES_H
 #define PS_SUPERNODES_H
