@@ -1,5 +1,6 @@
 /*
- * component_range.c: max f - min f per component (component_range.h).
+ * component_range.c: max f - min f per component, and thresholds as a
+ * fraction of it (component_range.h).
  */
 #include "component_range.h"
 
@@ -18,4 +19,16 @@ int ps_component_range(const double *f, const int *component, size_t n, int n_co
     for (int c = 0; c < n_components; c++) range[c] -= lo[c];
     free(lo);
     return 0;
+}
+
+double *ps_component_thresholds(const double *f, const int *component, size_t n,
+                                int n_components, double fraction) {
+    double *threshold = malloc((size_t)(n_components > 0 ? n_components : 1) *
+                               sizeof *threshold);
+    if (!threshold || ps_component_range(f, component, n, n_components, threshold) != 0) {
+        free(threshold);
+        return NULL;
+    }
+    for (int c = 0; c < n_components; c++) threshold[c] *= fraction;
+    return threshold;
 }

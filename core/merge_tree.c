@@ -132,18 +132,6 @@ static int part_of_point(const tree *t, int leaf, double h) {
     return t->part[top];
 }
 
-static double *part_thresholds(const double *f, const int *component, size_t n,
-                               int n_components, double persistence) {
-    double *threshold = malloc((size_t)(n_components > 0 ? n_components : 1) *
-                               sizeof *threshold);
-    if (!threshold || ps_component_range(f, component, n, n_components, threshold) != 0) {
-        free(threshold);
-        return NULL;
-    }
-    for (int c = 0; c < n_components; c++) threshold[c] *= persistence;
-    return threshold;
-}
-
 ps_status ps_merge_tree_parts(const ps_graph *g, const double *f, const int *component,
                               int n_components, double persistence, const ps_flow *up,
                               int *part_of, int *n_parts, ps_error *err) {
@@ -156,14 +144,15 @@ ps_status ps_merge_tree_parts(const ps_graph *g, const double *f, const int *com
     int alloc_failed = tree_alloc(&t, m);
     ps_saddle *s = ps_flow_border_saddles(g, f, up, &count);
     int *group = malloc((size_t)m * sizeof *group), *node_of = malloc((size_t)m * sizeof *node_of);
-    double *threshold = part_thresholds(f, component, g->n, n_components, persistence);
+    double *threshold = ps_component_thresholds(f, component, g->n, n_components, persistence);
     int ok = !alloc_failed && s && group && node_of && threshold;
     if (ok) {
         tree_sweep(&t, s, count, f, component, up, group, node_of);
         *n_parts = tree_parts(&t, threshold);
+    }
+    if (ok && *n_parts) {
         tree_jumps(&t);
-        if (*n_parts)
-            for (size_t p = 0; p < g->n; p++) part_of[p] = part_of_point(&t, up->sink_of[p], f[p]);
+        for (size_t p = 0; p < g->n; p++) part_of[p] = part_of_point(&t, up->sink_of[p], f[p]);
     }
     tree_free(&t);
     free(s), free(group), free(node_of), free(threshold);

@@ -37,19 +37,6 @@ ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_f
     return s;
 }
 
-/* Per component: fraction * (max f - min f). */
-static double *component_thresholds(const ps_graph *g, const double *f, const int *component,
-                                    int n_components, double fraction) {
-    double *threshold = malloc((size_t)(n_components > 0 ? n_components : 1) *
-                               sizeof *threshold);
-    if (!threshold || ps_component_range(f, component, g->n, n_components, threshold) != 0) {
-        free(threshold);
-        return NULL;
-    }
-    for (int c = 0; c < n_components; c++) threshold[c] *= fraction;
-    return threshold;
-}
-
 /* Is sink a's peak below sink b's?  Ties: the higher vertex id is lower. */
 static int peak_below(const ps_flow *flow, const double *f, int a, int b) {
     double fa = f[flow->sinks[a]], fb = f[flow->sinks[b]];
@@ -90,7 +77,7 @@ ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *compon
     if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     size_t count = 0;
     ps_saddle *s = ps_flow_border_saddles(g, f, flow, &count);
-    double *threshold = component_thresholds(g, f, component, n_components, fraction);
+    double *threshold = ps_component_thresholds(f, component, g->n, n_components, fraction);
     int m = flow->n_sinks;
     int *parent = malloc((size_t)m * sizeof *parent), *new_id = malloc((size_t)m * sizeof *new_id);
     size_t *size = calloc((size_t)m, sizeof *size);

@@ -170,7 +170,7 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
                          ps_supernodes *out, ps_error *err) {
     int n_up = up->n_sinks + n_parts, n_down = down ? down->n_sinks : 0;
     ps_status st = allocate(out, g->n, n_up + n_down, err);
-    double *level = down ? malloc((size_t)n_up * sizeof *level) : NULL;
+    double *level = down ? malloc((size_t)up->n_sinks * sizeof *level) : NULL;
     if (st != PS_OK || (down && !level)) {
         free(level);
         if (st == PS_OK) ps_supernodes_free(out);
