@@ -1,4 +1,5 @@
-/* pointset.c: a decoded ps_pointset's warnings and its release. */
+/* pointset.c: a decoded ps_pointset's warnings, its core input and its
+ * release. */
 #include "pointset.h"
 
 #include <stdarg.h>
@@ -12,6 +13,12 @@ void ps_pointset_warn(ps_pointset *ps, const char *fmt, ...) {
     va_start(ap, fmt);
     vsnprintf(ps->warnings[ps->n_warnings++], PS_WARNING_MAX, fmt, ap);
     va_end(ap);
+}
+
+ps_input ps_pointset_input(const ps_pointset *ps) {
+    ps_input in = {.points = ps->points, .n = ps->n, .dim = ps->dim, .normals = ps->normals,
+                   .faces = ps->faces, .n_faces = ps->faces ? ps->n_faces : 0};
+    return in;
 }
 
 void ps_pointset_free(ps_pointset *ps) {

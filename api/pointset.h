@@ -7,6 +7,8 @@
 #ifndef PS_POINTSET_H
 #define PS_POINTSET_H
 
+#include "pointseg.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -31,6 +33,9 @@ typedef struct ps_pointset {
 } ps_pointset;
 
 void ps_pointset_free(ps_pointset *ps); /* frees the arrays, zeroes *ps */
+
+/* The core's view of ps (points, normals, faces), borrowing its arrays. */
+ps_input ps_pointset_input(const ps_pointset *ps);
 
 /* Adds a warning (truncated to PS_WARNING_MAX - 1 bytes; dropped when
  * PS_MAX_WARNINGS are there). */

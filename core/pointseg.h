@@ -117,6 +117,9 @@ typedef struct ps_input {
     size_t n;              /* #P */
     int dim;               /* 2 <= dim <= PS_MAX_DIM */
     const double *normals; /* optional #P by dim, row major; NULL if absent */
+    const uint32_t *faces; /* optional #F by 3 triangles of a mesh (indices into
+                              points); NULL if absent */
+    size_t n_faces;        /* #F */
 } ps_input;
 
 /* ---- progress and cancellation ------------------------------------------ */
@@ -192,7 +195,8 @@ typedef struct ps_result {
                               numbered by decreasing size (ties: lowest point) */
     int *point_supernode;  /* #P supernode per point */
     double *centrality;    /* #P f per point (input units) */
-    int n_components;      /* connected components of the kNN graph */
+    int n_components;      /* connected components of the kNN graph (method
+                              auto, faces given: joined by the mesh's edges) */
     int normal_smoothing;  /* iterations the estimated normals were smoothed
                               (params.smooth_normals on a noisy scan; else 0) */
     size_t n_outliers;     /* distinct points left out as stray (method auto:

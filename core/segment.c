@@ -21,6 +21,7 @@
 #include "eigen.h"
 #include "f2_split.h"
 #include "knn_graph.h"
+#include "mesh_edges.h"
 #include "ncut.h"
 #include "normals.h"
 #include "outliers.h"
@@ -101,6 +102,10 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
                            "point %zu has a coordinate beyond +-%g (squared distances "
                            "would overflow)", i / (size_t)in->dim, PS_MAX_COORDINATE);
     }
+    for (size_t i = 0; in->faces && i < 3 * in->n_faces; i++)
+        if (in->faces[i] >= in->n)
+            return ps_fail(err, PS_ERR_INVALID, "face %zu refers to point %u, beyond the %zu points",
+                           i / 3, in->faces[i], in->n);
     return ps_params_check(p, err);
 }
 
@@ -215,6 +220,17 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
     return st;
 }
 
+/* Method auto, input with faces: the face edges between components of the
+ * kNN graph join them (mesh_edges.h); the components are counted again. */
+static ps_status mesh_bridges(pipeline *pl, ps_error *err) {
+    ps_mesh_bridge_input bridges = {pl->points, pl->in->dim, pl->in->faces, pl->in->n_faces,
+                                    pl->dedup.unique_of, pl->in->n, pl->component};
+    size_t added = 0;
+    ps_status st = ps_mesh_bridges_add(&pl->graph, &bridges, &added, err);
+    if (st == PS_OK && added) pl->n_components = ps_graph_components(&pl->graph, pl->component);
+    return st;
+}
+
 static ps_status phase_knn(pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_KNN, 0.0, KNN_GRAPH_DONE};
     int strays = pl->params.method == PS_METHOD_AUTO;
@@ -229,6 +245,9 @@ static ps_status phase_knn(pipeline *pl, ps_error *err) {
     pl->component = malloc(u * sizeof *pl->component);
     if (!pl->component) return ps_fail(err, PS_ERR_NOMEM, "out of memory (components)");
     pl->n_components = ps_graph_components(&pl->graph, pl->component);
+    if (pl->params.method == PS_METHOD_AUTO && pl->in->faces && pl->n_components > 1)
+        st = mesh_bridges(pl, err);
+    if (st != PS_OK) return st;
     if (pl->params.method == PS_METHOD_AUTO && pl->in->dim == 3) return crease_metric(pl, err);
     return PS_OK;
 }

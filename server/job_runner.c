@@ -39,7 +39,7 @@ static ps_status segment_on_share(const ps_input *in, const ps_request_params *p
 
 void ps_job_run(const ps_pointset *points, const ps_request_params *params,
                 const ps_control *ctl, ps_run_outcome *out) {
-    ps_input in = {points->points, points->n, points->dim, points->normals};
+    ps_input in = ps_pointset_input(points);
     ps_result *r = NULL;
     ps_error err = {0};
     memset(out, 0, sizeof *out);

@@ -188,7 +188,7 @@ static int read_input(const char *path, const char *what, ps_pointset *ps) {
 
 static int run_segment(const ps_pointset *ps, const ps_params *params, const char *what,
                        ps_result **result) {
-    ps_input in = {ps->points, ps->n, ps->dim, ps->normals};
+    ps_input in = ps_pointset_input(ps);
     ps_error err;
     ps_status st = ps_segment(&in, params, NULL, result, &err);
     if (st == PS_OK) return 0;

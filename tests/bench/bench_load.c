@@ -508,7 +508,7 @@ static double horse_library_ms(const char *bytes, size_t len, size_t *n_points) 
     rp.core.threads = 1;
     double start = now_s();
     if (ps_decode(bytes, len, NULL, &ps, &api_err)) return -1;
-    ps_input in = {ps.points, ps.n, ps.dim, ps.normals};
+    ps_input in = ps_pointset_input(&ps);
     if (ps_segment(&in, &rp.core, NULL, &r, &err) == PS_OK) doc = ps_encode_json(&ps, r, rp.include, &doc_len);
     double ms = (now_s() - start) * 1e3;
     *n_points = ps.n;

@@ -337,7 +337,9 @@ static int check_moved(const ps_input *in, const ps_params *params, const int *l
                        size_t n_scored, model_row *row) {
     double *copy = moved_copy(in->points, in->n);
     if (!copy) return -1;
-    ps_input moved = {copy, in->n, 3, NULL};
+    ps_input moved = *in; /* the faces still hold; the normals no longer do */
+    moved.points = copy;
+    moved.normals = NULL;
     int *moved_labels = segment_labels(&moved, params, n_scored, row->id, &row->moved_segments);
     free(copy);
     if (!moved_labels) return -1;
@@ -382,7 +384,12 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
     if (build_input(&mesh, mode, o->strays, row->id, &points, &n) == 0 &&
         ps_psb_load_humans(row->dir, row->id, mesh.n_faces, &humans) == 0) {
         row->human_segments = ps_psb_mean_segments(&humans);
-        ps_input in = {points, n, 3, n == mesh.n ? mesh.normals : NULL};
+        ps_input in = {.points = points, .n = n, .dim = 3};
+        if (n == mesh.n) { /* the mesh itself; sampled surface is a scan: points only */
+            in.normals = mesh.normals;
+            in.faces = mesh.faces;
+            in.n_faces = mesh.n_faces;
+        }
         rc = score_runs(o, mode, &in, &mesh, &humans, row);
         ps_psb_humans_free(&humans);
     }

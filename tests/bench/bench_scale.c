@@ -71,7 +71,7 @@ static void run_child(const ps_pointset *horse, size_t n, int threads, const cha
     ps_result *r = NULL;
     ps_error err;
     if (ps_mesh_sample_surface(horse, n, 0, &points) == 0) {
-        ps_input in = {points, n, 3, NULL};
+        ps_input in = {.points = points, .n = n, .dim = 3};
         double start = ps_bench_now_ms();
         if (ps_segment(&in, &params, NULL, &r, &err) == PS_OK) {
             double segmented = ps_bench_now_ms();

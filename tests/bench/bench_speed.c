@@ -80,7 +80,7 @@ static int segment_and_encode(const ps_pointset *ps, const speed_case *c, run_ti
     params.centrality = c->mode;
     params.method = c->method;
     params.threads = 0;
-    ps_input in = {ps->points, ps->n, ps->dim, ps->normals};
+    ps_input in = ps_pointset_input(ps);
     ps_result *r = NULL;
     ps_error err;
     double start = ps_bench_now_ms();

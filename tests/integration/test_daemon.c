@@ -76,7 +76,7 @@ static int make_sample(sample *s, double density) {
     s->xyz = ps_points_xyz(s->pts, s->n, &s->xyz_len);
     ps_params_default(&p);
     p.threads = 1;
-    ps_input in = {s->pts, s->n, 3, NULL};
+    ps_input in = {.points = s->pts, .n = s->n, .dim = 3};
     if (!s->xyz || ps_segment(&in, &p, NULL, &r, NULL) != PS_OK) return -1;
     s->labels = malloc(s->n * sizeof *s->labels);
     if (s->labels) memcpy(s->labels, r->labels, s->n * sizeof *s->labels);

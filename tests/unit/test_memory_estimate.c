@@ -29,7 +29,7 @@ static size_t child_peak_rss(const double *pts, size_t n) {
     if (pid == 0) {
         ps_params p;
         ps_params_default(&p);
-        ps_input in = {pts, n, 3, NULL};
+        ps_input in = {.points = pts, .n = n, .dim = 3};
         ps_result *r = NULL;
         _exit(ps_segment(&in, &p, NULL, &r, NULL) == PS_OK ? 0 : 1);
     }
