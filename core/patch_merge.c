@@ -1,6 +1,6 @@
 /*
- * patch_merge.c: nearly flat segments merge into the neighbour they share
- * the most boundary with (patch_merge.h), over the adjacency of
+ * patch_merge.c: crumbs and nearly flat segments merge into the neighbour
+ * they share the most boundary with (patch_merge.h), over the adjacency of
  * segment_graph.h and each segment's sum of unit normals.
  */
 #include "patch_merge.h"
@@ -35,11 +35,24 @@ static void widest_neighbours(const ps_segment_graph *sg, int *widest, long *edg
     }
 }
 
+/* The smallest surviving segment under min_size points that has a
+ * neighbour (*into: its widest), or -1. */
+static int smallest_crumb(const ps_segment_graph *sg, const int *widest, double min_size,
+                          int *into) {
+    int best = -1;
+    for (int a = 0; a < sg->n_groups; a++) {
+        if (sg->alias[a] != a || sg->size[a] == 0 || widest[a] < 0) continue;
+        if ((double)sg->size[a] >= min_size || (best >= 0 && sg->size[a] >= sg->size[best]))
+            continue;
+        best = a, *into = widest[a];
+    }
+    return best;
+}
+
 /* The flattest surviving segment over the threshold whose widest
  * neighbour (*into) is no smaller, or -1. */
-static int flattest_patch(const ps_segment_graph *sg, const double *sum, int *widest,
-                          long *edges, int *into) {
-    widest_neighbours(sg, widest, edges);
+static int flattest_patch(const ps_segment_graph *sg, const double *sum, const int *widest,
+                          int *into) {
     int best = -1;
     double best_flatness = PS_PATCH_MERGE_FLATNESS;
     for (int a = 0; a < sg->n_groups; a++) {
@@ -53,10 +66,19 @@ static int flattest_patch(const ps_segment_graph *sg, const double *sum, int *wi
     return best;
 }
 
+/* The next segment that is no part (crumbs first), or -1; *into: where it
+ * goes. */
+static int next_merge(const ps_patch_merge_input *in, const ps_segment_graph *sg,
+                      const double *sum, int *widest, long *edges, int *into) {
+    widest_neighbours(sg, widest, edges);
+    int a = smallest_crumb(sg, widest, PS_PATCH_MERGE_MIN_SHARE * (double)in->graph->n, into);
+    if (a >= 0 || in->mean_angular < PS_CREASE_FLAT) return a; /* flat input: one patch */
+    return flattest_patch(sg, sum, widest, into);
+}
+
 ps_status ps_patch_merge(const ps_patch_merge_input *in, int *group_of_point,
                          int *group_of_leaf, ps_merge **merges, int *n_merges,
                          ps_error *err) {
-    if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* flat input: one patch */
     ps_segment_graph sg;
     ps_segment_graph_input sgi = {
         .graph = in->graph, .f = in->f, .group = group_of_point, .n_groups = in->n_groups};
@@ -67,7 +89,7 @@ ps_status ps_patch_merge(const ps_patch_merge_input *in, int *group_of_point,
     long *edges = malloc(m * sizeof *edges);
     if (st == PS_OK && (!sum || !widest || !edges))
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (patch merge)");
-    for (int a, b; st == PS_OK && (a = flattest_patch(&sg, sum, widest, edges, &b)) >= 0;) {
+    for (int a, b; st == PS_OK && (a = next_merge(in, &sg, sum, widest, edges, &b)) >= 0;) {
         if (!ps_segment_graph_merge(&sg, a, b, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (patch merge)");
         for (int i = 0; i < 3; i++) sum[3 * b + i] += sum[3 * a + i];

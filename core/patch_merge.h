@@ -1,7 +1,15 @@
 /*
- * patch_merge.h: a segment that is a nearly flat patch of surface is no
- * part, and merges into its neighbour (method auto, 3-D; runs after the
- * crease merge).
+ * patch_merge.h: a segment that is a crumb or a nearly flat patch of
+ * surface is no part, and merges into its neighbour (method auto, 3-D;
+ * runs after the crease merge).
+ *
+ * A crumb has fewer than PS_PATCH_MERGE_MIN_SHARE of the points, the
+ * crease split's smallest piece (crease_split.h): what the boundary cut
+ * left of a segment, a bump under a handful of points.  People draw no
+ * such part, and whether one survives the other merges turns on the last
+ * bits of a rotated copy's coordinates.  While there is one with a
+ * neighbour, the smallest (ties: the lowest id) merges into the neighbour
+ * it shares the most kNN edges with, whatever that neighbour's size.
  *
  * People see parts that protrude (Hoffman and Singh, "Salience of visual
  * parts", 1997: a part's salience grows with how far it sticks out); a
@@ -10,14 +18,14 @@
  * the flat base of a scan, sticks out of nothing.  Flatness is the length
  * of the mean of the segment's unit normals, R in [0, 1]: 1 for a plane, (1 +
  * cos t) / 2 for a spherical cap of half-angle t, near 0 for a limb, whose
- * normals point all around it.  While some segment has R above
+ * normals point all around it.  Then, while some segment has R above
  * PS_PATCH_MERGE_FLATNESS, the flattest (ties: the lowest id) merges into
  * the neighbour it shares the most kNN edges with (ties: the lowest id),
  * unless that neighbour has fewer points: a patch larger than its
  * neighbour is the surface the parts stand on (the palm of a hand scanned
  * from one side), and stays.  Rotation and scale invariant; deterministic;
  * no threads.  A flat surface (crease.h, PS_CREASE_FLAT: 2-D points given
- * with z = 0) is one patch and is left alone.
+ * with z = 0) is one patch: only its crumbs merge.
  */
 #ifndef PS_PATCH_MERGE_H
 #define PS_PATCH_MERGE_H
@@ -29,6 +37,7 @@
  * half-angle 37 degrees.  Before the crease merge instead of after it:
  * 0.1164. */
 #define PS_PATCH_MERGE_FLATNESS 0.9
+#define PS_PATCH_MERGE_MIN_SHARE 0.005
 
 typedef struct ps_patch_merge_input {
     const ps_graph *graph;   /* kNN graph on #P points (weights not used) */

@@ -5,6 +5,8 @@
  * merges back into the sphere, recorded as one merge with its leaf
  * renamed; a flat input is left alone.  On a hand-made graph, a patch
  * larger than its neighbour stays (it is the surface the parts stand on).
+ * A crumb (the tip of an arm, under 0.5% of the points) merges back into
+ * its arm, flat input or not.
  */
 #include "hand_graph.h"
 #include "patch_merge.h"
@@ -138,5 +140,48 @@ static void test_flat_input_left_alone(void) {
     ps_star_free(&s);
 }
 
+/* Moves the `count` points of arm `arm` farthest from the centre to
+ * segment CAP. */
+static void cut_tip(const ps_star *s, int arm, size_t count, int *group) {
+    memcpy(group, s->part, s->n * sizeof *group);
+    for (size_t taken = 0; taken < count; taken++) {
+        size_t far = s->n;
+        double far_r = -1;
+        for (size_t p = 0; p < s->n; p++) {
+            const double *x = s->points + 3 * p;
+            double r = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+            if (group[p] == arm && r > far_r) far = p, far_r = r;
+        }
+        group[far] = CAP;
+    }
+}
+
+static void test_crumb_merges_into_its_arm(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    size_t count = (size_t)(0.004 * (double)s.n);
+    REQUIRE(count >= 3);
+    int *group = malloc(s.n * sizeof *group), leaf[N_GROUPS], n_merges;
+    REQUIRE(group);
+    for (int flat = 0; flat < 2; flat++) {
+        cut_tip(&s, 1, count, group);
+        ps_merge *merges;
+        CHECK(run_merge(&s, flat ? 0.0 : 1.0, group, leaf, &merges, &n_merges) == PS_OK);
+        REQUIRE(n_merges == 1);
+        CHECK(merges[0].segment == CAP && merges[0].into == 1);
+        CHECK(leaf[CAP] == 1);
+        CHECK(memcmp(group, s.part, s.n * sizeof *group) == 0);
+        free(merges);
+    }
+    cut_tip(&s, 1, (size_t)(0.006 * (double)s.n) + 1, group); /* a part's size: stays */
+    ps_merge *merges;
+    CHECK(run_merge(&s, 0.0, group, leaf, &merges, &n_merges) == PS_OK);
+    CHECK(n_merges == 0);
+    free(merges);
+    free(group);
+    ps_star_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_flat_cap_merges_back),
-             TEST(test_patch_larger_than_its_neighbour_stays), TEST(test_flat_input_left_alone))
+             TEST(test_patch_larger_than_its_neighbour_stays), TEST(test_flat_input_left_alone),
+             TEST(test_crumb_merges_into_its_arm))
