@@ -30,6 +30,7 @@
 #ifndef PS_PATCH_MERGE_H
 #define PS_PATCH_MERGE_H
 
+#include "crease_split.h"
 #include "knn_graph.h"
 
 /* PSB dev set, mean 1 - RI (without the merge 0.1158): 0.8 0.1144, 0.85
@@ -37,7 +38,9 @@
  * half-angle 37 degrees.  Before the crease merge instead of after it:
  * 0.1164. */
 #define PS_PATCH_MERGE_FLATNESS 0.9
-#define PS_PATCH_MERGE_MIN_SHARE 0.005
+/* A crumb's share of the points: one notion of too small to be a part with
+ * the crease split's pieces. */
+#define PS_PATCH_MERGE_MIN_SHARE PS_CREASE_SPLIT_MIN_FRACTION
 
 typedef struct ps_patch_merge_input {
     const ps_graph *graph;   /* kNN graph on #P points (weights not used) */

@@ -43,10 +43,6 @@ static void tube_make(tube *t) {
         }
 }
 
-static int components_of(const ps_graph *g, int *component) {
-    return ps_graph_components(g, component);
-}
-
 static void check_rows(const ps_graph *g, const double *points) {
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
@@ -66,7 +62,7 @@ static void test_faces_join_the_rings(void) {
     ps_error err;
     REQUIRE(ps_knn_graph_build(t.points, N_TUBE, 3, 7, 1, &g, &err) == PS_OK);
     int component[N_TUBE];
-    CHECK(components_of(&g, component) == RINGS);
+    CHECK(ps_graph_components(&g, component) == RINGS);
     size_t edges_before = g.offsets[N_TUBE];
     uint32_t identity[N_TUBE];
     for (uint32_t i = 0; i < N_TUBE; i++) identity[i] = i;
@@ -76,7 +72,7 @@ static void test_faces_join_the_rings(void) {
     /* each step of a band adds r_i - r'_i and r_{i+1} - r'_i */
     CHECK(added == 2 * RING * (RINGS - 1));
     CHECK(g.offsets[N_TUBE] == edges_before + 2 * added);
-    CHECK(components_of(&g, component) == 1);
+    CHECK(ps_graph_components(&g, component) == 1);
     check_rows(&g, t.points);
     ps_graph_free(&g);
 }
@@ -89,7 +85,7 @@ static void test_whole_graph_untouched(void) {
     ps_error err;
     REQUIRE(ps_knn_graph_build(t.points, N_TUBE, 3, 7, 1, &g, &err) == PS_OK);
     int component[N_TUBE];
-    CHECK(components_of(&g, component) == 1);
+    CHECK(ps_graph_components(&g, component) == 1);
     uint32_t identity[N_TUBE];
     for (uint32_t i = 0; i < N_TUBE; i++) identity[i] = i;
     uint32_t *neighbors = g.neighbors;
@@ -110,7 +106,7 @@ static void test_duplicates_map_to_their_point(void) {
     ps_error err;
     REQUIRE(ps_knn_graph_build(points, 8, 3, 3, 1, &g, &err) == PS_OK);
     int component[8];
-    CHECK(components_of(&g, component) == 2);
+    CHECK(ps_graph_components(&g, component) == 2);
     /* input point 8 duplicates 0, 9 duplicates 4 */
     uint32_t unique_of[10] = {0, 1, 2, 3, 4, 5, 6, 7, 0, 4};
     uint32_t faces[6] = {8, 9, 1, 0, 8, 9};
@@ -118,7 +114,7 @@ static void test_duplicates_map_to_their_point(void) {
     size_t added = 0;
     REQUIRE(ps_mesh_bridges_add(&g, &in, &added, &err) == PS_OK);
     CHECK(added == 2); /* 0-4 and 1-4; 0-0 is no edge */
-    CHECK(components_of(&g, component) == 1);
+    CHECK(ps_graph_components(&g, component) == 1);
     check_rows(&g, points);
     ps_graph_free(&g);
 }
