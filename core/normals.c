@@ -289,7 +289,7 @@ ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, cons
                       centroid + 3 * (size_t)n_components, normals);
     int iterations = given || !smooth ? 0 : ps_noise_iterations(ps_noise_median(&noise));
     if (smoothing) *smoothing = iterations;
-    if (st == PS_OK) st = ps_normals_smooth(g, normals, iterations, err);
+    if (st == PS_OK) st = ps_normals_smooth(g, normals, iterations, threads, err);
     free(centroid), free(root);
     if (st == PS_OK) ps_control_progress(span->ctl, span->phase, span->hi);
     return st;

@@ -4,6 +4,8 @@
  */
 #include "normals_smooth.h"
 
+#include "parallel.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,23 +31,52 @@ int ps_noise_iterations(double noise) {
     return t > PS_SMOOTH_MAX ? PS_SMOOTH_MAX : (int)t;
 }
 
-/* One iteration from `from` into `to`. */
-static void average_once(const ps_graph *g, const double *from, double *to) {
-    for (size_t p = 0; p < g->n; p++) {
-        double sum[3] = {from[3 * p], from[3 * p + 1], from[3 * p + 2]};
+double ps_density_iterations(size_t n) {
+    double t = (double)n / PS_DENSITY_REFERENCE_POINTS - 1;
+    return t > 0 ? (t < PS_SMOOTH_MAX ? t : PS_SMOOTH_MAX) : 0;
+}
+
+typedef struct smooth_step {
+    const ps_graph *g;
+    const double *from;
+    double *to;
+    double share; /* of the iteration taken: in (0, 1] */
+} smooth_step;
+
+/* to = the unit vector along sum (#3), or from where sum is 0. */
+static void unit_or(const double *sum, const double *from, double *to) {
+    double len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    for (int i = 0; i < 3; i++) to[i] = len > 0 ? sum[i] / len : from[i];
+}
+
+/* One iteration over points [begin, end): the unit sum of a point's normal
+ * and its neighbours', or, for a share under 1, the unit blend of the
+ * point's normal (1 - share) and that sum (share); a ps_range_fn. */
+static void average_range(void *context, size_t begin, size_t end, int worker) {
+    (void)worker;
+    const smooth_step *step = context;
+    const ps_graph *g = step->g;
+    const double *from = step->from;
+    for (size_t p = begin; p < end; p++) {
+        double sum[3] = {from[3 * p], from[3 * p + 1], from[3 * p + 2]}, whole[3];
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
             for (int i = 0; i < 3; i++) sum[i] += from[3 * (size_t)g->neighbors[e] + i];
-        double len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
-        for (int i = 0; i < 3; i++) to[3 * p + i] = len > 0 ? sum[i] / len : from[3 * p + i];
+        unit_or(sum, from + 3 * p, step->share < 1 ? whole : step->to + 3 * p);
+        if (step->share >= 1) continue;
+        for (int i = 0; i < 3; i++)
+            sum[i] = (1 - step->share) * from[3 * p + i] + step->share * whole[i];
+        unit_or(sum, from + 3 * p, step->to + 3 * p);
     }
 }
 
-ps_status ps_normals_smooth(const ps_graph *g, double *normals, int iterations, ps_error *err) {
-    if (iterations <= 0 || g->n == 0) return PS_OK;
+ps_status ps_normals_smooth(const ps_graph *g, double *normals, double iterations, int threads,
+                            ps_error *err) {
+    if (!(iterations > 0) || g->n == 0) return PS_OK;
     double *scratch = malloc(3 * g->n * sizeof *scratch);
     if (!scratch) return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory (smoothing)");
-    for (int it = 0; it < iterations; it++) {
-        average_once(g, normals, scratch);
+    for (double left = iterations; left > 0; left -= 1) {
+        smooth_step step = {g, normals, scratch, left < 1 ? left : 1};
+        ps_parallel_for(ps_parallel_threads(threads), g->n, 0, average_range, &step);
         memcpy(normals, scratch, 3 * g->n * sizeof *normals);
     }
     free(scratch);

@@ -13,6 +13,18 @@
  * why), above PS_NOISE_FLOOR the oriented normals are averaged with their
  * kNN neighbours, one iteration per PS_NOISE_STEP of the ratio above the
  * floor, at most PS_SMOOTH_MAX: clean input is left exactly as it was.
+ *
+ * Density.  The crease steps compare normals edge by edge, so what they
+ * call a crease depends on the spacing: the facets of a coarse mesh
+ * sampled densely, or a rounded bend, look sharper against the mean
+ * angular term the closer the points.  PCA normals from k neighbours
+ * average over about k spacings squared of surface, and each smoothing
+ * iteration adds about as much again; so n points smoothed n /
+ * PS_DENSITY_REFERENCE_POINTS - 1 times average over as much surface as
+ * the reference sampling's raw normals, and the crease steps see the same
+ * creases at any density above it (fractional iterations blend the last
+ * one in; at most PS_SMOOTH_MAX, so beyond about 360,000 points the scale
+ * shrinks again).  Below the reference nothing changes.
  */
 #ifndef PS_NORMALS_SMOOTH_H
 #define PS_NORMALS_SMOOTH_H
@@ -33,6 +45,8 @@
 #define PS_NOISE_STEP 0.02
 #define PS_SMOOTH_MAX 8
 #define PS_NOISE_BINS 1024 /* histogram of the ratio over [0, 1) */
+/* Points of the sampling whose normal scale the crease steps use. */
+#define PS_DENSITY_REFERENCE_POINTS 40000
 
 typedef struct ps_noise_estimate {
     size_t counts[PS_NOISE_BINS]; /* ratios >= 1 go to the last bin */
@@ -48,9 +62,18 @@ double ps_noise_median(const ps_noise_estimate *e);
 /* Smoothing iterations for a median ratio: 0 up to PS_NOISE_FLOOR. */
 int ps_noise_iterations(double noise);
 
+/* Smoothing iterations that bring the normals of n points to the scale of
+ * the reference sampling: n / PS_DENSITY_REFERENCE_POINTS - 1, 0 below it,
+ * at most PS_SMOOTH_MAX; fractional. */
+double ps_density_iterations(size_t n);
+
 /* normals #P by 3 in/out (unit, consistently oriented): each iteration
  * replaces every normal by the normalized sum of itself and its kNN
- * neighbours' normals (all at once).  Deterministic. */
-ps_status ps_normals_smooth(const ps_graph *g, double *normals, int iterations, ps_error *err);
+ * neighbours' normals (all at once); a fractional last iteration blends
+ * each normal with that average by its fraction.  iterations <= 0 leaves
+ * them alone.  threads: as ps_parallel_threads; the result does not
+ * depend on it. */
+ps_status ps_normals_smooth(const ps_graph *g, double *normals, double iterations, int threads,
+                            ps_error *err);
 
 #endif

@@ -24,6 +24,7 @@
 #include "mesh_edges.h"
 #include "ncut.h"
 #include "normals.h"
+#include "normals_smooth.h"
 #include "outliers.h"
 #include "parallel.h"
 #include "patch_merge.h"
@@ -141,7 +142,8 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     return st == PS_OK ? distinct_points(pl, err) : st;
 }
 
-/* Normals (given, or PCA) of the distinct points, kept for the boundary
+/* Normals (given, or PCA) of the distinct points, brought to the scale of
+ * the reference sampling (normals_smooth.h) and kept for the boundary
  * cut; the crease strengths, kept for the crease split and merge; then the
  * crease metric. */
 static ps_status crease_metric(pipeline *pl, ps_error *err) {
@@ -163,6 +165,8 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
                                             pl->n_components, pl->params.smooth_normals,
                                             pl->threads, &span, pl->normals,
                                             &pl->normal_smoothing, err);
+    if (st == PS_OK)
+        st = ps_normals_smooth(&pl->graph, pl->normals, ps_density_iterations(u), pl->threads, err);
     if (st == PS_OK) {
         ps_crease_strengths(&pl->graph, pl->points, pl->normals, &pl->creases);
         ps_control_progress(pl->ctl, PS_PHASE_KNN, KNN_STRENGTHS_DONE);

@@ -1,6 +1,8 @@
 /*
  * test_normals_smooth.c: the noise estimate's median, the iterations it
- * asks for, and the smoothing itself on a hand-made graph (normals_smooth.h).
+ * asks for, the iterations a density asks for, and the smoothing itself
+ * (whole and fractional iterations, any thread count) on a hand-made graph
+ * (normals_smooth.h).
  */
 #include "hand_graph.h"
 #include "normals_smooth.h"
@@ -37,9 +39,9 @@ static void test_smooth_path(void) {
     const double s = sqrt(0.5);
     double normals[9] = {0, 0, 1, s, 0, s, 0, 0, 1}, before[9];
     memcpy(before, normals, sizeof normals);
-    CHECK(ps_normals_smooth(&h.g, normals, 0, NULL) == PS_OK);
+    CHECK(ps_normals_smooth(&h.g, normals, 0, 1, NULL) == PS_OK);
     CHECK(memcmp(normals, before, sizeof normals) == 0);
-    CHECK(ps_normals_smooth(&h.g, normals, 1, NULL) == PS_OK);
+    CHECK(ps_normals_smooth(&h.g, normals, 1, 1, NULL) == PS_OK);
     for (int p = 0; p < 3; p++)
         CHECK_NEAR(normals[3 * p] * normals[3 * p] + normals[3 * p + 1] * normals[3 * p + 1] +
                        normals[3 * p + 2] * normals[3 * p + 2], 1.0, 1e-12);
@@ -48,4 +50,53 @@ static void test_smooth_path(void) {
     CHECK(normals[0] > 0 && normals[6] > 0);   /* the ends lean towards it */
 }
 
-PS_TEST_MAIN(TEST(test_median), TEST(test_iterations), TEST(test_smooth_path))
+static void test_density_iterations(void) {
+    CHECK(ps_density_iterations(0) == 0);
+    CHECK(ps_density_iterations(PS_DENSITY_REFERENCE_POINTS) == 0);
+    CHECK_NEAR(ps_density_iterations(2 * PS_DENSITY_REFERENCE_POINTS), 1.0, 1e-12);
+    CHECK_NEAR(ps_density_iterations(5 * PS_DENSITY_REFERENCE_POINTS / 2), 1.5, 1e-12);
+    CHECK(ps_density_iterations(100 * (size_t)PS_DENSITY_REFERENCE_POINTS) == PS_SMOOTH_MAX);
+}
+
+/* The middle normal of a path after `iterations`, its first being tilted. */
+static double middle_up_after(double iterations) {
+    ps_hand_graph h;
+    ps_hand_graph_path(&h, 3, 1.0, 0);
+    const double s = sqrt(0.5);
+    double normals[9] = {0, 0, 1, s, 0, s, 0, 0, 1};
+    CHECK(ps_normals_smooth(&h.g, normals, iterations, 1, NULL) == PS_OK);
+    CHECK_NEAR(normals[3] * normals[3] + normals[4] * normals[4] + normals[5] * normals[5], 1.0,
+               1e-12);
+    return normals[5];
+}
+
+/* A fractional iteration lands strictly between the whole ones around it
+ * (the middle normal first turns up, then follows its neighbours, which
+ * lean towards it), and a sliver of one changes next to nothing. */
+static void test_fractional_iteration(void) {
+    double none = middle_up_after(0), one = middle_up_after(1), two = middle_up_after(2);
+    double half = middle_up_after(0.5), one_half = middle_up_after(1.5);
+    CHECK(none < half && half < one);
+    CHECK(two < one_half && one_half < one);
+    CHECK_NEAR(middle_up_after(1 + 1e-9), one, 1e-8);
+}
+
+/* The same normals from one thread and from three, bit for bit, on a
+ * path long enough to be split between them. */
+static void test_threads_agree(void) {
+    ps_hand_graph h;
+    ps_hand_graph_path(&h, PS_HAND_GRAPH_MAX_V, 1.0, 0);
+    double one[3 * PS_HAND_GRAPH_MAX_V], three[3 * PS_HAND_GRAPH_MAX_V];
+    for (int p = 0; p < PS_HAND_GRAPH_MAX_V; p++) {
+        double a = 0.7 * p;
+        one[3 * p] = cos(a), one[3 * p + 1] = sin(a), one[3 * p + 2] = 0;
+    }
+    memcpy(three, one, sizeof one);
+    CHECK(ps_normals_smooth(&h.g, one, 2.5, 1, NULL) == PS_OK);
+    CHECK(ps_normals_smooth(&h.g, three, 2.5, 3, NULL) == PS_OK);
+    CHECK(memcmp(one, three, sizeof one) == 0);
+}
+
+PS_TEST_MAIN(TEST(test_median), TEST(test_iterations), TEST(test_smooth_path),
+             TEST(test_density_iterations), TEST(test_fractional_iteration),
+             TEST(test_threads_agree))
