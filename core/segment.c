@@ -145,9 +145,8 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
 
 /* Normals (given, or PCA) of the distinct points, brought to the scale of
  * the reference sampling (normals_smooth.h) and kept for the boundary
- * cut and the merges; the mean angular term, the merges' scale (the crease
- * split reads strengths of its own, split_creases); then the crease
- * metric. */
+ * cut; the crease strengths, kept for the crease split and merge; then the
+ * crease metric. */
 static ps_status crease_metric(pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     double *given = NULL;
