@@ -66,8 +66,7 @@ typedef struct pipeline {
     double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
     int normal_smoothing;  /* iterations the normals were smoothed (normals.h) */
     size_t n_outliers;     /* distinct points dropped as stray (outliers.h) */
-    ps_crease_points creases; /* with normals: crease strengths of the #U points
-                                 (the crease split's scale, split_creases) */
+    ps_crease_points creases; /* with normals: crease strengths of the #U points */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;
@@ -274,27 +273,6 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     return st;
 }
 
-/* The crease split (crease_split.h), on crease strengths read from the
- * normals smoothed PS_CREASE_SPLIT_SMOOTHING more times: a crease must hold
- * at that scale to cut a supernode.  The strengths overwrite
- * pl->creases.strength, which nothing else reads; pl->creases.mean stays
- * the merges' scale. */
-static ps_status split_creases(pipeline *pl, ps_error *err) {
-    size_t u = pl->graph.n;
-    double *smoothed = malloc(u * 3 * sizeof *smoothed);
-    if (!smoothed) return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease split)");
-    memcpy(smoothed, pl->normals, u * 3 * sizeof *smoothed);
-    ps_crease_points at_scale = {pl->creases.strength, 0};
-    ps_status st = ps_normals_smooth(&pl->graph, smoothed, PS_CREASE_SPLIT_SMOOTHING,
-                                     pl->threads, err);
-    if (st == PS_OK) {
-        ps_crease_strengths(&pl->graph, pl->points, smoothed, &at_scale);
-        st = ps_supernodes_split_creases(&pl->graph, &at_scale, pl->f, &pl->sn, err);
-    }
-    free(smoothed);
-    return st;
-}
-
 static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     ps_params *p = &pl->params;
     ps_progress_span span = {pl->ctl, PS_PHASE_SUPERNODES, 0.0, SUPERNODES_BUILT};
@@ -304,7 +282,8 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
-    if (st == PS_OK && pl->normals) st = split_creases(pl, err);
+    if (st == PS_OK && pl->normals)
+        st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     return st;
 }
 
