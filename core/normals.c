@@ -259,16 +259,16 @@ static ps_status unit_normals(const ps_graph *g, const double *points, const dou
 
 ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
                            const int *component, int n_components, int smooth,
-                           double *normals, int *smoothing, ps_error *err) {
+                           double *normals, ps_normals_report *report, ps_error *err) {
     ps_progress_span untracked = {NULL, PS_PHASE_KNN, 0.0, 0.0};
     return ps_normals_build_tracked(g, points, given, component, n_components, smooth, 1,
-                                    &untracked, normals, smoothing, err);
+                                    &untracked, normals, report, err);
 }
 
 ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, const double *given,
                                    const int *component, int n_components, int smooth,
                                    int threads, const ps_progress_span *span, double *normals,
-                                   int *smoothing, ps_error *err) {
+                                   ps_normals_report *report, ps_error *err) {
     size_t n = g->n;
     ps_noise_estimate noise;
     ps_progress_span pca = {span->ctl, span->phase, span->lo, ps_progress_span_at(span, PCA_SHARE)};
@@ -287,8 +287,9 @@ ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, cons
     if (st == PS_OK)
         point_outward(n, points, component, n_components, centroid,
                       centroid + 3 * (size_t)n_components, normals);
-    int iterations = given || !smooth ? 0 : ps_noise_iterations(ps_noise_median(&noise));
-    if (smoothing) *smoothing = iterations;
+    double median = ps_noise_median(&noise);
+    int iterations = given || !smooth ? 0 : ps_noise_iterations(median);
+    if (report) report->smoothing = iterations, report->noise = median;
     if (st == PS_OK) st = ps_normals_smooth(g, normals, iterations, threads, err);
     free(centroid), free(root);
     if (st == PS_OK) ps_control_progress(span->ctl, span->phase, span->hi);

@@ -19,14 +19,21 @@
 
 #include "knn_graph.h"
 
+/* What a build measured and did. */
+typedef struct ps_normals_report {
+    int smoothing; /* iterations applied: 0 unless smooth and estimated
+                      normals on a noisy scan */
+    double noise;  /* the median noise ratio (normals_smooth.h); 0 with given
+                      normals */
+} ps_normals_report;
+
 /* points #P by 3; given #P by 3 or NULL; component #P; g's weights are the
  * Euclidean edge lengths (the noise is measured against them).  smooth:
  * smooth estimated normals by the measured noise.  normals #P by 3 out.
- * smoothing out (may be NULL): the iterations applied (0 unless smooth and
- * estimated normals on a noisy scan). */
+ * report out (may be NULL). */
 ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
                            const int *component, int n_components, int smooth,
-                           double *normals, int *smoothing, ps_error *err);
+                           double *normals, ps_normals_report *report, ps_error *err);
 
 /* The same with the PCA on threads (ps_parallel_threads), reporting
  * progress from span->lo to span->hi (span->ctl may be NULL) and stopping
@@ -35,6 +42,6 @@ ps_status ps_normals_build(const ps_graph *g, const double *points, const double
 ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, const double *given,
                                    const int *component, int n_components, int smooth,
                                    int threads, const ps_progress_span *span, double *normals,
-                                   int *smoothing, ps_error *err);
+                                   ps_normals_report *report, ps_error *err);
 
 #endif

@@ -64,9 +64,10 @@ typedef struct pipeline {
     int *component;        /* #U */
     int n_components;
     double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
-    int normal_smoothing;  /* iterations the normals were smoothed (normals.h) */
+    ps_normals_report normals_report; /* the noise measured, the smoothing done (normals.h) */
     size_t n_outliers;     /* distinct points dropped as stray (outliers.h) */
-    ps_crease_points creases; /* with normals: crease strengths of the #U points */
+    ps_crease_points creases; /* with normals: crease strengths of the #U points
+                                 (the crease split's, split_creases) */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;
@@ -143,9 +144,10 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
 }
 
 /* Normals (given, or PCA) of the distinct points, brought to the scale of
- * the reference sampling (normals_smooth.h) and kept for the boundary
- * cut; the crease strengths, kept for the crease split and merge; then the
- * crease metric. */
+ * the reference sampling (normals_smooth.h) and kept for the boundary cut
+ * and the merges; the crease strengths (their mean is the merges' scale;
+ * the crease split may read strengths of its own, split_creases); then
+ * the crease metric. */
 static ps_status crease_metric(pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     double *given = NULL;
@@ -164,7 +166,7 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
     ps_status st = ps_normals_build_tracked(&pl->graph, pl->points, given, pl->component,
                                             pl->n_components, pl->params.smooth_normals,
                                             pl->threads, &span, pl->normals,
-                                            &pl->normal_smoothing, err);
+                                            &pl->normals_report, err);
     if (st == PS_OK)
         st = ps_normals_smooth(&pl->graph, pl->normals, ps_density_iterations(u), pl->threads, err);
     if (st == PS_OK) {
@@ -273,6 +275,31 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     return st;
 }
 
+/* The crease split (crease_split.h).  On a clean surface it reads crease
+ * strengths (and their mean) from the normals smoothed
+ * PS_CREASE_SPLIT_SMOOTHING more times, so that a crease must hold at that
+ * scale; they overwrite pl->creases.strength, which nothing else reads,
+ * and pl->creases.mean stays the merges' scale.  On a noisy one (noise
+ * over PS_NOISE_FLOOR) smoothing would turn the noise into blobs that
+ * close loops, and the split reads the strengths as they are. */
+static ps_status split_creases(pipeline *pl, ps_error *err) {
+    if (pl->normals_report.noise > PS_NOISE_FLOOR)
+        return ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
+    size_t u = pl->graph.n;
+    double *smoothed = malloc(u * 3 * sizeof *smoothed);
+    if (!smoothed) return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease split)");
+    memcpy(smoothed, pl->normals, u * 3 * sizeof *smoothed);
+    ps_crease_points at_scale = {pl->creases.strength, 0};
+    ps_status st = ps_normals_smooth(&pl->graph, smoothed, PS_CREASE_SPLIT_SMOOTHING,
+                                     pl->threads, err);
+    if (st == PS_OK) {
+        ps_crease_strengths(&pl->graph, pl->points, smoothed, &at_scale);
+        st = ps_supernodes_split_creases(&pl->graph, &at_scale, pl->f, &pl->sn, err);
+    }
+    free(smoothed);
+    return st;
+}
+
 static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     ps_params *p = &pl->params;
     ps_progress_span span = {pl->ctl, PS_PHASE_SUPERNODES, 0.0, SUPERNODES_BUILT};
@@ -282,8 +309,7 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
-    if (st == PS_OK && pl->normals)
-        st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
+    if (st == PS_OK && pl->normals) st = split_creases(pl, err);
     return st;
 }
 
@@ -418,7 +444,7 @@ static ps_result_parts parts_of(const pipeline *pl) {
         .first_of = pl->dedup.first,
         .f = pl->f,
         .n_components = pl->n_components,
-        .normal_smoothing = pl->normal_smoothing,
+        .normal_smoothing = pl->normals_report.smoothing,
         .n_outliers = pl->n_outliers,
         .n_supernodes = pl->sn.m,
         .sinks = pl->sn.sinks,

@@ -6,6 +6,7 @@
  * byte, and the tracked build reports progress and stops when cancelled. */
 #include "knn_graph.h"
 #include "normals.h"
+#include "normals_smooth.h"
 #include "progress_seen.h"
 #include "shapes.h"
 #include "testlib.h"
@@ -35,9 +36,10 @@ static void check_sphere(double shift, double angle) {
     int *comp = malloc(n * sizeof *comp);
     int nc = ps_graph_components(&g, comp);
     double *nrm = malloc(n * 3 * sizeof *nrm);
-    int smoothing = -1;
-    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, 1, nrm, &smoothing, NULL) == PS_OK);
-    CHECK(smoothing == 0); /* a clean sphere is left as PCA made it */
+    ps_normals_report report = {-1, -1};
+    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, 1, nrm, &report, NULL) == PS_OK);
+    CHECK(report.smoothing == 0); /* a clean sphere is left as PCA made it */
+    CHECK(report.noise >= 0 && report.noise <= PS_NOISE_FLOOR); /* and measures clean */
     for (size_t p = 0; p < n; p++)
         CHECK_NEAR(sqrt(nrm[3 * p] * nrm[3 * p] + nrm[3 * p + 1] * nrm[3 * p + 1] +
                         nrm[3 * p + 2] * nrm[3 * p + 2]), 1.0, 1e-9);
@@ -97,9 +99,9 @@ static void test_given_inward_flipped(void) {
     ps_graph g;
     REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
     int *comp = calloc(n, sizeof *comp);
-    int smoothing = -1;
-    REQUIRE(ps_normals_build(&g, pts, inward, comp, 1, 1, nrm, &smoothing, NULL) == PS_OK);
-    CHECK(smoothing == 0);
+    ps_normals_report report = {-1, -1};
+    REQUIRE(ps_normals_build(&g, pts, inward, comp, 1, 1, nrm, &report, NULL) == PS_OK);
+    CHECK(report.smoothing == 0 && report.noise == 0); /* given normals: nothing measured */
     const double c[3] = {0, 0, 0};
     CHECK(outward_share(pts, nrm, n, c) == 1.0);
     for (size_t p = 0; p < n; p++) /* the given direction, made unit and outward */
@@ -145,8 +147,10 @@ static void test_noisy_sphere_smoothed(void) {
     REQUIRE(comp && nrm);
     const double c[3] = {0, 0, 0};
     for (int smooth = 0; smooth <= 1; smooth++) {
-        int smoothing = -1;
-        REQUIRE(ps_normals_build(&g, pts, NULL, comp, 1, smooth, nrm, &smoothing, NULL) == PS_OK);
+        ps_normals_report report = {-1, -1};
+        REQUIRE(ps_normals_build(&g, pts, NULL, comp, 1, smooth, nrm, &report, NULL) == PS_OK);
+        int smoothing = report.smoothing;
+        CHECK(report.noise > PS_NOISE_FLOOR); /* measured noisy either way */
         CHECK(outward_share(pts, nrm, n, c) > 0.99);
         double error = mean_error(clean, nrm, n) * 180 / 3.14159265358979;
         CHECK_MSG(smooth ? smoothing > 0 && error < 8 : smoothing == 0 && error > 10,

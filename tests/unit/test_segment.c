@@ -396,10 +396,25 @@ static void check_same_for_threads(ps_centrality_mode mode) {
     free(pts);
 }
 
-/* Exact and approximate centrality give the same supernodes on small
- * shapes (after persistence): the same count, and at least 90% of the
- * points in the same one (the saddle levels move a little with f). */
-static void test_exact_approx_supernodes_agree(void) {
+/* At most 10% of the n points in another label between exact and approx
+ * (best overlap of each exact label). */
+static void check_overlap(const char *what, size_t shape, int *exact, int n_exact,
+                          const int *approx, size_t n) {
+    ps_result as_labels;
+    memset(&as_labels, 0, sizeof as_labels);
+    as_labels.labels = exact;
+    as_labels.n_segments = n_exact;
+    double d = disagreement(&as_labels, approx, n);
+    CHECK_MSG(d <= 0.10, "shape %zu: %.3f of the points in another of the %s", shape, d, what);
+}
+
+/* Exact and approximate centrality give the same answer on small shapes:
+ * the same number of segments, and at most 10% of the points elsewhere in
+ * the segments and in the supernodes.  The supernodes' number is not
+ * compared: the crease split leaves pieces of a few points (3 to 15 on the
+ * dumbbell) whose number moves with the saddle levels, and the merges fold
+ * them into the same segments. */
+static void test_exact_approx_agree(void) {
     double *(*const shapes[])(double, size_t *, int **) = {ps_shape_star, ps_shape_dumbbell};
     for (size_t k = 0; k < sizeof shapes / sizeof shapes[0]; k++) {
         size_t n;
@@ -411,13 +426,11 @@ static void test_exact_approx_supernodes_agree(void) {
         p.centrality = PS_CENTRALITY_APPROX;
         ps_result *approx = segment_with(pts, n, &p);
         REQUIRE(exact && approx);
-        CHECK_MSG(exact->n_supernodes == approx->n_supernodes, "shape %zu: %d vs %d supernodes",
-                  k, exact->n_supernodes, approx->n_supernodes);
-        ps_result as_supernodes = *exact;
-        as_supernodes.labels = exact->point_supernode;
-        as_supernodes.n_segments = exact->n_supernodes;
-        double d = disagreement(&as_supernodes, approx->point_supernode, n);
-        CHECK_MSG(d <= 0.10, "shape %zu: %.3f of the points in another supernode", k, d);
+        CHECK_MSG(exact->n_segments == approx->n_segments, "shape %zu: %d vs %d segments", k,
+                  exact->n_segments, approx->n_segments);
+        check_overlap("segments", k, exact->labels, exact->n_segments, approx->labels, n);
+        check_overlap("supernodes", k, exact->point_supernode, exact->n_supernodes,
+                      approx->point_supernode, n);
         ps_result_free(exact);
         ps_result_free(approx);
         free(pts);
@@ -588,7 +601,7 @@ static void test_progress_moves_within_phases(void) {
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
              TEST(test_rotation_translation), TEST(test_scale_small),
-             TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_supernodes_agree),
+             TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_agree),
              TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
              TEST(test_disconnected_scans), TEST(test_bad_input), TEST(test_status_names),
