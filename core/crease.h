@@ -26,6 +26,12 @@
  * 0.08 degrees. */
 #define PS_CREASE_FLAT 1e-6
 #define PS_CREASE_ETA_CONVEX 0.0
+/* The crease scale: on a clean surface the crease split and merge read
+ * normals smoothed this many more times (normals_smooth.h; core/segment.c),
+ * so that a crease must hold at that scale and the sharp facet edges of a
+ * coarse mesh sampled densely do not cut thin parts into rings.
+ * docs/method.md has the sweep. */
+#define PS_CREASE_SCALE_SMOOTHING 2
 #ifndef PS_CREASE_H
 #define PS_CREASE_H
 

@@ -44,12 +44,6 @@
  * threshold the same way as well did not help (to the strength of the
  * strongest 30% / 50% of the points: 0.1925 / 0.1783 at 0.25). */
 #define PS_CREASE_SPLIT_MAX_POINTS 0.45
-/* On a clean surface the split reads its crease strengths from the
- * normals smoothed this many more times (normals_smooth.h; core/segment.c):
- * a crease must hold at that scale, so the sharp facet edges of a coarse
- * mesh sampled densely do not cut thin parts into rings.  docs/method.md
- * has the sweep. */
-#define PS_CREASE_SPLIT_SMOOTHING 2
 
 /* creases: the crease strengths of the #P points (crease.h); f #P the
  * centrality (picks the representatives).  sn is replaced by its

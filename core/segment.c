@@ -66,8 +66,10 @@ typedef struct pipeline {
     double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
     ps_normals_report normals_report; /* the noise measured, the smoothing done (normals.h) */
     size_t n_outliers;     /* distinct points dropped as stray (outliers.h) */
+    double *crease_normals;   /* #U by 3 the crease split's and merge's normals
+                                 (crease_scale), or normals itself */
     ps_crease_points creases; /* with normals: crease strengths of the #U points
-                                 (the crease split's, split_creases) */
+                                 at the crease scale, and their mean */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;
@@ -143,11 +145,26 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
     return st == PS_OK ? distinct_points(pl, err) : st;
 }
 
+/* The crease split's and merge's normals (crease.h): on a clean surface
+ * (noise at most PS_NOISE_FLOOR) the normals smoothed
+ * PS_CREASE_SCALE_SMOOTHING more times, so that a crease must hold at that
+ * scale; on a noisy one smoothing would turn the noise into blobs that
+ * close loops, and they are the normals themselves. */
+static ps_status crease_scale(pipeline *pl, ps_error *err) {
+    pl->crease_normals = pl->normals;
+    if (pl->normals_report.noise > PS_NOISE_FLOOR) return PS_OK;
+    size_t u = pl->graph.n;
+    pl->crease_normals = malloc(u * 3 * sizeof *pl->crease_normals);
+    if (!pl->crease_normals) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
+    memcpy(pl->crease_normals, pl->normals, u * 3 * sizeof *pl->crease_normals);
+    return ps_normals_smooth(&pl->graph, pl->crease_normals, PS_CREASE_SCALE_SMOOTHING,
+                             pl->threads, err);
+}
+
 /* Normals (given, or PCA) of the distinct points, brought to the scale of
  * the reference sampling (normals_smooth.h) and kept for the boundary cut
- * and the merges; the crease strengths (their mean is the merges' scale;
- * the crease split may read strengths of its own, split_creases); then
- * the crease metric. */
+ * and the patch merge; the crease scale's normals and strengths, kept for
+ * the crease split and merge; then the crease metric, on the normals. */
 static ps_status crease_metric(pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     double *given = NULL;
@@ -169,8 +186,9 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
                                             &pl->normals_report, err);
     if (st == PS_OK)
         st = ps_normals_smooth(&pl->graph, pl->normals, ps_density_iterations(u), pl->threads, err);
+    if (st == PS_OK) st = crease_scale(pl, err);
     if (st == PS_OK) {
-        ps_crease_strengths(&pl->graph, pl->points, pl->normals, &pl->creases);
+        ps_crease_strengths(&pl->graph, pl->points, pl->crease_normals, &pl->creases);
         ps_control_progress(pl->ctl, PS_PHASE_KNN, KNN_STRENGTHS_DONE);
         ps_crease_weights(&pl->graph, pl->points, pl->normals);
     }
@@ -275,31 +293,6 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     return st;
 }
 
-/* The crease split (crease_split.h).  On a clean surface it reads crease
- * strengths (and their mean) from the normals smoothed
- * PS_CREASE_SPLIT_SMOOTHING more times, so that a crease must hold at that
- * scale; they overwrite pl->creases.strength, which nothing else reads,
- * and pl->creases.mean stays the merges' scale.  On a noisy one (noise
- * over PS_NOISE_FLOOR) smoothing would turn the noise into blobs that
- * close loops, and the split reads the strengths as they are. */
-static ps_status split_creases(pipeline *pl, ps_error *err) {
-    if (pl->normals_report.noise > PS_NOISE_FLOOR)
-        return ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
-    size_t u = pl->graph.n;
-    double *smoothed = malloc(u * 3 * sizeof *smoothed);
-    if (!smoothed) return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease split)");
-    memcpy(smoothed, pl->normals, u * 3 * sizeof *smoothed);
-    ps_crease_points at_scale = {pl->creases.strength, 0};
-    ps_status st = ps_normals_smooth(&pl->graph, smoothed, PS_CREASE_SPLIT_SMOOTHING,
-                                     pl->threads, err);
-    if (st == PS_OK) {
-        ps_crease_strengths(&pl->graph, pl->points, smoothed, &at_scale);
-        st = ps_supernodes_split_creases(&pl->graph, &at_scale, pl->f, &pl->sn, err);
-    }
-    free(smoothed);
-    return st;
-}
-
 static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     ps_params *p = &pl->params;
     ps_progress_span span = {pl->ctl, PS_PHASE_SUPERNODES, 0.0, SUPERNODES_BUILT};
@@ -309,7 +302,8 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
-    if (st == PS_OK && pl->normals) st = split_creases(pl, err);
+    if (st == PS_OK && pl->normals)
+        st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     return st;
 }
 
@@ -364,7 +358,7 @@ static ps_status crease_merge(pipeline *pl, ps_error *err) {
     ps_crease_merge_input cm = {
         .graph = &pl->graph,
         .points = pl->points,
-        .normals = pl->normals,
+        .normals = pl->crease_normals,
         .f = pl->f,
         .mean_angular = pl->creases.mean,
         .n_groups = pl->n_tree,
@@ -425,6 +419,7 @@ static void pipeline_free(pipeline *pl) {
     ps_dedup_free(&pl->dedup);
     ps_graph_free(&pl->graph);
     free(pl->component);
+    if (pl->crease_normals != pl->normals) free(pl->crease_normals);
     free(pl->normals);
     free(pl->creases.strength);
     free(pl->f);
