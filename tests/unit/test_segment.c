@@ -181,8 +181,11 @@ static void test_star_dense(void) { CHECK(check_star_arms(1950, 0, 0.8, 0) == 0)
 
 /* 20%: the arms stay apart as they are (the crease split counts only the
  * strongest 45% of the points as crease points, crease_split.h; before
- * that cap an arm was cut in half, 0.47 of it in one segment), and with
- * smooth_normals (normals_smooth.h), which says it smoothed. */
+ * that cap an arm was cut in half, 0.47 of it in one segment; and a noisy
+ * surface keeps its normals for the crease split and merge instead of the
+ * crease scale's, segment.c: smoothed, an arm was cut, 0.58 of it in one
+ * segment), and with smooth_normals (normals_smooth.h), which says it
+ * smoothed. */
 static void test_star_with_heavy_noise(void) {
     CHECK(check_star_arms(0, 0.07, 0.7, 0) == 0);
     CHECK(check_star_arms(0, 0.07, 0.7, 1) > 0);
@@ -411,7 +414,7 @@ static void check_overlap(const char *what, size_t shape, int *exact, int n_exac
 /* Exact and approximate centrality give the same answer on small shapes:
  * the same number of segments, and at most 10% of the points elsewhere in
  * the segments and in the supernodes.  The supernodes' number is not
- * compared: the crease split leaves pieces of a few points (3 to 15 on the
+ * compared: the crease split leaves pieces of a few points (3 to 70 on the
  * dumbbell) whose number moves with the saddle levels, and the merges fold
  * them into the same segments. */
 static void test_exact_approx_agree(void) {
