@@ -23,11 +23,10 @@
  *     when one is loose does a search outside it, stopped once a piece is
  *     larger, tell whether an anchored piece is the largest;
  *   - per-segment sink counts say whether a cut left a segment without one.
- * The only whole-pair pass left is the terminals' "infinite" tie (one plus
- * every capacity of the pair, summed in point order as before), needed
- * when a sink point lies in the band.  An arc's capacity is computed when
- * a band or that sum first needs it (most arcs never are).  Every scratch
- * array is sized once.
+ * A sink point's "infinite" tie to its side is one plus every capacity of
+ * the band's network, so no pass covers the whole pair.  An arc's capacity
+ * is computed when a band first needs it (most arcs never are).  Every
+ * scratch array is sized once.
  */
 #include "boundary_cut.h"
 #include "boundary_cut_context.h"

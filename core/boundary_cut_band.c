@@ -94,49 +94,42 @@ double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, d
                 PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
 }
 
-/* One plus the capacities of all arcs within a and b, in point order. */
-static double pair_capacity(cut_context *cx, int a, int b) {
-    const ps_graph *g = cx->in->graph;
-    double total = 1;
-    for (uint32_t p = 0; p < g->n; p++) {
-        if (!in_pair(cx->group[p], a, b)) continue;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            if (in_pair(cx->group[g->neighbors[e]], a, b)) total += ps_bc_capacity(cx, p, e);
-    }
-    return total;
-}
-
 /* Ties of band point i to the terminals: its arcs to a and b outside the
- * band, plus infinite for a sink point. */
-static void tie_band_point(cut_context *cx, size_t i, int a, int b, double infinite) {
+ * band.  Returns them plus its arcs inside the band. */
+static double tie_band_point(cut_context *cx, size_t i, int a, int b) {
     const ps_graph *g = cx->in->graph;
     uint32_t p = cx->band[i];
-    int own_a = cx->group[p] == a;
-    cx->tie_source[i] = cx->is_sink[p] && own_a ? infinite : 0;
-    cx->tie_sink[i] = cx->is_sink[p] && !own_a ? infinite : 0;
+    double inside = 0;
+    cx->tie_source[i] = cx->tie_sink[i] = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->neighbors[e];
-        if (!in_pair(cx->group[q], a, b) || cx->band_of[q] != NOT_IN_BAND) continue;
-        if (cx->group[q] == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
+        if (!in_pair(cx->group[q], a, b)) continue;
+        if (cx->band_of[q] != NOT_IN_BAND) inside += ps_bc_capacity(cx, p, e);
+        else if (cx->group[q] == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
         else cx->tie_sink[i] += ps_bc_capacity(cx, p, e);
     }
+    return cx->tie_source[i] + cx->tie_sink[i] + inside;
 }
 
 /* Band points (reached within width) in point order, ties to the
- * terminals; returns the count. */
+ * terminals; returns the count.  A sink point's tie to its own side is
+ * "infinite": one plus every capacity of the network, more than any cut. */
 size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b) {
     size_t nb = 0;
     for (size_t i = 0; i < n_reached; i++)
         if (cx->dist[cx->reached[i]] <= width) cx->band[nb++] = cx->reached[i];
     qsort(cx->band, nb, sizeof *cx->band, ps_compare_u32);
-    int has_sink = 0;
     for (size_t i = 0; i < nb; i++) {
         cx->band_of[cx->band[i]] = (uint32_t)i;
         cx->old_group[i] = cx->group[cx->band[i]];
-        has_sink |= cx->is_sink[cx->band[i]];
     }
-    double infinite = has_sink ? pair_capacity(cx, a, b) : 0;
-    for (size_t i = 0; i < nb; i++) tie_band_point(cx, i, a, b, infinite);
+    double infinite = 1;
+    for (size_t i = 0; i < nb; i++) infinite += tie_band_point(cx, i, a, b);
+    for (size_t i = 0; i < nb; i++) {
+        if (!cx->is_sink[cx->band[i]]) continue;
+        if (cx->old_group[i] == a) cx->tie_source[i] += infinite;
+        else cx->tie_sink[i] += infinite;
+    }
     return nb;
 }
 
