@@ -3,14 +3,6 @@
  */
 #include "crease.h"
 
-double ps_crease_angular(const double *x, const double *nx, const double *y, const double *ny,
-                         double eta_convex) {
-    double cosine = nx[0] * ny[0] + nx[1] * ny[1] + nx[2] * ny[2];
-    double opening = (ny[0] - nx[0]) * (y[0] - x[0]) + (ny[1] - nx[1]) * (y[1] - x[1]) +
-                     (ny[2] - nx[2]) * (y[2] - x[2]);
-    return (opening < 0 ? 1.0 : eta_convex) * (1 - cosine);
-}
-
 void ps_crease_weights(ps_graph *g, const double *points, const double *normals) {
     size_t edges = g->offsets[g->n];
     if (edges == 0) return;

@@ -43,8 +43,13 @@ void ps_crease_weights(ps_graph *g, const double *points, const double *normals)
 /* The angular term of one edge: eta * (1 - n_p . n_q), eta 1 when the edge
  * is concave, eta_convex otherwise.  p, q: 3 coordinates; np, nq: their
  * unit normals.  Symmetric in (p, np) and (q, nq). */
-double ps_crease_angular(const double *p, const double *np, const double *q,
-                         const double *nq, double eta_convex);
+static inline double ps_crease_angular(const double *p, const double *np, const double *q,
+                                       const double *nq, double eta_convex) {
+    double cosine = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
+    double opening = (nq[0] - np[0]) * (q[0] - p[0]) + (nq[1] - np[1]) * (q[1] - p[1]) +
+                     (nq[2] - np[2]) * (q[2] - p[2]);
+    return (opening < 0 ? 1.0 : eta_convex) * (1 - cosine);
+}
 
 /* How strongly each point lies on a concave crease: strength[p] is p's
  * largest angular term (eta_convex 0) over its incident edges; mean is the
