@@ -298,7 +298,7 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_SUPERNODES, 0.0, SUPERNODES_BUILT};
     ps_status st = ps_supernodes_build_tracked(&pl->graph, pl->f, pl->component,
                                                pl->n_components, &p->persistence,
-                                               p->use_minima, &span, &pl->sn, err);
+                                               p->use_minima, pl->threads, &span, &pl->sn, err);
     if (st == PS_OK && p->use_f2)
         st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);

@@ -9,6 +9,7 @@
 #include "control.h"
 #include "flow.h"
 #include "merge_tree.h"
+#include "parallel.h"
 #include "persistence.h"
 #include "union_find.h"
 
@@ -16,11 +17,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Shares of the span reached after the ascent flow, the shallow tops'
- * merge and the descent flow. */
-#define UP_DONE 0.35
-#define TOPS_DONE 0.5
-#define DOWN_DONE 0.85
+/* Shares of the span reached after the two flows, the merge tree's parts
+ * and the supernodes' assembly. */
+#define FLOWS_DONE 0.5
+#define PARTS_DONE 0.75
+#define COMBINED 0.9
 
 static void report(const ps_progress_span *span, double share) {
     if (span) ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, share));
@@ -192,48 +193,88 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
     return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
 }
 
+/* The two flows of build_once, one per item of a parallel loop: the
+ * ascent flow with its shallow tops merged (item 0) and, with minima, the
+ * descent flow (item 1).  Each item has its own status and error. */
+typedef struct flows_task {
+    const ps_graph *g;
+    const double *f;
+    const int *component;
+    int n_components;
+    double persistence;
+    int use_minima;
+    ps_flow flow[2];  /* up, down */
+    ps_status status[2];
+    ps_error error[2];
+} flows_task;
+
+static void flow_items(void *context, size_t begin, size_t end, int worker) {
+    (void)worker;
+    flows_task *t = context;
+    for (size_t i = begin; i < end; i++) {
+        ps_error *err = &t->error[i];
+        ps_status st = simplified_flow(t->g, t->f, t->component, t->n_components,
+                                       t->persistence, i == 0 ? +1 : -1, &t->flow[i], err);
+        if (st == PS_OK && i == 0 && t->use_minima && t->persistence > 0)
+            st = merge_shallow_tops(t->g, t->f, &t->flow[0], PS_PERSISTENCE_MIN_BASIN, err);
+        t->status[i] = st;
+    }
+}
+
+/* Both flows, on two threads when there are two; the first failure is
+ * copied to err. */
+static ps_status both_flows(flows_task *t, int threads, ps_error *err) {
+    int count = t->use_minima ? 2 : 1;
+    ps_parallel_for(count > 1 ? ps_parallel_threads(threads) : 1, (size_t)count, 1, flow_items,
+                    t);
+    for (int i = 0; i < count; i++)
+        if (t->status[i] != PS_OK) {
+            if (err) *err = t->error[i];
+            return t->status[i];
+        }
+    return PS_OK;
+}
+
 static ps_status build_once(const ps_graph *g, const double *f, const int *component,
-                            int n_components, double persistence, int use_minima,
+                            int n_components, double persistence, int use_minima, int threads,
                             const ps_progress_span *span, ps_supernodes *out, ps_error *err) {
     memset(out, 0, sizeof *out);
-    ps_flow up = {0}, down = {0};
-    ps_status st = simplified_flow(g, f, component, n_components, persistence, +1, &up, err);
-    report(span, UP_DONE);
-    if (st == PS_OK && use_minima && persistence > 0)
-        st = merge_shallow_tops(g, f, &up, PS_PERSISTENCE_MIN_BASIN, err);
-    report(span, TOPS_DONE);
-    if (st == PS_OK && use_minima)
-        st = simplified_flow(g, f, component, n_components, persistence, -1, &down, err);
-    report(span, DOWN_DONE);
+    flows_task t = {.g = g, .f = f, .component = component, .n_components = n_components,
+                    .persistence = persistence, .use_minima = use_minima};
+    ps_flow *up = &t.flow[0], *down = &t.flow[1];
+    ps_status st = both_flows(&t, threads, err);
+    report(span, FLOWS_DONE);
     int *part_of = st == PS_OK && use_minima ? malloc(g->n * sizeof *part_of) : NULL;
     int n_parts = 0;
     if (st == PS_OK && use_minima)
-        st = part_of ? ps_merge_tree_parts(g, f, component, n_components, persistence, &up,
+        st = part_of ? ps_merge_tree_parts(g, f, component, n_components, persistence, up,
                                            part_of, &n_parts, err)
                      : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    report(span, PARTS_DONE);
     size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;
     if (st == PS_OK)
-        st = combine(g, f, &up, use_minima ? &down : NULL, part_of, n_parts, min_size, out, err);
+        st = combine(g, f, up, use_minima ? down : NULL, part_of, n_parts, min_size, out, err);
+    report(span, COMBINED);
     free(part_of);
-    ps_flow_free(&up);
-    ps_flow_free(&down);
+    ps_flow_free(up);
+    ps_flow_free(down);
     return st;
 }
 
 ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
-                              int n_components, double *persistence, int use_minima,
+                              int n_components, double *persistence, int use_minima, int threads,
                               ps_supernodes *out, ps_error *err) {
     return ps_supernodes_build_tracked(g, f, component, n_components, persistence, use_minima,
-                                       NULL, out, err);
+                                       threads, NULL, out, err);
 }
 
 ps_status ps_supernodes_build_tracked(const ps_graph *g, const double *f, const int *component,
                                       int n_components, double *persistence, int use_minima,
-                                      const ps_progress_span *span, ps_supernodes *out,
-                                      ps_error *err) {
+                                      int threads, const ps_progress_span *span,
+                                      ps_supernodes *out, ps_error *err) {
     for (int first = 1;; first = 0) {
         ps_status st = build_once(g, f, component, n_components, *persistence, use_minima,
-                                  first ? span : NULL, out, err);
+                                  threads, first ? span : NULL, out, err);
         report(span, 1.0);
         if (st != PS_OK || out->m <= PS_MAX_SUPERNODES || *persistence >= 1) return st;
         ps_supernodes_free(out);

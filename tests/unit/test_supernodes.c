@@ -51,8 +51,9 @@ static void test_star_centre_is_a_minimum(void) {
     REQUIRE(nc == 1);
     ps_supernodes plain, with_min;
     double persistence = 0.1;
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 0, &plain, NULL) == PS_OK);
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, &with_min, NULL) ==
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 0, 1, &plain, NULL) ==
+            PS_OK);
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, 1, &with_min, NULL) ==
             PS_OK);
     CHECK(persistence == 0.1);
     CHECK_MSG(plain.m == 6, "%d supernodes without minima", plain.m);
@@ -76,7 +77,7 @@ static void test_star_centre_is_a_minimum(void) {
     star_free(&c);
 }
 
-static void test_tracked_same_and_progress(void) {
+static void test_tracked_two_threads_same_and_progress(void) {
     star_case c;
     int nc = star_setup(&c);
     REQUIRE(nc == 1);
@@ -85,8 +86,9 @@ static void test_tracked_same_and_progress(void) {
     ps_progress_seen seen = {{0}, {0}, {0}, 0};
     ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
     ps_progress_span span = {&ctl, PS_PHASE_SUPERNODES, 0.0, 0.5};
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, &plain, NULL) == PS_OK);
-    REQUIRE(ps_supernodes_build_tracked(&c.g, c.f, c.comp, nc, &again, 1, &span, &tracked,
+    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, 1, &plain, NULL) ==
+            PS_OK);
+    REQUIRE(ps_supernodes_build_tracked(&c.g, c.f, c.comp, nc, &again, 1, 2, &span, &tracked,
                                         NULL) == PS_OK);
     REQUIRE(tracked.m == plain.m);
     CHECK(memcmp(tracked.supernode_of, plain.supernode_of, c.n * sizeof(int)) == 0);
@@ -157,13 +159,13 @@ static void test_supernode_cap(void) {
     ps_graph g = {N, off, nbr, w};
     ps_supernodes sn;
     double persistence = 0;
-    REQUIRE(ps_supernodes_build(&g, f, comp, 1, &persistence, 0, &sn, NULL) == PS_OK);
+    REQUIRE(ps_supernodes_build(&g, f, comp, 1, &persistence, 0, 1, &sn, NULL) == PS_OK);
     CHECK_MSG(sn.m <= PS_MAX_SUPERNODES, "%d supernodes", sn.m);
     CHECK(persistence > 0.5);
     ps_supernodes_free(&sn);
     free(off), free(nbr), free(w), free(f), free(comp);
 }
 
-PS_TEST_MAIN(TEST(test_star_centre_is_a_minimum), TEST(test_tracked_same_and_progress),
+PS_TEST_MAIN(TEST(test_star_centre_is_a_minimum), TEST(test_tracked_two_threads_same_and_progress),
              TEST(test_f2_splits_two_ends),
              TEST(test_supernode_cap))
