@@ -1,45 +1,125 @@
 /*
- * crease.c: the concavity-aware edge lengths of crease.h.
+ * crease.c: the concavity-aware edge lengths and crease strengths of
+ * crease.h, on all cores.  The sums behind their means are taken per block
+ * of CREASE_BLOCK points and added in block order, so the result does not
+ * depend on the thread count.
  */
 #include "crease.h"
 
-void ps_crease_weights(ps_graph *g, const double *points, const double *normals) {
-    size_t edges = g->offsets[g->n];
-    if (edges == 0) return;
-    const double delta = PS_CREASE_DELTA, eta = PS_CREASE_ETA_CONVEX;
-    double sum_len = 0, sum_ang = 0;
-    for (size_t p = 0; p < g->n; p++)
+#include "parallel.h"
+
+#include <stdlib.h>
+
+#define CREASE_BLOCK 4096
+
+/* One pass over blocks of points: sums[2 b], sums[2 b + 1] are block b's
+ * two sums (what they are depends on the pass). */
+typedef struct crease_pass {
+    const ps_graph *g;
+    double *weights;          /* the weights pass: g's weights, rewritten */
+    const double *points, *normals;
+    double L, A;              /* the weights pass: the metric's means */
+    ps_crease_points *cp;     /* the strengths pass */
+    double *sums;             /* #blocks by 2 */
+} crease_pass;
+
+static size_t block_count(size_t n) {
+    return (n + CREASE_BLOCK - 1) / CREASE_BLOCK;
+}
+
+static double arc_angular(const crease_pass *c, size_t p, size_t e, double eta) {
+    size_t q = c->g->neighbors[e];
+    return ps_crease_angular(c->points + 3 * p, c->normals + 3 * p, c->points + 3 * q,
+                             c->normals + 3 * q, eta);
+}
+
+/* Each block's sum of edge lengths and of angular terms; a ps_range_fn
+ * over blocks. */
+static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    crease_pass *c = ctx;
+    const ps_graph *g = c->g;
+    for (size_t b = begin; b < end; b++) {
+        double len = 0, ang = 0;
+        size_t last = (b + 1) * CREASE_BLOCK < g->n ? (b + 1) * CREASE_BLOCK : g->n;
+        for (size_t p = b * CREASE_BLOCK; p < last; p++)
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+                len += g->weights[e];
+                ang += arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
+            }
+        c->sums[2 * b] = len, c->sums[2 * b + 1] = ang;
+    }
+}
+
+/* The metric's weights of the arcs out of points [begin, end). */
+static void weigh_points(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    crease_pass *c = ctx;
+    const ps_graph *g = c->g;
+    double *w = c->weights;
+    const double delta = PS_CREASE_DELTA;
+    for (size_t p = begin; p < end; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            size_t q = g->neighbors[e];
-            sum_len += g->weights[e];
-            sum_ang += ps_crease_angular(points + 3 * p, normals + 3 * p, points + 3 * q,
-                                         normals + 3 * q, eta);
-        }
-    double L = sum_len / (double)edges, A = sum_ang / (double)edges;
-    if (A < PS_CREASE_FLAT) return;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            size_t q = g->neighbors[e];
-            double ang = ps_crease_angular(points + 3 * p, normals + 3 * p, points + 3 * q,
-                                           normals + 3 * q, eta);
-            g->weights[e] = delta * g->weights[e] + (1 - delta) * L * ang / A;
-            if (!(g->weights[e] > 0)) g->weights[e] = 1e-12 * L;
+            double ang = arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
+            w[e] = delta * w[e] + (1 - delta) * c->L * ang / c->A;
+            if (!(w[e] > 0)) w[e] = 1e-12 * c->L;
         }
 }
 
-void ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
-                         ps_crease_points *cp) {
-    double sum = 0;
-    for (size_t p = 0; p < g->n; p++) {
-        double most = 0;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            size_t q = g->neighbors[e];
-            double ang = ps_crease_angular(points + 3 * p, normals + 3 * p, points + 3 * q,
-                                           normals + 3 * q, 0.0);
-            sum += ang;
-            if (ang > most) most = ang;
+/* Each point's strength, and each block's sum of angular terms (eta 0). */
+static void strength_blocks(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    crease_pass *c = ctx;
+    const ps_graph *g = c->g;
+    for (size_t b = begin; b < end; b++) {
+        double sum = 0;
+        size_t last = (b + 1) * CREASE_BLOCK < g->n ? (b + 1) * CREASE_BLOCK : g->n;
+        for (size_t p = b * CREASE_BLOCK; p < last; p++) {
+            double most = 0;
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+                double ang = arc_angular(c, p, e, 0.0);
+                sum += ang;
+                if (ang > most) most = ang;
+            }
+            c->cp->strength[p] = most;
         }
-        cp->strength[p] = most;
+        c->sums[2 * b] = sum, c->sums[2 * b + 1] = 0;
     }
-    cp->mean = g->offsets[g->n] ? sum / (double)g->offsets[g->n] : 0;
+}
+
+/* Runs fn over the blocks of g's points; out[0], out[1]: the two sums over
+ * all blocks, in block order.  -1 when out of memory. */
+static int over_blocks(crease_pass *c, int threads, ps_range_fn fn, double out[2]) {
+    size_t blocks = block_count(c->g->n);
+    c->sums = malloc(2 * (blocks ? blocks : 1) * sizeof *c->sums);
+    if (!c->sums) return -1;
+    ps_parallel_for(ps_parallel_threads(threads), blocks, 1, fn, c);
+    out[0] = out[1] = 0;
+    for (size_t b = 0; b < blocks; b++) out[0] += c->sums[2 * b], out[1] += c->sums[2 * b + 1];
+    free(c->sums);
+    return 0;
+}
+
+ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
+                            int threads, ps_error *err) {
+    size_t edges = g->offsets[g->n];
+    if (edges == 0) return PS_OK;
+    crease_pass c = {.g = g, .weights = g->weights, .points = points, .normals = normals};
+    double sums[2];
+    if (over_blocks(&c, threads, sum_blocks, sums) != 0)
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease metric)");
+    c.L = sums[0] / (double)edges, c.A = sums[1] / (double)edges;
+    if (c.A < PS_CREASE_FLAT) return PS_OK;
+    ps_parallel_for(ps_parallel_threads(threads), g->n, 0, weigh_points, &c);
+    return PS_OK;
+}
+
+ps_status ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
+                              int threads, ps_crease_points *cp, ps_error *err) {
+    crease_pass c = {.g = g, .points = points, .normals = normals, .cp = cp};
+    double sums[2];
+    if (over_blocks(&c, threads, strength_blocks, sums) != 0)
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease strengths)");
+    cp->mean = g->offsets[g->n] ? sums[0] / (double)g->offsets[g->n] : 0;
+    return PS_OK;
 }

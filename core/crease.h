@@ -37,8 +37,10 @@
 
 #include "knn_graph.h"
 
-/* points #P by 3, normals #P by 3 (outward, unit).  Rewrites g->weights. */
-void ps_crease_weights(ps_graph *g, const double *points, const double *normals);
+/* points #P by 3, normals #P by 3 (outward, unit).  Rewrites g->weights,
+ * on threads (ps_parallel_threads) threads; the same for any count. */
+ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
+                            int threads, ps_error *err);
 
 /* The angular term of one edge: eta * (1 - n_p . n_q), eta 1 when the edge
  * is concave, eta_convex otherwise.  p, q: 3 coordinates; np, nq: their
@@ -60,8 +62,9 @@ typedef struct ps_crease_points {
     double mean;
 } ps_crease_points;
 
-/* cp->strength: #P, allocated by the caller; both fields are written. */
-void ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
-                         ps_crease_points *cp);
+/* cp->strength: #P, allocated by the caller; both fields are written, on
+ * threads threads; the same for any count. */
+ps_status ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
+                              int threads, ps_crease_points *cp, ps_error *err);
 
 #endif

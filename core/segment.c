@@ -187,10 +187,12 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
     if (st == PS_OK)
         st = ps_normals_smooth(&pl->graph, pl->normals, ps_density_iterations(u), pl->threads, err);
     if (st == PS_OK) st = crease_scale(pl, err);
+    if (st == PS_OK)
+        st = ps_crease_strengths(&pl->graph, pl->points, pl->crease_normals, pl->threads,
+                                 &pl->creases, err);
     if (st == PS_OK) {
-        ps_crease_strengths(&pl->graph, pl->points, pl->crease_normals, &pl->creases);
         ps_control_progress(pl->ctl, PS_PHASE_KNN, KNN_STRENGTHS_DONE);
-        ps_crease_weights(&pl->graph, pl->points, pl->normals);
+        st = ps_crease_weights(&pl->graph, pl->points, pl->normals, pl->threads, err);
     }
     free(given);
     return st;

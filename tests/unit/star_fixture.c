@@ -15,8 +15,12 @@ double ps_star_along_arm(const double *x, int k) {
 }
 
 int ps_star_build(ps_star *s) {
+    return ps_star_build_dense(s, 0);
+}
+
+int ps_star_build_dense(ps_star *s, double density) {
     memset(s, 0, sizeof *s);
-    s->points = ps_shape_star(0, &s->n, &s->part);
+    s->points = ps_shape_star(density, &s->n, &s->part);
     s->normals = s->points ? malloc(s->n * 3 * sizeof *s->normals) : NULL;
     int *component = s->normals ? malloc(s->n * sizeof *component) : NULL;
     ps_error err = {0};

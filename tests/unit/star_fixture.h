@@ -22,6 +22,8 @@ typedef struct ps_star {
 
 /* 1 on success; ps_star_free in any case. */
 int ps_star_build(ps_star *s);
+/* The same at density (ps_shape_star's; 0 is ps_star_build's). */
+int ps_star_build_dense(ps_star *s, double density);
 void ps_star_free(ps_star *s);
 
 /* Coordinate of x along the axis of arm k (1..6). */

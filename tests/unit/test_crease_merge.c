@@ -42,11 +42,12 @@ static ps_status run_merge(const ps_star *s, const double *f, int *group, int *l
                            ps_merge **merges, int *n_merges) {
     ps_crease_points creases = {malloc(s->n * sizeof(double)), 0};
     if (!creases.strength) return PS_ERR_NOMEM;
-    ps_crease_strengths(&s->graph, s->points, s->normals, &creases);
+    ps_status st = ps_crease_strengths(&s->graph, s->points, s->normals, 1, &creases, NULL);
+    free(creases.strength);
+    if (st != PS_OK) return st;
     ps_crease_merge_input in = {.graph = &s->graph, .points = s->points,
                                 .normals = s->normals, .f = f, .mean_angular = creases.mean,
                                 .n_groups = N_PIECES, .threshold = PS_CREASE_MERGE_FRACTION};
-    free(creases.strength);
     for (int t = 0; t < N_PIECES; t++) leaf[t] = t;
     *merges = NULL, *n_merges = 0;
     ps_error err = {0};

@@ -39,8 +39,8 @@ static ps_status split(const ps_graph *g, const double *points, const double *no
     ps_error err = {0};
     ps_crease_points creases = {malloc(g->n * sizeof(double)), 0};
     if (!creases.strength) return PS_ERR_NOMEM;
-    ps_crease_strengths(g, points, normals, &creases);
-    ps_status st = ps_supernodes_split_creases(g, &creases, f, sn, &err);
+    ps_status st = ps_crease_strengths(g, points, normals, 1, &creases, &err);
+    if (st == PS_OK) st = ps_supernodes_split_creases(g, &creases, f, sn, &err);
     free(creases.strength);
     return st;
 }
@@ -138,7 +138,7 @@ static void test_noise_does_not_shatter(void) {
     double *f = NULL;
     ps_crease_points creases = {malloc(s.n * sizeof(double)), 0};
     REQUIRE(creases.strength && whole_supernode(s.n, s.points, &sn, &f));
-    ps_crease_strengths(&s.graph, s.points, s.normals, &creases);
+    REQUIRE(ps_crease_strengths(&s.graph, s.points, s.normals, 1, &creases, NULL) == PS_OK);
     size_t raised = 0;
     for (size_t p = 0; p < s.n; p++) {
         if (creases.strength[p] >= creases.mean || p % 4 == 0) continue;
