@@ -17,6 +17,12 @@ int ps_admit_cut_query(const char *uri) {
     return 1;
 }
 
+int ps_admit_path_has_nul(const char *uri) {
+    for (const char *p = uri; *p && *p != '?'; p++)
+        if (p[0] == '%' && p[1] == '0' && p[2] == '0') return 1;
+    return 0;
+}
+
 typedef struct header_count {
     const char *name;
     const char *first;
@@ -50,6 +56,8 @@ int ps_admit_check(ps_request *r) {
     const char *te = header(r, MHD_HTTP_HEADER_TRANSFER_ENCODING);
     if (r->path_too_long)
         return ps_respond_problem(r, 414, NULL, "the URL path is longer than %zu bytes", sizeof r->path - 1);
+    if (r->path_has_nul)
+        return ps_respond_problem(r, 400, NULL, "the URL path holds an encoded NUL byte (%%00)");
     if (r->query_cut)
         return ps_respond_problem(r, 400, NULL, "more than %d query parameters", PS_MAX_QUERY_PARAMS);
     if (r->http11 && !header(r, MHD_HTTP_HEADER_HOST))

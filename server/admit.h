@@ -1,6 +1,7 @@
 /*
  * admit.h: the checks a request's head must pass before any route sees it:
- * a path that fits, at most PS_MAX_QUERY_PARAMS query parameters, a Host
+ * a path that fits and holds no encoded NUL, at most PS_MAX_QUERY_PARAMS
+ * query parameters, a Host
  * header on HTTP/1.1 (RFC 9112), one Content-Length, no transfer coding
  * but chunked, and only health routes over the connection limit.  Each
  * refusal is answered at once with problem+json, and the connection closes.
@@ -17,6 +18,11 @@
  * request line (libmicrohttpd 0.9.75 runs out of connection memory on a
  * few hundred and then sends nothing at all). */
 int ps_admit_cut_query(const char *uri);
+
+/* 1 when the path of uri (before any '?') holds an encoded NUL byte
+ * (%00): libmicrohttpd decodes it and the path would end there, so that
+ * "/healthz%00x" would be served as "/healthz". */
+int ps_admit_path_has_nul(const char *uri);
 
 /* MHD_YES/MHD_NO after answering a refused request; -1 when admitted. */
 int ps_admit_check(ps_request *r);

@@ -51,6 +51,7 @@ struct ps_request {
     char method[16];
     char path[256];
     int path_too_long;        /* the URL path did not fit in path */
+    int path_has_nul;         /* the URL path held %00 (ps_admit_path_has_nul) */
     int query_cut;            /* the query string had too many parameters */
     int http11;               /* HTTP/1.1 (may get a 102 probe) */
     int seen;                 /* the request head was handled */

@@ -431,6 +431,27 @@ static void test_strict_parameters_and_headers(void) {
     CHECK_STOPS(d, 10);
 }
 
+/* An encoded NUL in the path would end it where libmicrohttpd decodes it:
+ * "/healthz%00x" must not be served as "/healthz", nor "/%00x" as the
+ * viewer at "/".  A %00 in the query is the parameters' business (above). */
+static void test_nul_in_path_refused(void) {
+    ps_daemon d;
+    reply x;
+    REQUIRE_STARTS(d, NULL);
+    const char *const paths[] = {"/healthz%00x", "/%00segment", "/jobs%00/abc"};
+    char request[128];
+    for (size_t i = 0; i < sizeof paths / sizeof paths[0]; i++) {
+        int len = snprintf(request, sizeof request, "GET %s HTTP/1.1\r\nHost: x\r\n\r\n", paths[i]);
+        CHECK_MSG(exchange(&d, request, (size_t)len, 2, &x) == 0 && first_status(&x) == 400 &&
+                      strstr(x.text, "NUL") && strstr(x.text, "application/problem+json"),
+                  "%s: %.60s", paths[i], x.text);
+    }
+    static const char in_query[] = "GET /healthz?x=%00 HTTP/1.1\r\nHost: x\r\n\r\n";
+    CHECK(exchange(&d, in_query, sizeof in_query - 1, 2, &x) == 0 && first_status(&x) == 200);
+    CHECK(ps_daemon_healthy(&d));
+    CHECK_STOPS(d, 10);
+}
+
 /* ---- 7: problem+json is valid JSON --------------------------------------- */
 
 static void test_problem_detail_valid_utf8(void) {
@@ -532,6 +553,7 @@ int main(int argc, char **argv) {
         TEST(test_truncated_body_closed_promptly),
         TEST(test_static_files_stay_inside), TEST(test_gzip_members_all_read), TEST(test_bom_keeps_first_point),
         TEST(test_two_file_parts_refused), TEST(test_strict_parameters_and_headers),
+        TEST(test_nul_in_path_refused),
         TEST(test_problem_detail_valid_utf8), TEST(test_keep_alive_after_gets_and_errors),
         TEST(test_half_closed_client_answered)};
     if (ps_client_global_init()) return 1;
