@@ -25,8 +25,12 @@ double ps_noise_median(const ps_noise_estimate *e) {
     return 0;
 }
 
+int ps_noise_clean(double noise) {
+    return !(noise > PS_NOISE_FLOOR);
+}
+
 int ps_noise_iterations(double noise) {
-    if (!(noise > PS_NOISE_FLOOR)) return 0;
+    if (ps_noise_clean(noise)) return 0;
     long t = lround((noise - PS_NOISE_FLOOR) / PS_NOISE_STEP);
     return t > PS_SMOOTH_MAX ? PS_SMOOTH_MAX : (int)t;
 }

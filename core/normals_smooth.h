@@ -59,7 +59,11 @@ void ps_noise_add(ps_noise_estimate *e, double ratio);
 /* The median ratio (the middle of its bin); 0 when nothing was added. */
 double ps_noise_median(const ps_noise_estimate *e);
 
-/* Smoothing iterations for a median ratio: 0 up to PS_NOISE_FLOOR. */
+/* Whether a median ratio is clean: at most PS_NOISE_FLOOR (or not a
+ * number), so the scan needs no smoothing. */
+int ps_noise_clean(double noise);
+
+/* Smoothing iterations for a median ratio: 0 when clean. */
 int ps_noise_iterations(double noise);
 
 /* Smoothing iterations that bring the normals of n points to the scale of

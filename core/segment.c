@@ -152,7 +152,7 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
  * close loops, and they are the normals themselves. */
 static ps_status crease_scale(pipeline *pl, ps_error *err) {
     pl->crease_normals = pl->normals;
-    if (pl->normals_report.noise > PS_NOISE_FLOOR) return PS_OK;
+    if (!ps_noise_clean(pl->normals_report.noise)) return PS_OK;
     size_t u = pl->graph.n;
     pl->crease_normals = malloc(u * 3 * sizeof *pl->crease_normals);
     if (!pl->crease_normals) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");

@@ -28,6 +28,8 @@ static void test_iterations(void) {
     CHECK(ps_noise_iterations(PS_NOISE_FLOOR + 2 * PS_NOISE_STEP) == 2);
     CHECK(ps_noise_iterations(PS_NOISE_FLOOR + 3.4 * PS_NOISE_STEP) == 3);
     CHECK(ps_noise_iterations(1.0) == PS_SMOOTH_MAX);
+    CHECK(ps_noise_clean(0) && ps_noise_clean(PS_NOISE_FLOOR) && ps_noise_clean(NAN));
+    CHECK(!ps_noise_clean(PS_NOISE_FLOOR + PS_NOISE_STEP) && !ps_noise_clean(1.0));
 }
 
 /* A path 0 - 1 - 2 whose middle normal is tilted: one iteration pulls it
