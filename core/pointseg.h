@@ -240,6 +240,14 @@ size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params);
  * Labels are arbitrary non-negative ints.  O(n + distinct pairs) time. */
 double ps_rand_index_error(const int *a, const int *b, size_t n);
 
+/* The same error split in two: *a_only (may be NULL) the share of the
+ * item pairs that a puts together and b apart, *b_only the reverse; the
+ * error is their sum.  With a a segmentation and b a human's, a_only is
+ * under-segmentation (joined what people split), b_only over-segmentation.
+ * NAN (and NAN shares) when out of memory. */
+double ps_rand_index_parts(const int *a, const int *b, size_t n, double *a_only,
+                           double *b_only);
+
 /* Face labels from vertex labels: the majority label of the 3 vertices, or
  * the first vertex's when all differ.  faces is #F by 3. */
 void ps_face_labels_from_vertices(const int *vertex_labels,

@@ -8,7 +8,8 @@
  * The counts come from sorting: the pair (a, b) packed into one 64-bit key
  * sorts by row then column, so runs of equal keys are the n_ij and runs of
  * equal high halves are the a_i; a sorted copy of b gives the b_j.  Label
- * values are never used as indices, so any int is fine.
+ * values are never used as indices, so any int is fine.  The pairs joined
+ * in a alone are sum_i C(a_i,2) - sum_ij C(n_ij,2), in b alone likewise.
  */
 #include "pointseg.h"
 
@@ -39,10 +40,17 @@ static uint64_t pairs_in_runs(const uint64_t *keys, size_t n, int shift) {
     return total;
 }
 
-double ps_rand_index_error(const int *a, const int *b, size_t n) {
+double ps_rand_index_parts(const int *a, const int *b, size_t n, double *a_only,
+                           double *b_only) {
+    if (a_only) *a_only = 0;
+    if (b_only) *b_only = 0;
     if (n < 2) return 0.0;
     uint64_t *keys = malloc(n * sizeof *keys);
-    if (!keys) return NAN;
+    if (!keys) {
+        if (a_only) *a_only = NAN;
+        if (b_only) *b_only = NAN;
+        return NAN;
+    }
 
     for (size_t i = 0; i < n; i++) keys[i] = pack_pair(a[i], b[i]);
     qsort(keys, n, sizeof *keys, compare_u64);
@@ -54,8 +62,14 @@ double ps_rand_index_error(const int *a, const int *b, size_t n) {
     uint64_t same_b = pairs_in_runs(keys, n, 0);
     free(keys);
 
-    uint64_t disagreements = same_a + same_b - 2 * same_both;
-    return (double)disagreements / (double)pairs_of(n);
+    double pairs = (double)pairs_of(n);
+    if (a_only) *a_only = (double)(same_a - same_both) / pairs;
+    if (b_only) *b_only = (double)(same_b - same_both) / pairs;
+    return (double)(same_a + same_b - 2 * same_both) / pairs;
+}
+
+double ps_rand_index_error(const int *a, const int *b, size_t n) {
+    return ps_rand_index_parts(a, b, n, NULL, NULL);
 }
 
 static int majority_of_three(int first, int second, int third) {

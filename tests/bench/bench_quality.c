@@ -5,7 +5,9 @@
  * vertices; `surface:N`: the vertices, then points sampled uniformly by
  * area until N in all, only the vertices scored), turns vertex labels into
  * face labels by majority and prints the Rand Index error against the
- * model's human segmentations.  Models run in parallel, one per core.
+ * model's human segmentations, and its two parts: over-segmentation (face
+ * pairs a human joins and the method splits) and under-segmentation (the
+ * reverse).  Models run in parallel, one per core.
  *
  * The split that keeps tuning honest: ids with (ID-1) % 20 in {15..18} are
  * validation models.  Their figures are printed only as a mean per mode and
@@ -71,6 +73,8 @@ typedef struct model_row {
     double human_segments;
     int segments[MAX_RUNS];
     double error[MAX_RUNS];
+    double under[MAX_RUNS];    /* the error's parts (ps_psb_score_parts) */
+    double over[MAX_RUNS];
     double ms[MAX_RUNS];
     double moved_ri;           /* --stability: RI between the copy and the original */
     int moved_segments;
@@ -364,7 +368,9 @@ static int score_runs(const quality_options *o, const input_mode *mode, const ps
             rc = write_labels(o->out_dir, mode->name, row->id, labels, mesh->n);
         if (rc == 0 && o->stability && run == 0 && !row->validation && !o->baseline_none)
             rc = check_moved(in, &params, labels, mesh->n, row);
-        if (rc == 0) row->error[run] = ps_psb_score(mesh, labels, humans);
+        if (rc == 0)
+            row->error[run] =
+                ps_psb_score_parts(mesh, labels, humans, &row->under[run], &row->over[run]);
         free(labels);
         if (rc != 0) return -1;
     }
@@ -500,27 +506,31 @@ static void print_model_rows(const quality_options *o, const model_row *rows, si
 
 /* The category table over the development models. */
 static void print_categories(const quality_options *o, const model_row *rows, size_t n) {
-    double sum[MAX_RUNS][N_CATEGORIES] = {{0}};
+    double sum[MAX_RUNS][N_CATEGORIES] = {{0}}, over[MAX_RUNS][N_CATEGORIES] = {{0}};
     int count[N_CATEGORIES] = {0};
     for (size_t i = 0; i < n; i++) {
         int k = category_index(rows[i].id);
         if (rows[i].validation || rows[i].failed || k < 0) continue;
-        for (int run = 0; run < o->runs; run++) sum[run][k] += rows[i].error[run];
+        for (int run = 0; run < o->runs; run++)
+            sum[run][k] += rows[i].error[run], over[run][k] += rows[i].over[run];
         count[k]++;
     }
     printf("\n%-10s %6s", "category", "models");
-    for (int run = 0; run < o->runs; run++) printf(" %7s", run_name(o, run));
+    for (int run = 0; run < o->runs; run++) printf(" %7s %7s %7s", run_name(o, run), "over", "under");
     printf("   (development models)\n");
     for (int k = 0; k < N_CATEGORIES; k++) {
         if (!count[k]) continue;
         printf("%-10s %6d", ps_psb_category(20 * k + 1), count[k]);
-        for (int run = 0; run < o->runs; run++) printf(" %7.4f", sum[run][k] / count[k]);
+        for (int run = 0; run < o->runs; run++)
+            printf(" %7.4f %7.4f %7.4f", sum[run][k] / count[k], over[run][k] / count[k],
+                   (sum[run][k] - over[run][k]) / count[k]);
         printf("\n");
     }
 }
 
 typedef struct split_means {
     double mean[2][MAX_RUNS]; /* [validation][run] */
+    double over[2][MAX_RUNS]; /* its part from over-segmentation; the rest is under */
     int models[2];
     int failed;
 } split_means;
@@ -531,12 +541,15 @@ static split_means split_summary(const quality_options *o, const model_row *rows
     for (size_t i = 0; i < n; i++) {
         if (rows[i].failed) { s.failed++; continue; }
         int v = rows[i].validation;
-        for (int run = 0; run < o->runs; run++) s.mean[v][run] += rows[i].error[run];
+        for (int run = 0; run < o->runs; run++)
+            s.mean[v][run] += rows[i].error[run], s.over[v][run] += rows[i].over[run];
         s.models[v]++;
     }
     for (int v = 0; v < 2; v++)
-        for (int run = 0; run < o->runs; run++)
+        for (int run = 0; run < o->runs; run++) {
             s.mean[v][run] = s.models[v] ? s.mean[v][run] / s.models[v] : NAN;
+            s.over[v][run] = s.models[v] ? s.over[v][run] / s.models[v] : NAN;
+        }
     return s;
 }
 
@@ -574,6 +587,16 @@ static void print_totals(const quality_options *o, const input_mode *modes, cons
                    run_name(o, run), s[m].mean[0][run], nd, s[m].mean[1][run], nv, all, nd + nv);
         }
     printf("references (1-RI): people 0.101, PCL CPC 0.124 (unseen PSB models, scan-like input)\n");
+    printf("\n== 1-RI = over + under: pairs of faces split where people join them, and joined "
+           "where people split them ==\n");
+    printf("%-16s %-6s %-17s %-17s\n", "input", "method", "development", "validation");
+    for (int m = 0; m < n_modes; m++)
+        for (int run = 0; run < o->runs; run++) {
+            const double *mean = s[m].mean[0], *over = s[m].over[0];
+            const double *vmean = s[m].mean[1], *vover = s[m].over[1];
+            printf("%-16s %-6s %.4f + %.4f   %.4f + %.4f\n", modes[m].name, run_name(o, run), over[run],
+                   mean[run] - over[run], vover[run], vmean[run] - vover[run]);
+        }
 }
 
 /* The folders to read: the given ones, else psb-dev and psb-train. */

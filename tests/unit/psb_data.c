@@ -174,17 +174,28 @@ double ps_psb_mean_segments(const ps_psb_humans *h) {
     return total / h->n_humans;
 }
 
-double ps_psb_score(const ps_pointset *mesh, const int *vertex_labels,
-                    const ps_psb_humans *h) {
+double ps_psb_score_parts(const ps_pointset *mesh, const int *vertex_labels,
+                          const ps_psb_humans *h, double *under, double *over) {
+    *under = *over = NAN;
     int *faces = malloc((mesh->n_faces ? mesh->n_faces : 1) * sizeof *faces);
     if (!faces || h->n_humans == 0 || h->n_faces != mesh->n_faces) {
         free(faces);
         return NAN;
     }
     ps_face_labels_from_vertices(vertex_labels, mesh->faces, mesh->n_faces, faces);
-    double total = 0;
-    for (int k = 0; k < h->n_humans; k++)
-        total += ps_rand_index_error(faces, h->labels[k], mesh->n_faces);
+    double total = 0, joined = 0, split = 0;
+    for (int k = 0; k < h->n_humans; k++) {
+        double a_only, b_only;
+        total += ps_rand_index_parts(faces, h->labels[k], mesh->n_faces, &a_only, &b_only);
+        joined += a_only, split += b_only;
+    }
     free(faces);
+    *under = joined / h->n_humans, *over = split / h->n_humans;
     return total / h->n_humans;
+}
+
+double ps_psb_score(const ps_pointset *mesh, const int *vertex_labels,
+                    const ps_psb_humans *h) {
+    double under, over;
+    return ps_psb_score_parts(mesh, vertex_labels, h, &under, &over);
 }

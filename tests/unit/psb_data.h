@@ -48,6 +48,12 @@ double ps_psb_mean_segments(const ps_psb_humans *h);
 double ps_psb_score(const ps_pointset *mesh, const int *vertex_labels,
                     const ps_psb_humans *h);
 
+/* The same, and the means over humans of its two parts
+ * (ps_rand_index_parts): *under, pairs the labels join and a human splits;
+ * *over, the reverse. */
+double ps_psb_score_parts(const ps_pointset *mesh, const int *vertex_labels,
+                          const ps_psb_humans *h, double *under, double *over);
+
 /* Reads a text file of whitespace-separated integers ("-" = stdin) into a
  * malloc'ed #count array.  0, or -1 with a message naming the file and line
  * in msg (size cap). */

@@ -79,6 +79,36 @@ static void test_matches_brute_force(void) {
     }
 }
 
+/* The two parts by hand ({0,0,0,1,1} vs {5,5,6,6,6}: 2 pairs together in
+ * a alone, 2 in b alone, of 10) and against a brute-force count; with
+ * one label for all, every disagreement is a's. */
+static void test_parts(void) {
+    const int a[] = {0, 0, 0, 1, 1}, b[] = {5, 5, 6, 6, 6}, one[] = {7, 7, 7, 7, 7};
+    double a_only, b_only;
+    CHECK_NEAR(ps_rand_index_parts(a, b, 5, &a_only, &b_only), 0.4, 1e-15);
+    CHECK_NEAR(a_only, 0.2, 1e-15);
+    CHECK_NEAR(b_only, 0.2, 1e-15);
+    CHECK_NEAR(ps_rand_index_parts(one, b, 5, &a_only, &b_only), 0.6, 1e-15);
+    CHECK(b_only == 0.0 && a_only == ps_rand_index_error(one, b, 5));
+    enum { N = 300 };
+    static int x[N], y[N];
+    uint32_t seed = 777;
+    for (int i = 0; i < N; i++) {
+        x[i] = (int)(xorshift32(&seed) % 4);
+        y[i] = (int)(xorshift32(&seed) % 9);
+    }
+    size_t x_only = 0, y_only = 0;
+    for (size_t i = 0; i < N; i++)
+        for (size_t j = i + 1; j < N; j++) {
+            x_only += x[i] == x[j] && y[i] != y[j];
+            y_only += y[i] == y[j] && x[i] != x[j];
+        }
+    double pairs = N * (N - 1) / 2.0;
+    ps_rand_index_parts(x, y, N, &a_only, &b_only);
+    CHECK_NEAR(a_only, (double)x_only / pairs, 1e-12);
+    CHECK_NEAR(b_only, (double)y_only / pairs, 1e-12);
+}
+
 static void test_face_majority(void) {
     const int vl[] = {5, 5, 9, 1, 2, 3, 4};
     const uint32_t faces[] = {0, 1, 2, /* 5 5 9 -> 5 */
@@ -133,5 +163,5 @@ static void test_psb_none_reference(void) {
 PS_TEST_MAIN(TEST(test_identical_is_zero), TEST(test_relabelled_is_zero),
              TEST(test_one_vs_all_separate_is_one), TEST(test_four_items_by_hand),
              TEST(test_five_items_by_hand), TEST(test_fewer_than_two_items),
-             TEST(test_matches_brute_force), TEST(test_face_majority),
+             TEST(test_matches_brute_force), TEST(test_parts), TEST(test_face_majority),
              TEST(test_psb_none_reference))
