@@ -27,6 +27,11 @@ static size_t block_count(size_t n) {
     return (n + CREASE_BLOCK - 1) / CREASE_BLOCK;
 }
 
+/* One past the last point of block b of n points. */
+static size_t block_end(size_t n, size_t b) {
+    return (b + 1) * CREASE_BLOCK < n ? (b + 1) * CREASE_BLOCK : n;
+}
+
 static double arc_angular(const crease_pass *c, size_t p, size_t e, double eta) {
     size_t q = c->g->neighbors[e];
     return ps_crease_angular(c->points + 3 * p, c->normals + 3 * p, c->points + 3 * q,
@@ -41,8 +46,7 @@ static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
     const ps_graph *g = c->g;
     for (size_t b = begin; b < end; b++) {
         double len = 0, ang = 0;
-        size_t last = (b + 1) * CREASE_BLOCK < g->n ? (b + 1) * CREASE_BLOCK : g->n;
-        for (size_t p = b * CREASE_BLOCK; p < last; p++)
+        for (size_t p = b * CREASE_BLOCK, end_p = block_end(g->n, b); p < end_p; p++)
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
                 len += g->weights[e];
                 ang += arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
@@ -73,8 +77,7 @@ static void strength_blocks(void *ctx, size_t begin, size_t end, int worker) {
     const ps_graph *g = c->g;
     for (size_t b = begin; b < end; b++) {
         double sum = 0;
-        size_t last = (b + 1) * CREASE_BLOCK < g->n ? (b + 1) * CREASE_BLOCK : g->n;
-        for (size_t p = b * CREASE_BLOCK; p < last; p++) {
+        for (size_t p = b * CREASE_BLOCK, end_p = block_end(g->n, b); p < end_p; p++) {
             double most = 0;
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
                 double ang = arc_angular(c, p, e, 0.0);

@@ -221,12 +221,11 @@ static void flow_items(void *context, size_t begin, size_t end, int worker) {
     }
 }
 
-/* Both flows, on two threads when there are two; the first failure is
+/* Both flows, side by side (one alone runs inline); the first failure is
  * copied to err. */
 static ps_status both_flows(flows_task *t, int threads, ps_error *err) {
     int count = t->use_minima ? 2 : 1;
-    ps_parallel_for(count > 1 ? ps_parallel_threads(threads) : 1, (size_t)count, 1, flow_items,
-                    t);
+    ps_parallel_for(ps_parallel_threads(threads), (size_t)count, 1, flow_items, t);
     for (int i = 0; i < count; i++)
         if (t->status[i] != PS_OK) {
             if (err) *err = t->error[i];
