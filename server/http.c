@@ -57,7 +57,10 @@ static ps_request *request_new(ps_server *s, struct MHD_Connection *conn) {
  * splits the query string. */
 static void *on_uri(void *cls, const char *uri, struct MHD_Connection *conn) {
     ps_request *r = request_new(cls, conn);
-    if (r) r->path_has_nul = ps_admit_path_has_nul(uri), r->query_cut = ps_admit_cut_query(uri);
+    if (r) {
+        r->path_has_nul = ps_admit_path_has_nul(uri);
+        r->query_cut = ps_admit_cut_query(uri);
+    }
     return r;
 }
 
