@@ -16,9 +16,14 @@
  *     between the points as it goes, no copy of the graph), kept to A and
  *     B and to the distance beyond which the band's width is capped,
  *     measures the distance from the boundary, its points the sources;
- *   - a segment's extent is that cap when the ball missed some of its points
- *     (per-segment point counts are kept up to date), else the largest
- *     distance reached, exactly as a scan of all members would give;
+ *   - a segment's extent is that distance when the ball missed some of its
+ *     points (per-segment point counts are kept up to date), else the
+ *     largest distance reached, exactly as a scan of all members would
+ *     give;
+ *   - a segment with a witness (one of its extreme points along the axes
+ *     at the start, still in it) that far from every boundary point in a
+ *     straight line extends that far, since no path is shorter: the ball
+ *     goes into it only as far as the widest band;
  *   - a piece a cut leaves inside the band is found inside the band; only
  *     when one is loose does a search outside it, stopped once a piece is
  *     larger, tell whether an anchored piece is the largest;
@@ -240,6 +245,8 @@ static void context_free(cut_context *cx) {
     free(cx->sources);
     ps_dijkstra_free(cx->dijkstra);
     free(cx->region_mark);
+    free(cx->radius_of);
+    free(cx->witness);
     free(cx->seen);
     free(cx->visited);
     free(cx->dist);
@@ -265,16 +272,31 @@ static void context_free(cut_context *cx) {
     free(cx->queue);
 }
 
+/* p becomes a witness of its segment where it is lower or higher along an
+ * axis than the witness so far. */
+static void consider_witness(cut_context *cx, uint32_t p) {
+    const double *x = cx->in->points;
+    uint32_t *w = cx->witness + (size_t)cx->group[p] * WITNESSES;
+    for (int d = 0; d < 3; d++) {
+        if (w[2 * d] == NO_WITNESS || x[3 * (size_t)p + d] < x[3 * (size_t)w[2 * d] + d])
+            w[2 * d] = p;
+        if (w[2 * d + 1] == NO_WITNESS || x[3 * (size_t)p + d] > x[3 * (size_t)w[2 * d + 1] + d])
+            w[2 * d + 1] = p;
+    }
+}
+
 /* Per-point, per-segment and per-arc state from the input segments. */
 static void context_fill(cut_context *cx) {
     const ps_boundary_cut_input *in = cx->in;
     size_t n = in->graph->n;
     for (int s = 0; s < in->n_supernodes; s++) cx->is_sink[in->sinks[s]] = 1;
-    for (size_t p = 0; p < n; p++) {
+    for (size_t i = 0; i < (size_t)in->n_groups * WITNESSES; i++) cx->witness[i] = NO_WITNESS;
+    for (uint32_t p = 0; p < n; p++) {
         cx->size[cx->group[p]]++;
         cx->sinks_in[cx->group[p]] += cx->is_sink[p];
         cx->band_of[p] = NOT_IN_BAND;
         cx->dist[p] = INFINITY;
+        consider_witness(cx, p);
     }
     for (int g = 0; g < in->n_groups; g++) cx->moves.head[g] = NO_MOVE;
 }
@@ -290,6 +312,8 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
     cx->sources = malloc(n * sizeof *cx->sources);
     cx->dijkstra = ps_dijkstra_new(n);
     cx->region_mark = calloc(groups, sizeof *cx->region_mark);
+    cx->radius_of = malloc(groups * sizeof *cx->radius_of);
+    cx->witness = malloc(groups * WITNESSES * sizeof *cx->witness);
     cx->seen = calloc(n, sizeof *cx->seen);
     cx->visited = calloc(n, sizeof *cx->visited);
     cx->dist = malloc(n * sizeof *cx->dist);
@@ -311,7 +335,7 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
     cx->anchored = malloc(n * sizeof *cx->anchored);
     cx->queue = malloc(n * sizeof *cx->queue);
     if (!cx->size || !cx->sinks_in || !cx->capacity || !cx->is_sink || !cx->sources ||
-        !cx->dijkstra || !cx->region_mark || !cx->seen || !cx->visited ||
+        !cx->dijkstra || !cx->region_mark || !cx->radius_of || !cx->witness || !cx->seen || !cx->visited ||
         !cx->dist || !cx->reached || !cx->moves.head || !cx->band_of || !cx->band ||
         !cx->old_group || !cx->tie_source || !cx->tie_sink || !cx->net_offsets ||
         !cx->net_heads || !cx->net_capacity || !cx->side || !cx->flow_space || !cx->piece ||

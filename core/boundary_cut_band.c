@@ -64,22 +64,43 @@ size_t ps_bc_boundary_points(cut_context *cx, int a, int b) {
     return cx->n_sources;
 }
 
+/* Whether some witness of segment s, still in s, is at least reach away
+ * (in a straight line) from every boundary point: no path is shorter than
+ * a straight line, so s then extends beyond reach. */
+static int far_beyond(const cut_context *cx, int s, double reach) {
+    const double *x = cx->in->points;
+    for (int k = 0; k < WITNESSES; k++) {
+        uint32_t w = cx->witness[(size_t)s * WITNESSES + (size_t)k];
+        if (w == NO_WITNESS || cx->group[w] != s) continue;
+        size_t i = 0;
+        while (i < cx->n_sources &&
+               ps_distance3(x + 3 * (size_t)w, x + 3 * (size_t)cx->sources[i]) >= reach)
+            i++;
+        if (i == cx->n_sources) return 1;
+    }
+    return 0;
+}
+
 /* dist of the points of a and b within reach of the boundary (the extent
- * from which the band's width is capped); returns the reached count, the
- * boundary points first.  Segment ids are the ball's region labels (a
- * group is never negative, so it reads the same as a uint32_t). */
+ * from which the band's width is capped), or within the cap in a segment
+ * known to extend beyond reach; returns the reached count, the boundary
+ * points first.  Segment ids are the ball's region labels (a group is
+ * never negative, so it reads the same as a uint32_t). */
 size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach) {
     cx->region_mark[a] = cx->region_mark[b] = cx->stamp;
-    ps_dijkstra_limits limits = {.radius = reach, .label = (const uint32_t *)cx->group,
+    double cap = PS_BOUNDARY_CUT_BAND * reach;
+    cx->radius_of[a] = far_beyond(cx, a, reach) ? cap : reach;
+    cx->radius_of[b] = far_beyond(cx, b, reach) ? cap : reach;
+    ps_dijkstra_limits limits = {.label = (const uint32_t *)cx->group,
                                  .mark = cx->region_mark, .stamp = cx->stamp,
-                                 .points = cx->in->points};
+                                 .radius_of = cx->radius_of, .points = cx->in->points};
     return ps_dijkstra_ball_from(cx->dijkstra, cx->in->graph, cx->sources, cx->n_sources,
                                  &limits, cx->dist, cx->reached);
 }
 
 /* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
  * most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths.  A segment with points
- * beyond reach has the extent reach. */
+ * beyond reach (unreached, or known from a witness) has the extent reach. */
 double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, double reach) {
     double extent_a = 0, extent_b = 0;
     size_t reached_a = 0;
@@ -88,8 +109,9 @@ double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, d
         if (cx->group[p] == a) extent_a = fmax(extent_a, cx->dist[p]), reached_a++;
         else extent_b = fmax(extent_b, cx->dist[p]);
     }
-    if (reached_a < cx->size[a]) extent_a = fmax(extent_a, reach);
-    if (n_reached - reached_a < cx->size[b]) extent_b = fmax(extent_b, reach);
+    if (reached_a < cx->size[a] || cx->radius_of[a] < reach) extent_a = fmax(extent_a, reach);
+    if (n_reached - reached_a < cx->size[b] || cx->radius_of[b] < reach)
+        extent_b = fmax(extent_b, reach);
     return fmin(PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b),
                 PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
 }

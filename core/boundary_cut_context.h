@@ -21,6 +21,8 @@
 
 #define NOT_IN_BAND UINT32_MAX
 #define NO_MOVE SIZE_MAX
+#define NO_WITNESS UINT32_MAX
+#define WITNESSES 6 /* per segment: its lowest and highest point along x, y and z */
 
 /* A point on the boundary between segments a < b at the start. */
 typedef struct boundary_entry {
@@ -52,6 +54,9 @@ typedef struct cut_context {
     ps_dijkstra *dijkstra;     /* for #P vertices */
     uint32_t stamp;            /* bumped for each ball, boundary and piece search */
     uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
+    double *radius_of;         /* #groups how far the ball may go into each segment */
+    uint32_t *witness;         /* #groups by WITNESSES extreme points of each segment at
+                                  the start (NO_WITNESS: none), see far_beyond */
     uint32_t *seen;            /* #P stamp of the boundary candidates checked */
     uint32_t *visited;         /* #P stamp of the points a piece search reached */
     double *dist;              /* #P INFINITY outside a pair's ball */
@@ -92,10 +97,13 @@ void ps_bc_set_group(cut_context *cx, uint32_t p, int g);
  * longer touches. */
 size_t ps_bc_boundary_points(cut_context *cx, int a, int b);
 
-/* Ball Dijkstra from the boundary points within a and b, out to distance
- * reach along Euclidean edge lengths: fills dist for the reached points and
- * reached[0..count) (the boundary points first).  Returns that count.  Call
- * after ps_bc_boundary_points (it uses the stamp set there). */
+/* Ball Dijkstra from the boundary points within a and b along Euclidean
+ * edge lengths: fills dist for the reached points and reached[0..count)
+ * (the boundary points first).  Returns that count.  It goes out to reach
+ * (the distance from which the band's width is capped) into a segment,
+ * and only to the cap (reach x PS_BOUNDARY_CUT_BAND) into one that a
+ * witness shows to extend beyond reach (radius_of says which).  Call after
+ * ps_bc_boundary_points (it uses the stamp set there). */
 size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach);
 
 /* Band half-width from the n_reached ball of ps_bc_boundary_distances:

@@ -61,7 +61,7 @@ static ps_status ball_init(ball *b, size_t n, size_t n_cells) {
  * over vertices whose cell is marked with stamp.  b->reached lists them. */
 static void ball_run(ball *b, const ps_graph *g, uint32_t source, double radius,
                      const uint32_t *cell_of, uint32_t stamp) {
-    ps_dijkstra_limits limits = {radius, cell_of, b->mark, stamp, NULL};
+    ps_dijkstra_limits limits = {.radius = radius, .label = cell_of, .mark = b->mark, .stamp = stamp};
     b->n_reached = ps_dijkstra_ball(b->dijkstra, g, source, &limits, b->dist, b->reached);
 }
 

@@ -110,8 +110,9 @@ typedef struct ball {
 } ball;
 
 static int within(const ps_dijkstra_limits *l, double nd, uint32_t v) {
-    if (nd > l->radius) return 0;
-    return !l->label || l->mark[l->label[v]] == l->stamp;
+    if (!l->label) return nd <= l->radius;
+    uint32_t cell = l->label[v];
+    return l->mark[cell] == l->stamp && nd <= (l->radius_of ? l->radius_of[cell] : l->radius);
 }
 
 /* Pops the heap until it is empty, relaxing each popped vertex's edges;

@@ -47,14 +47,16 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source,
 /* Where a ball run may go: vertices at distance <= radius (inclusive;
  * INFINITY for no bound) and, when label is not NULL, only the vertices v
  * with mark[label[v]] == stamp (label #P, e.g. the cell of each vertex;
- * mark #L, e.g. a stamp on the cells the run may enter).  points, when not
- * NULL, #P by 3: an edge's length is then ps_distance3 of its ends, and
- * g->weights is not read (it may be NULL). */
+ * mark #L, e.g. a stamp on the cells the run may enter).  radius_of, when
+ * not NULL (with label), #L: v's bound is radius_of[label[v]] instead of
+ * radius.  points, when not NULL, #P by 3: an edge's length is then
+ * ps_distance3 of its ends, and g->weights is not read (it may be NULL). */
 typedef struct ps_dijkstra_limits {
     double radius;
     const uint32_t *label;
     const uint32_t *mark;
     uint32_t stamp;
+    const double *radius_of;
     const double *points;
 } ps_dijkstra_limits;
 

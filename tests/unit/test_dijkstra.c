@@ -67,7 +67,7 @@ static void bellman_ford(const ps_graph *g, uint32_t source, double *d) {
  * after.  Returns how many vertices are exactly at R. */
 static size_t check_ball(ps_dijkstra *w, const ps_graph *g, uint32_t s, const double *ref,
                          double radius, double *dist, uint32_t *reached) {
-    ps_dijkstra_limits limits = {radius, NULL, NULL, 0, NULL};
+    ps_dijkstra_limits limits = {.radius = radius};
     size_t count = ps_dijkstra_ball(w, g, s, &limits, dist, reached), inside = 0, at = 0;
     for (size_t v = 0; v < g->n; v++) {
         inside += ref[v] <= radius, at += ref[v] == radius;
@@ -208,7 +208,8 @@ static void test_ball_from_sources_between_points(void) {
     for (size_t p = 0; p <= n; p++) label[p] = pts[3 * (p < n ? p : 0)] < 0.8 ? (p % 2) : 2;
     for (size_t s = 0; s < ns; s++) label[sources[s]] = 0;
     for (size_t p = 0; p <= n; p++) d_geo[p] = p < n ? (d[p] = INFINITY) : INFINITY;
-    ps_dijkstra_limits on_geo = {0.12, label, mark, 4, NULL}, on_points = on_geo;
+    ps_dijkstra_limits on_geo = {.radius = 0.12, .label = label, .mark = mark, .stamp = 4},
+                       on_points = on_geo;
     on_points.points = pts;
     size_t c_geo = ps_dijkstra_ball(w, &geo, (uint32_t)n, &on_geo, d_geo, r_geo);
     free(g.weights);
@@ -258,7 +259,7 @@ static void hand_reset(hand_ball *h) {
 static void hand_run(hand_ball *h, uint32_t source, double radius, const uint32_t *label,
                      const uint32_t *mark, uint32_t stamp) {
     hand_reset(h);
-    ps_dijkstra_limits limits = {radius, label, mark, stamp, NULL};
+    ps_dijkstra_limits limits = {.radius = radius, .label = label, .mark = mark, .stamp = stamp};
     h->count = ps_dijkstra_ball(h->w, &h->g, source, &limits, h->dist, h->reached);
 }
 
@@ -291,6 +292,21 @@ static void test_ball_region(void) {
     hand_run(&h, 0, 4.0, label, mark, 7);
     CHECK(h.count == 3);
     check_dists(&h, (const double[HAND_N]){0, INFINITY, 4, INFINITY, INFINITY, 2});
+    ps_dijkstra_free(h.w);
+}
+
+/* A bound per cell: vertices 0, 1 and 5 (cell 0) within 1, vertices 2, 3
+ * and 4 (cell 1) within 3, so 5 (at 2) and 4 (at 4) are beyond. */
+static void test_ball_radius_per_cell(void) {
+    hand_ball h;
+    REQUIRE(hand_open(&h));
+    const uint32_t label[HAND_N] = {0, 0, 1, 1, 1, 0}, mark[2] = {7, 7};
+    const double radius_of[2] = {1.0, 3.0};
+    ps_dijkstra_limits limits = {.radius = INFINITY, .label = label, .mark = mark, .stamp = 7,
+                                 .radius_of = radius_of};
+    h.count = ps_dijkstra_ball(h.w, &h.g, 0, &limits, h.dist, h.reached);
+    CHECK(h.count == 4);
+    check_dists(&h, (const double[HAND_N]){0, 1, 2, 3, INFINITY, INFINITY});
     ps_dijkstra_free(h.w);
 }
 
@@ -343,5 +359,6 @@ static void test_tracked_run_same_answer(void) {
 PS_TEST_MAIN(TEST(test_single_source_and_ball), TEST(test_multi_source_owner),
              TEST(test_lower_is_min_of_runs),
              TEST(test_ball_radius_is_inclusive), TEST(test_ball_region),
+             TEST(test_ball_radius_per_cell),
              TEST(test_ball_reached_list), TEST(test_ball_from_sources_between_points),
              TEST(test_tracked_run_same_answer))
