@@ -28,6 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define KNN_LEAF_SIZE 16      /* points per kd-tree leaf (FLANN's default 4 is slower) */
 #define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
 #define INDEX_SHARE 0.25      /* progress of the span after the index build ... */
 #define QUERIES_SHARE 0.8     /* ... after the queries ... */
@@ -66,6 +67,7 @@ static struct FLANNParameters search_parameters(void) {
     fp.checks = FLANN_CHECKS_UNLIMITED;
     fp.eps = 0.0f;
     fp.cores = 1; /* the workers of ps_parallel_for query blocks side by side */
+    fp.leaf_max_size = KNN_LEAF_SIZE;
     fp.log_level = FLANN_LOG_NONE;
     return fp;
 }
