@@ -29,7 +29,7 @@ static int along(const double *points, size_t p, size_t r, const double *across)
  * crease of the boundary between a and b.  A wing root next to the
  * boundary between nose and fuselage is in a third segment; a fillet
  * running across that boundary bends along it, not across. */
-static double strength_within(const ps_crease_merge_input *in, const int *group, size_t p,
+static double strength_within(const ps_merge_input *in, const int *group, size_t p,
                               int a, int b, const double *across) {
     const ps_graph *g = in->graph;
     double best = 0;
@@ -44,7 +44,7 @@ static double strength_within(const ps_crease_merge_input *in, const int *group,
 }
 
 typedef struct crease_test {
-    const ps_crease_merge_input *in;
+    const ps_merge_input *in;
     double crease; /* the angular term that makes a crease */
 } crease_test;
 
@@ -52,7 +52,7 @@ typedef struct crease_test {
  * ps_boundary_mark_fn. */
 static int creased_edge(void *context, const int *group, size_t p, size_t q) {
     const crease_test *test = context;
-    const ps_crease_merge_input *in = test->in;
+    const ps_merge_input *in = test->in;
     double across[3], length2 = 0;
     for (int i = 0; i < 3; i++) {
         across[i] = in->points[3 * q + i] - in->points[3 * p + i];
@@ -111,7 +111,7 @@ static int merge_pair(ps_segment_graph *sg, size_t i, ps_merge **merges, int *n_
     return ps_segment_graph_merge(sg, loser, winner, merges, n_merges);
 }
 
-ps_status ps_crease_merge(const ps_crease_merge_input *in, int *group_of_point,
+ps_status ps_crease_merge(const ps_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
     if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* no creases: no evidence */
@@ -122,7 +122,7 @@ ps_status ps_crease_merge(const ps_crease_merge_input *in, int *group_of_point,
                                   .n_groups = in->n_groups,
                                   .mark = creased_edge, .context = &test};
     ps_status st = ps_segment_graph_build(&sg, &sgi, err);
-    for (long i; st == PS_OK && (i = weakest_boundary(&sg, in->threshold)) >= 0;)
+    for (long i; st == PS_OK && (i = weakest_boundary(&sg, PS_CREASE_MERGE_FRACTION)) >= 0;)
         if (!merge_pair(&sg, (size_t)i, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");
     if (st == PS_OK) ps_segment_graph_apply(&sg, group_of_point, in->graph->n, group_of_leaf);

@@ -14,8 +14,9 @@
  * bends across the boundary).  Edges into a third segment do not count: a
  * wing root running next to the boundary between a nose and a fuselage is
  * the wing's crease, not theirs; nor do edges running along the boundary:
- * the fillet under a wing that the boundary crosses bends along it.  While some pair's creased fraction is below threshold, the
- * pair with the lowest (ties: lowest ids) merges: the segment with fewer
+ * the fillet under a wing that the boundary crosses bends along it.
+ * While some pair's creased fraction is below PS_CREASE_MERGE_FRACTION,
+ * the pair with the lowest (ties: lowest ids) merges: the segment with fewer
  * points goes into the other (ties: the higher id into the lower), its
  * boundaries adding up with the survivor's.  A pair whose smaller segment
  * protrudes stays apart whatever its creases: people also cut off what
@@ -34,7 +35,7 @@
 #ifndef PS_CREASE_MERGE_H
 #define PS_CREASE_MERGE_H
 
-#include "knn_graph.h"
+#include "segment_graph.h"
 
 /* PSB dev set, mean 1 - RI (without the merge 0.1721, and before the
  * crease split), over STRENGTH x FRACTION: 1.5 x 0.5 0.1471, 1 x 0.5
@@ -59,22 +60,7 @@
 /* A smaller segment whose bulge is below minus this is a cavity. */
 #define PS_CREASE_MERGE_CAVITY 0.35
 
-typedef struct ps_crease_merge_input {
-    const ps_graph *graph;   /* kNN graph on #P points (weights not used) */
-    const double *points;    /* #P by 3 */
-    const double *normals;   /* #P by 3, outward unit normals (normals.h) */
-    const double *f;         /* #P centrality, for the merges' feature sizes */
-    double mean_angular;     /* mean angular term over all edges (ps_crease_points.mean) */
-    int n_groups;            /* segment ids are in [0, n_groups) */
-    double threshold;        /* merge while a boundary's creased fraction is below this */
-} ps_crease_merge_input;
-
-/* group_of_point #P in/out: each point's segment id.  group_of_leaf
- * #n_groups in/out: ids (or -1) rewritten to their surviving segment.
- * merges / n_merges in/out: a malloc'ed list (may be NULL with 0) that the
- * new merges are appended to. */
-ps_status ps_crease_merge(const ps_crease_merge_input *in, int *group_of_point,
-                          int *group_of_leaf, ps_merge **merges, int *n_merges,
-                          ps_error *err);
+/* A ps_merge_fn (segment_graph.h). */
+ps_merge_fn ps_crease_merge;
 
 #endif

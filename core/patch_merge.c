@@ -12,7 +12,7 @@
 #include <stdlib.h>
 
 /* sum #n_groups by 3: each segment's sum of normals. */
-static double *normal_sums(const ps_patch_merge_input *in, const int *group) {
+static double *normal_sums(const ps_merge_input *in, const int *group) {
     double *sum = calloc(3 * (size_t)(in->n_groups > 0 ? in->n_groups : 1), sizeof *sum);
     for (size_t p = 0; sum && p < in->graph->n; p++)
         for (int i = 0; i < 3; i++) sum[3 * group[p] + i] += in->normals[3 * p + i];
@@ -68,7 +68,7 @@ static int flattest_patch(const ps_segment_graph *sg, const double *sum, const i
 
 /* The next segment that is no part (crumbs first), or -1; *into: where it
  * goes. */
-static int next_merge(const ps_patch_merge_input *in, const ps_segment_graph *sg,
+static int next_merge(const ps_merge_input *in, const ps_segment_graph *sg,
                       const double *sum, int *widest, long *edges, int *into) {
     widest_neighbours(sg, widest, edges);
     int a = smallest_crumb(sg, widest, PS_PATCH_MERGE_MIN_SHARE * (double)in->graph->n, into);
@@ -76,7 +76,7 @@ static int next_merge(const ps_patch_merge_input *in, const ps_segment_graph *sg
     return flattest_patch(sg, sum, widest, into);
 }
 
-ps_status ps_patch_merge(const ps_patch_merge_input *in, int *group_of_point,
+ps_status ps_patch_merge(const ps_merge_input *in, int *group_of_point,
                          int *group_of_leaf, ps_merge **merges, int *n_merges,
                          ps_error *err) {
     ps_segment_graph sg;

@@ -31,7 +31,7 @@
 #define PS_PATCH_MERGE_H
 
 #include "crease_split.h"
-#include "knn_graph.h"
+#include "segment_graph.h"
 
 /* PSB dev set, mean 1 - RI (without the merge 0.1158): 0.8 0.1144, 0.85
  * 0.1140, 0.9 0.1138, 0.925 0.1148, 0.95 0.1147.  0.9 is a cap of
@@ -42,20 +42,7 @@
  * the crease split's pieces. */
 #define PS_PATCH_MERGE_MIN_SHARE PS_CREASE_SPLIT_MIN_FRACTION
 
-typedef struct ps_patch_merge_input {
-    const ps_graph *graph;   /* kNN graph on #P points (weights not used) */
-    const double *normals;   /* #P by 3, unit normals oriented outward (normals.h) */
-    const double *f;         /* #P centrality, for the merges' feature sizes */
-    double mean_angular;     /* mean angular term over all edges (ps_crease_points.mean) */
-    int n_groups;            /* segment ids are in [0, n_groups) */
-} ps_patch_merge_input;
-
-/* group_of_point #P in/out: each point's segment id.  group_of_leaf
- * #n_groups in/out: ids (or -1) rewritten to their surviving segment.
- * merges / n_merges in/out: a malloc'ed list (may be NULL with 0) that the
- * new merges are appended to. */
-ps_status ps_patch_merge(const ps_patch_merge_input *in, int *group_of_point,
-                         int *group_of_leaf, ps_merge **merges, int *n_merges,
-                         ps_error *err);
+/* A ps_merge_fn (segment_graph.h). */
+ps_merge_fn ps_patch_merge;
 
 #endif

@@ -14,6 +14,7 @@
 #include "boundary_cut.h"
 #include "centrality.h"
 #include "control.h"
+#include "convex_merge.h"
 #include "crease.h"
 #include "crease_merge.h"
 #include "crease_split.h"
@@ -356,30 +357,28 @@ static ps_status boundary_cut(pipeline *pl, ps_error *err) {
     return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
 }
 
-static ps_status crease_merge(pipeline *pl, ps_error *err) {
-    ps_crease_merge_input cm = {
-        .graph = &pl->graph,
-        .points = pl->points,
-        .normals = pl->crease_normals,
-        .f = pl->f,
-        .mean_angular = pl->creases.mean,
-        .n_groups = pl->n_tree,
-        .threshold = PS_CREASE_MERGE_FRACTION,
-    };
-    return ps_crease_merge(&cm, pl->group_of_point, pl->group_of_leaf, &pl->merges,
-                           &pl->n_merges, err);
+/* The merges' input over the given normals (the crease merge and the
+ * convex merge read the crease scale's, the patch merge the raw ones). */
+static ps_merge_input merge_input(const pipeline *pl, const double *normals) {
+    return (ps_merge_input){.graph = &pl->graph, .points = pl->points, .normals = normals,
+                            .f = pl->f, .mean_angular = pl->creases.mean,
+                            .n_groups = pl->n_tree};
 }
 
-static ps_status patch_merge(pipeline *pl, ps_error *err) {
-    ps_patch_merge_input pm = {
-        .graph = &pl->graph,
-        .normals = pl->normals,
-        .f = pl->f,
-        .mean_angular = pl->creases.mean,
-        .n_groups = pl->n_tree,
-    };
-    return ps_patch_merge(&pm, pl->group_of_point, pl->group_of_leaf, &pl->merges,
-                          &pl->n_merges, err);
+/* The merges after the boundary cut (method auto, 3-D), in order. */
+static ps_status merge_segments(pipeline *pl, ps_error *err) {
+    ps_merge_input crease = merge_input(pl, pl->crease_normals);
+    ps_merge_input raw = merge_input(pl, pl->normals);
+    ps_status st = ps_crease_merge(&crease, pl->group_of_point, pl->group_of_leaf, &pl->merges,
+                                   &pl->n_merges, err);
+    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CREASE_MERGE_DONE);
+    if (st == PS_OK)
+        st = ps_convex_merge(&crease, pl->group_of_point, pl->group_of_leaf, &pl->merges,
+                             &pl->n_merges, err);
+    if (st == PS_OK)
+        st = ps_patch_merge(&raw, pl->group_of_point, pl->group_of_leaf, &pl->merges,
+                            &pl->n_merges, err);
+    return st;
 }
 
 static ps_status phase_refine(pipeline *pl, ps_error *err) {
@@ -392,9 +391,7 @@ static ps_status phase_refine(pipeline *pl, ps_error *err) {
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CUT_DONE);
-    if (st == PS_OK && pl->normals) st = crease_merge(pl, err);
-    if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CREASE_MERGE_DONE);
-    if (st == PS_OK && pl->normals) st = patch_merge(pl, err);
+    if (st == PS_OK && pl->normals) st = merge_segments(pl, err);
     return st;
 }
 

@@ -65,6 +65,25 @@ typedef struct ps_segment_graph_input {
     void *context;            /* passed to mark */
 } ps_segment_graph_input;
 
+/* What each merge after the boundary cut reads (crease_merge.h,
+ * convex_merge.h, patch_merge.h). */
+typedef struct ps_merge_input {
+    const ps_graph *graph;   /* kNN graph on #P points (weights not used) */
+    const double *points;    /* #P by 3 (the patch merge does not read them) */
+    const double *normals;   /* #P by 3, outward unit normals (normals.h) */
+    const double *f;         /* #P centrality, for the merges' feature sizes */
+    double mean_angular;     /* mean angular term over all edges (ps_crease_points.mean) */
+    int n_groups;            /* segment ids are in [0, n_groups) */
+} ps_merge_input;
+
+/* What each merge does with its input: group_of_point #P in/out, each
+ * point's segment id; group_of_leaf #n_groups in/out, ids (or -1)
+ * rewritten to their surviving segment; merges / n_merges in/out, a
+ * malloc'ed list (may be NULL with 0) that the new merges are appended
+ * to. */
+typedef ps_status ps_merge_fn(const ps_merge_input *in, int *group_of_point, int *group_of_leaf,
+                              ps_merge **merges, int *n_merges, ps_error *err);
+
 /* How segment s bulges outwards: the mean over its points of n . (p - c),
  * c its centroid, over its RMS distance from c.  Positive for what sticks
  * out (a limb, a dome: normals point away from the centre), negative for a

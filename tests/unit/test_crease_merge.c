@@ -45,9 +45,8 @@ static ps_status run_merge(const ps_star *s, const double *f, int *group, int *l
     ps_status st = ps_crease_strengths(&s->graph, s->points, s->normals, 1, &creases, NULL);
     free(creases.strength);
     if (st != PS_OK) return st;
-    ps_crease_merge_input in = {.graph = &s->graph, .points = s->points,
-                                .normals = s->normals, .f = f, .mean_angular = creases.mean,
-                                .n_groups = N_PIECES, .threshold = PS_CREASE_MERGE_FRACTION};
+    ps_merge_input in = {.graph = &s->graph, .points = s->points, .normals = s->normals,
+                         .f = f, .mean_angular = creases.mean, .n_groups = N_PIECES};
     for (int t = 0; t < N_PIECES; t++) leaf[t] = t;
     *merges = NULL, *n_merges = 0;
     ps_error err = {0};
@@ -198,9 +197,8 @@ static int merges_with_bend(const double toward[3]) {
     ps_hand_graph_edges(&h, 3, edges, 2, 1.0);
     double f[3] = {0, 1, 0};
     double bend = ps_crease_angular(points, normals, points + 6, normals + 6, 0.0);
-    ps_crease_merge_input in = {.graph = &h.g, .points = points, .normals = normals, .f = f,
-                                .mean_angular = bend / 2, .n_groups = 2,
-                                .threshold = PS_CREASE_MERGE_FRACTION};
+    ps_merge_input in = {.graph = &h.g, .points = points, .normals = normals, .f = f,
+                         .mean_angular = bend / 2, .n_groups = 2};
     int group[3] = {0, 1, 0}, leaf[2] = {0, 1}, n_merges = 0;
     ps_merge *merges = NULL;
     ps_error err = {0};

@@ -42,8 +42,8 @@ static ps_status run_merge(const ps_star *s, double mean_angular, int *group, in
                            ps_merge **merges, int *n_merges) {
     double *f = calloc(s->n, sizeof *f);
     if (!f) return PS_ERR_NOMEM;
-    ps_patch_merge_input in = {.graph = &s->graph, .normals = s->normals, .f = f,
-                               .mean_angular = mean_angular, .n_groups = N_GROUPS};
+    ps_merge_input in = {.graph = &s->graph, .normals = s->normals, .f = f,
+                         .mean_angular = mean_angular, .n_groups = N_GROUPS};
     for (int t = 0; t < N_GROUPS; t++) leaf[t] = t;
     *merges = NULL, *n_merges = 0;
     ps_error err = {0};
@@ -111,8 +111,8 @@ static int merges_of_patch_beside(int n_other) {
     ps_hand_graph h;
     ps_hand_graph_edges(&h, (size_t)(4 + n_other), (const int (*)[2])edges, n_edges, 1.0);
     double f[8] = {0};
-    ps_patch_merge_input in = {.graph = &h.g, .normals = normals, .f = f,
-                               .mean_angular = 1.0, .n_groups = 2};
+    ps_merge_input in = {.graph = &h.g, .normals = normals, .f = f, .mean_angular = 1.0,
+                         .n_groups = 2};
     ps_merge *merges = NULL;
     ps_error err = {0};
     CHECK(ps_patch_merge(&in, group, leaf, &merges, &n_merges, &err) == PS_OK);
