@@ -43,7 +43,7 @@ static const char *const include_choices[] = {"centrality", "point_supernode", N
 static const ps_param_spec table[P_COUNT] = {
     [P_METHOD] = {"method", PS_PT_ENUM, "auto", 0, 0, method_choices,
                   "auto (crease-aware: persistence, minima, crease split and merge, "
-                  "flat patches merged) "
+                  "convex unions and flat patches merged) "
                   "or paper (the published method)"},
     [P_K] = {"k", PS_PT_INT, "7", 1, 64, NULL,
              "neighbours per point in the kNN graph"},

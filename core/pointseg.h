@@ -71,7 +71,8 @@ typedef enum ps_centrality_mode {
 typedef enum ps_method {
     PS_METHOD_AUTO = 0, /* the default: stray points left out, crease-aware
                            metric (3-D), persistence, minima, crease split
-                           and merge, patch merge (docs/method.md) */
+                           and merge, convex merge, patch merge
+                           (docs/method.md) */
     PS_METHOD_PAPER     /* the published pipeline: Euclidean geodesics, every
                            sink a supernode, no minima, no f2, NCut stop
                            at PS_NCUT_PAPER */
