@@ -119,7 +119,11 @@ typedef struct ps_input {
     int dim;               /* 2 <= dim <= PS_MAX_DIM */
     const double *normals; /* optional #P by dim, row major; NULL if absent */
     const uint32_t *faces; /* optional #F by 3 triangles of a mesh (indices into
-                              points); NULL if absent */
+                              points); NULL if absent.  Method auto, dim 3:
+                              a mesh of fewer than 40,000 points is filled
+                              with points on its triangles up to that many
+                              (an even sampling, core/surface_fill.h); only
+                              the input points get answers */
     size_t n_faces;        /* #F */
 } ps_input;
 
@@ -196,8 +200,8 @@ typedef struct ps_result {
                               numbered by decreasing size (ties: lowest point) */
     int *point_supernode;  /* #P supernode per point */
     double *centrality;    /* #P f per point (input units) */
-    int n_components;      /* connected components of the kNN graph (method
-                              auto, faces given: joined by the mesh's edges) */
+    int n_components;      /* connected components of the kNN graph (of the
+                              filled surface when faces were given) */
     int normal_smoothing;  /* iterations the estimated normals were smoothed
                               (params.smooth_normals on a noisy scan; else 0) */
     size_t n_outliers;     /* distinct points left out as stray (method auto:

@@ -4,8 +4,9 @@
  * points the boundary cut moved), numbered by decreasing size in input
  * points, ties by their lowest input point, so the labels do not depend on
  * the order the phases visited anything.  A supernode's segment is its
- * sink's; sizes, feature sizes and supernode lists are counted from the
- * points' groups.
+ * sink's (its stand-in's, for a sink among the points added on the faces,
+ * surface_fill.h); sizes, feature sizes and supernode lists are counted
+ * from the points' groups, sizes over the caller's points only.
  */
 #include "result.h"
 
@@ -61,15 +62,22 @@ static void fill_points(const ps_result_parts *pp, const int *segment_of_group, 
     }
 }
 
+/* The input point that stands for distinct point u: its lowest input
+ * index, or for a point added on the faces, its host vertex. */
+static size_t stand_in(const ps_result_parts *pp, uint32_t u) {
+    size_t i = pp->first_of[u];
+    return i < pp->n_input ? i : pp->host_of_added[i - pp->n_input];
+}
+
 static void fill_supernodes(const ps_result_parts *pp, const int *segment_of_group,
                             ps_result *r) {
     for (int s = 0; s < pp->n_supernodes; s++) {
         uint32_t sink = pp->sinks[s];
         ps_supernode *sn = &r->supernodes[s];
-        sn->sink = pp->first_of[sink];
+        sn->sink = stand_in(pp, sink);
         sn->centrality = pp->f[sink];
         sn->is_minimum = pp->is_minimum[s];
-        sn->segment = segment_of_group[pp->group_of_point[sink]];
+        sn->segment = segment_of_group[pp->group_of_point[pp->unique_of[sn->sink]]];
         r->segments[sn->segment].n_supernodes++;
     }
 }
@@ -93,6 +101,7 @@ static int fill_segments(const ps_result_parts *pp, const int *segment_of_group,
     }
     for (size_t u = 0; ok && u < pp->n_unique; u++) {
         int g = segment_of_group[pp->group_of_point[u]];
+        if (g < 0) continue; /* added points only */
         if (pp->f[u] < lo[g]) lo[g] = pp->f[u];
         if (pp->f[u] > hi[g]) hi[g] = pp->f[u];
     }

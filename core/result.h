@@ -10,11 +10,14 @@
 #include "pointseg.h"
 
 typedef struct ps_result_parts {
-    size_t n_input;              /* #P input points */
+    size_t n_input;              /* #P input points (the caller's) */
+    const uint32_t *host_of_added; /* points added after the #P (surface_fill.h):
+                                    each one's stand-in among them; NULL if none */
     int dim;
     size_t n_unique;             /* #U distinct points */
     const uint32_t *unique_of;   /* #P distinct index of each input point */
-    const uint32_t *first_of;    /* #U lowest input index of each distinct point */
+    const uint32_t *first_of;    /* #U lowest index of each distinct point (an
+                                    added point's when >= #P) */
     const double *f;             /* #U centrality */
     int n_components;
     int normal_smoothing;        /* normals.h */

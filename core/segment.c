@@ -1,15 +1,17 @@
 /*
  * segment.c: ps_segment, the three phases in order.
  *
- * Validates the input, removes duplicate points, then runs features (kNN
- * graph, centrality, flow to sinks), hierarchy (normalized cuts over the
- * supernodes) and refinement (small features merge; with method auto in
- * 3-D, boundaries then move onto concave creases, boundary_cut.h,
- * segments whose boundary is no crease merge, crease_merge.h, and nearly
- * flat segments merge into a neighbour, patch_merge.h), timing
- * each phase, reporting progress and honouring the cancel flag between
- * steps.  The result is assembled by result.c; duplicates get their
- * representative's answers.
+ * Validates the input, fills a mesh's triangles with points up to the
+ * reference sampling (method auto, surface_fill.h), removes duplicate
+ * points, then runs features (kNN graph, centrality, flow to sinks),
+ * hierarchy (normalized cuts over the supernodes) and refinement (small
+ * features merge; with method auto in 3-D, boundaries then move onto
+ * concave creases, boundary_cut.h, segments whose boundary is no crease
+ * merge, crease_merge.h, convex unions merge, convex_merge.h, and nearly
+ * flat segments merge into a neighbour, patch_merge.h), timing each phase,
+ * reporting progress and honouring the cancel flag between steps.  The
+ * result is assembled by result.c for the caller's points; duplicates get
+ * their representative's answers.
  */
 #include "boundary_cut.h"
 #include "centrality.h"
@@ -22,7 +24,6 @@
 #include "eigen.h"
 #include "f2_split.h"
 #include "knn_graph.h"
-#include "mesh_edges.h"
 #include "ncut.h"
 #include "normals.h"
 #include "normals_smooth.h"
@@ -33,6 +34,7 @@
 #include "refine.h"
 #include "result.h"
 #include "supernodes.h"
+#include "surface_fill.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -54,7 +56,9 @@
 
 /* Everything the phases produce for the distinct points. */
 typedef struct pipeline {
-    const ps_input *in;
+    const ps_input *in;    /* the caller's points, then any added on its faces */
+    size_t n_input;        /* #P the caller's points */
+    const uint32_t *host_of_added; /* surface_fill.h */
     const ps_control *ctl;
     ps_params params;
     int threads;
@@ -247,17 +251,6 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
     return st;
 }
 
-/* Method auto, input with faces: the face edges between components of the
- * kNN graph join them (mesh_edges.h); the components are counted again. */
-static ps_status mesh_bridges(pipeline *pl, ps_error *err) {
-    ps_mesh_bridge_input bridges = {pl->points, pl->in->dim, pl->in->faces, pl->in->n_faces,
-                                    pl->dedup.unique_of, pl->in->n, pl->component};
-    size_t added = 0;
-    ps_status st = ps_mesh_bridges_add(&pl->graph, &bridges, &added, err);
-    if (st == PS_OK && added) pl->n_components = ps_graph_components(&pl->graph, pl->component);
-    return st;
-}
-
 static ps_status phase_knn(pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_KNN, 0.0, KNN_GRAPH_DONE};
     int strays = pl->params.method == PS_METHOD_AUTO;
@@ -272,9 +265,6 @@ static ps_status phase_knn(pipeline *pl, ps_error *err) {
     pl->component = malloc(u * sizeof *pl->component);
     if (!pl->component) return ps_fail(err, PS_ERR_NOMEM, "out of memory (components)");
     pl->n_components = ps_graph_components(&pl->graph, pl->component);
-    if (pl->params.method == PS_METHOD_AUTO && pl->in->faces && pl->n_components > 1)
-        st = mesh_bridges(pl, err);
-    if (st != PS_OK) return st;
     if (pl->params.method == PS_METHOD_AUTO && pl->in->dim == 3) return crease_metric(pl, err);
     return PS_OK;
 }
@@ -431,7 +421,8 @@ static void pipeline_free(pipeline *pl) {
 
 static ps_result_parts parts_of(const pipeline *pl) {
     return (ps_result_parts){
-        .n_input = pl->in->n,
+        .n_input = pl->n_input,
+        .host_of_added = pl->host_of_added,
         .dim = pl->in->dim,
         .n_unique = pl->dedup.n_unique,
         .unique_of = pl->dedup.unique_of,
@@ -472,7 +463,19 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     apply_method(&pl.params);
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
-    pl.points = (double *)in->points;
+    ps_surface_fill fill = {0};
+    ps_input filled = *in;
+    if (pl.params.method == PS_METHOD_AUTO)
+        st = ps_surface_fill_build(in, PS_DENSITY_REFERENCE_POINTS, &fill, err);
+    if (st != PS_OK) return st;
+    if (fill.n_added) {
+        filled.points = fill.points, filled.normals = fill.normals;
+        filled.n = in->n + fill.n_added;
+        pl.in = &filled;
+    }
+    pl.n_input = in->n;
+    pl.host_of_added = fill.host;
+    pl.points = (double *)pl.in->points;
     pl.threads = ps_parallel_threads(pl.params.threads);
     st = remove_duplicates(&pl, err);
     if (st == PS_OK) st = run_phases(&pl, err);
@@ -483,6 +486,7 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
         if (st == PS_OK) pl.tree = NULL, pl.n_tree = 0;
     }
     pipeline_free(&pl);
+    ps_surface_fill_free(&fill);
     if (st == PS_OK) {
         (*out)->timings = pl.timings;
         (*out)->timings.total_ms = now_ms() - start;

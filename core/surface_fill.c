@@ -1,0 +1,130 @@
+/*
+ * surface_fill.c: points added on a mesh's triangles up to the reference
+ * sampling (surface_fill.h).
+ *
+ * Placement inside a triangle: the i-th point of triangle t takes (u, v) =
+ * the fractional parts of h(t) + i (a1, a2), the R2 low-discrepancy
+ * sequence (a1, a2 = 1 / phi2, 1 / phi2^2, phi2 the plastic number), and
+ * maps it area-uniformly onto the triangle: weights 1 - sqrt(u),
+ * sqrt(u) (1 - v), sqrt(u) v.
+ */
+#include "surface_fill.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define R2_A1 0.75487766624669276005 /* 1 / phi2 */
+#define R2_A2 0.56984029099805326591 /* 1 / phi2^2 */
+
+static double triangle_area(const double *a, const double *b, const double *c) {
+    double u[3], v[3];
+    for (int i = 0; i < 3; i++) u[i] = b[i] - a[i], v[i] = c[i] - a[i];
+    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
+           z = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+/* splitmix64's finalizer: a well-mixed 64-bit hash of x. */
+static uint64_t mix64(uint64_t x) {
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+
+static double unit_of(uint64_t h) { return (double)(h >> 11) * 0x1.0p-53; }
+
+static double squared_distance(const double *a, const double *b) {
+    double s = 0;
+    for (int d = 0; d < 3; d++) s += (a[d] - b[d]) * (a[d] - b[d]);
+    return s;
+}
+
+typedef struct filler {
+    const ps_input *in;
+    ps_surface_fill *out;
+    size_t next;  /* added points placed so far */
+} filler;
+
+/* The i-th added point of triangle t (#P + next in out's arrays). */
+static void place(filler *fl, size_t t, size_t i) {
+    const ps_input *in = fl->in;
+    const uint32_t *v = in->faces + 3 * t;
+    uint64_t h = mix64((uint64_t)t);
+    double u = fmod(unit_of(h) + (double)i * R2_A1, 1.0);
+    double s = fmod(unit_of(mix64(h)) + (double)i * R2_A2, 1.0);
+    double r = sqrt(u), w[3] = {1 - r, r * (1 - s), r * s};
+    size_t a = in->n + fl->next;
+    double *p = fl->out->points + 3 * a;
+    for (int d = 0; d < 3; d++)
+        p[d] = w[0] * in->points[3 * v[0] + d] + w[1] * in->points[3 * v[1] + d] +
+               w[2] * in->points[3 * v[2] + d];
+    int nearest = 0;
+    for (int c = 1; c < 3; c++)
+        if (squared_distance(p, in->points + 3 * v[c]) <
+            squared_distance(p, in->points + 3 * v[nearest]))
+            nearest = c;
+    fl->out->host[fl->next] = v[nearest];
+    if (in->normals) {
+        double *nn = fl->out->normals + 3 * a, len = 0;
+        for (int d = 0; d < 3; d++) {
+            nn[d] = w[0] * in->normals[3 * v[0] + d] + w[1] * in->normals[3 * v[1] + d] +
+                    w[2] * in->normals[3 * v[2] + d];
+            len += nn[d] * nn[d];
+        }
+        for (int d = 0; d < 3; d++)
+            nn[d] = len > 0 ? nn[d] / sqrt(len) : in->normals[3 * v[nearest] + d];
+    }
+    fl->next++;
+}
+
+/* Points for a triangle of the given area, step the area per point:
+ * area / step rounded up or down by a dither fixed per triangle, so that
+ * the expected count is exact and a rounding of the area (a rotated copy)
+ * changes a count only where it sits within rounding of a whole number. */
+static size_t count_of(size_t t, double area, double step) {
+    if (!(area > 0)) return 0;
+    return (size_t)floor(area / step + unit_of(mix64((uint64_t)t ^ 0x5F1Dull)));
+}
+
+static double area_of(const ps_input *in, size_t t) {
+    const uint32_t *v = in->faces + 3 * t;
+    return triangle_area(in->points + 3 * v[0], in->points + 3 * v[1], in->points + 3 * v[2]);
+}
+
+ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
+                                ps_error *err) {
+    memset(out, 0, sizeof *out);
+    if (in->dim != 3 || !in->faces || in->n_faces == 0 || in->n >= target) return PS_OK;
+    double total = 0;
+    for (size_t t = 0; t < in->n_faces; t++) total += area_of(in, t);
+    if (!(total > 0) || !isfinite(total)) return PS_OK;
+    double step = total / (double)(target - in->n);
+    size_t m = 0;
+    for (size_t t = 0; t < in->n_faces; t++) m += count_of(t, area_of(in, t), step);
+    if (m == 0) return PS_OK;
+    out->points = malloc(3 * (in->n + m) * sizeof *out->points);
+    out->host = malloc(m * sizeof *out->host);
+    if (in->normals) out->normals = malloc(3 * (in->n + m) * sizeof *out->normals);
+    if (!out->points || !out->host || (in->normals && !out->normals)) {
+        ps_surface_fill_free(out);
+        return ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
+    }
+    memcpy(out->points, in->points, 3 * in->n * sizeof *out->points);
+    if (in->normals) memcpy(out->normals, in->normals, 3 * in->n * sizeof *out->normals);
+    out->n_added = m;
+    filler fl = {in, out, 0};
+    for (size_t t = 0; t < in->n_faces; t++) {
+        size_t count = count_of(t, area_of(in, t), step);
+        for (size_t i = 0; i < count; i++) place(&fl, t, i);
+    }
+    return PS_OK;
+}
+
+void ps_surface_fill_free(ps_surface_fill *s) {
+    free(s->points);
+    free(s->normals);
+    free(s->host);
+    memset(s, 0, sizeof *s);
+}

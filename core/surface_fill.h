@@ -1,0 +1,45 @@
+/*
+ * surface_fill.h: a mesh's triangles filled with points, so that a coarse
+ * or unevenly sampled mesh reaches the reference sampling.
+ *
+ * The crease steps of method auto are scaled to about
+ * PS_DENSITY_REFERENCE_POINTS points spread evenly over the surface
+ * (normals_smooth.h).  A mesh's vertices are rarely that: CAD models put
+ * rings of vertices far apart along a smooth turned part, and scanned
+ * meshes decimated for display put few vertices on large flat triangles.
+ * When the input carries faces, points are added on them, by area, until
+ * the set holds the reference count; the vertices keep their answers, the
+ * added points only carry the surface between them.
+ *
+ * The added points are spread by area: a triangle gets its area over
+ * (total area / points to add), rounded up or down by a dither fixed per
+ * triangle (so the total is the target up to that rounding), placed in the
+ * triangle by a low-discrepancy sequence started at a per-triangle hash.
+ * Each triangle's points depend on that triangle alone: the result follows
+ * the mesh under translation, rotation and scaling, but where a rounded
+ * area moves a count across a whole number.
+ */
+#ifndef PS_SURFACE_FILL_H
+#define PS_SURFACE_FILL_H
+
+#include "pointseg.h"
+
+typedef struct ps_surface_fill {
+    double *points;   /* #P+#A by 3: the input points, then the added ones */
+    double *normals;  /* #P+#A by 3 when the input has normals (the added
+                         ones interpolated over their triangle), else NULL */
+    uint32_t *host;   /* #A: for each added point the input vertex of its
+                         triangle nearest to it (its stand-in in the result) */
+    size_t n_added;   /* #A */
+} ps_surface_fill;
+
+/* Points added on in's triangles (in->dim must be 3) until #P+#A reaches
+ * about target (within the dither's rounding); nothing when #P >= target or the faces have no area (then
+ * out->n_added is 0 and out's arrays are NULL).  Face indices must be < #P
+ * (the caller checks). */
+ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
+                                ps_error *err);
+
+void ps_surface_fill_free(ps_surface_fill *s);
+
+#endif
