@@ -17,7 +17,8 @@
  * --stability also segments a rotated, scaled and shifted copy of every
  * development model and prints those whose partition moved (Rand index
  * below 0.99 or another segment count).  --noise and --strays make the
- * input a noisy or outlier-ridden scan.  See tests/bench/README.md.
+ * input a noisy or outlier-ridden scan; --seed N draws the random inputs
+ * (surface samples, noise, strays) anew.  See tests/bench/README.md.
  */
 #include <errno.h>
 #include <math.h>
@@ -61,6 +62,7 @@ typedef struct quality_options {
     int dev_only;              /* --dev-only: skip the validation models */
     double noise;              /* --noise: sigma in mean mesh edge lengths */
     double strays;             /* --strays: stray points per vertex */
+    uint64_t seed;             /* --seed: another draw of the random inputs */
     ps_request_params params;  /* defaults + --param + --threads */
 } quality_options;
 
@@ -93,7 +95,7 @@ static const char usage[] =
     "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N]... [--ids 1,2,21]\n"
     "                     [--param name=value]... [--threads N] [--jobs N] [--single]\n"
     "                     [--dev-only] [--stability] [--out DIR] [--baseline none]\n"
-    "                     [--noise F] [--strays F]\n"
+    "                     [--noise F] [--strays F] [--seed N]\n"
     "Segments every model of the PSB folders (default: psb-dev and psb-train, see\n"
     "tests/bench/README.md) in each input mode (default: vertices), with the given\n"
     "parameters (default: method auto) and with method=paper.  Validation models\n"
@@ -178,6 +180,7 @@ static int value_flag(quality_options *o, const char *a, const char *v) {
     else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1, o->runs = 1;
     else if (!strcmp(a, "--noise") && (o->noise = atof(v)) >= 0 && o->noise <= 100) return 0;
     else if (!strcmp(a, "--strays") && (o->strays = atof(v)) >= 0 && o->strays <= 1) return 0;
+    else if (!strcmp(a, "--seed")) o->seed = strtoull(v, NULL, 10);
     else return -1;
     return 0;
 }
@@ -278,23 +281,29 @@ static double uniform(uint64_t *state) {
     return ((double)(*state >> 11) + 0.5) / 9007199254740992.0;
 }
 
+/* The key of a model's random draws (surface samples, noise, strays): its
+ * id, and with --seed N another draw for every N. */
+static uint64_t draw_key(const quality_options *o, int id) {
+    return (uint64_t)id ^ (o->seed * 0xD1B54A32D192ED03ull);
+}
+
 /* Gaussian noise of sigma = noise x mean edge on every coordinate
- * (Box-Muller), the same for a given model id on every run. */
-static void add_noise(ps_pointset *mesh, double noise, int id) {
+ * (Box-Muller), the same for a given key on every run. */
+static void add_noise(ps_pointset *mesh, double noise, uint64_t key) {
     double sigma = noise * mean_edge(mesh);
-    uint64_t state = 0x9E3779B97F4A7C15ull ^ (uint64_t)id;
+    uint64_t state = 0x9E3779B97F4A7C15ull ^ key;
     for (size_t i = 0; i < 3 * mesh->n; i++)
         mesh->points[i] += sigma * sqrt(-2 * log(uniform(&state))) *
                            cos(2 * 3.14159265358979323846 * uniform(&state));
 }
 
 /* Appends `extra` stray points, uniform in the vertices' bounding box grown
- * by 10% on every side (seeded by the model id), to points[0 .. 3 n). */
-static void add_strays(double *points, size_t n_mesh, size_t n, int id) {
+ * by 10% on every side (seeded by key), to points[0 .. 3 n). */
+static void add_strays(double *points, size_t n_mesh, size_t n, uint64_t key) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < 3 * n_mesh; i++)
         lo[i % 3] = fmin(lo[i % 3], points[i]), hi[i % 3] = fmax(hi[i % 3], points[i]);
-    uint64_t state = 0x2545F4914F6CDD1Dull ^ (uint64_t)id;
+    uint64_t state = 0x2545F4914F6CDD1Dull ^ key;
     for (size_t i = 3 * n_mesh; i < 3 * n; i++) {
         double grow = 0.1 * (hi[i % 3] - lo[i % 3]);
         points[i] = lo[i % 3] - grow + (hi[i % 3] - lo[i % 3] + 2 * grow) * uniform(&state);
@@ -303,7 +312,7 @@ static void add_strays(double *points, size_t n_mesh, size_t n, int id) {
 
 /* The model's input points (malloc'ed #n by 3): the vertices first, then
  * the surface samples of the mode, then the stray points; 0 or -1. */
-static int build_input(const ps_pointset *mesh, const input_mode *mode, double strays, int id,
+static int build_input(const ps_pointset *mesh, const input_mode *mode, double strays, uint64_t key,
                        double **points, size_t *n) {
     size_t n_surface = mode->surface_points > mesh->n ? mode->surface_points - mesh->n : 0;
     size_t n_strays = (size_t)ceil(strays * (double)mesh->n);
@@ -312,13 +321,13 @@ static int build_input(const ps_pointset *mesh, const input_mode *mode, double s
     if (!all) return -1;
     memcpy(all, mesh->points, 3 * mesh->n * sizeof *all);
     if (n_surface) {
-        if (ps_mesh_sample_surface(mesh, n_surface, 0x5851F42D4C957F2Dull ^ (uint64_t)id,
+        if (ps_mesh_sample_surface(mesh, n_surface, 0x5851F42D4C957F2Dull ^ key,
                                    &samples) != 0)
             return free(all), -1;
         memcpy(all + 3 * mesh->n, samples, 3 * n_surface * sizeof *all);
         free(samples);
     }
-    add_strays(all, mesh->n + n_surface, *n, id);
+    add_strays(all, mesh->n + n_surface, *n, key);
     *points = all;
     return 0;
 }
@@ -382,12 +391,12 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
     ps_pointset mesh;
     ps_psb_humans humans;
     if (ps_psb_load_mesh(row->dir, row->id, &mesh) != 0) return -1;
-    if (o->noise > 0) add_noise(&mesh, o->noise, row->id);
+    if (o->noise > 0) add_noise(&mesh, o->noise, draw_key(o, row->id));
     row->points = mesh.n;
     double *points = NULL;
     size_t n = 0;
     int rc = -1;
-    if (build_input(&mesh, mode, o->strays, row->id, &points, &n) == 0 &&
+    if (build_input(&mesh, mode, o->strays, draw_key(o, row->id), &points, &n) == 0 &&
         ps_psb_load_humans(row->dir, row->id, mesh.n_faces, &humans) == 0) {
         row->human_segments = ps_psb_mean_segments(&humans);
         ps_input in = {.points = points, .n = n, .dim = 3};
@@ -476,6 +485,7 @@ static void print_params(const quality_options *o, char dirs[][4096], int n_dirs
            p->threads, o->jobs);
     if (o->noise > 0) printf("noise: sigma %g mean edge lengths per coordinate\n", o->noise);
     if (o->strays > 0) printf("strays: %g stray points per vertex (vertices scored)\n", o->strays);
+    if (o->seed) printf("seed: %llu (surface samples, noise and strays drawn anew)\n", (unsigned long long)o->seed);
     if (o->runs > 1) printf("compared with: the same, method=paper\n");
     printf("validation models ((ID-1) %% 20 in 15..18): mean only\n");
 }
