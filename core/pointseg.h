@@ -119,11 +119,12 @@ typedef struct ps_input {
     int dim;               /* 2 <= dim <= PS_MAX_DIM */
     const double *normals; /* optional #P by dim, row major; NULL if absent */
     const uint32_t *faces; /* optional #F by 3 triangles of a mesh (indices into
-                              points); NULL if absent.  Method auto, dim 3:
-                              a mesh of fewer than 40,000 points is filled
-                              with points on its triangles up to that many
-                              (an even sampling, core/surface_fill.h); only
-                              the input points get answers */
+                              points); NULL if absent.  Method auto, dim 3,
+                              centrality not exact: a mesh of fewer than
+                              40,000 points is filled with points on its
+                              triangles up to that many (an even sampling,
+                              core/surface_fill.h); only the input points
+                              get answers */
     size_t n_faces;        /* #F */
 } ps_input;
 

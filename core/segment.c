@@ -452,6 +452,25 @@ static void apply_method(ps_params *p) {
     if (p->ncut_threshold == 0) p->ncut_threshold = paper ? PS_NCUT_PAPER : PS_NCUT_NEVER_STOP;
 }
 
+/* Method auto: a mesh's triangles filled up to the reference sampling
+ * (surface_fill.h); pl->in becomes *filled, the input points first.  Not
+ * with exact centrality, which is quadratic in the points: it runs on the
+ * input as given. */
+static ps_status fill_surface(pipeline *pl, ps_surface_fill *fill, ps_input *filled,
+                              ps_error *err) {
+    const ps_input *in = pl->in;
+    pl->n_input = in->n;
+    if (pl->params.method != PS_METHOD_AUTO || pl->params.centrality == PS_CENTRALITY_EXACT)
+        return PS_OK;
+    ps_status st = ps_surface_fill_build(in, PS_DENSITY_REFERENCE_POINTS, fill, err);
+    if (st != PS_OK || !fill->n_added) return st;
+    filled->points = fill->points, filled->normals = fill->normals;
+    filled->n = in->n + fill->n_added;
+    pl->in = filled;
+    pl->host_of_added = fill->host;
+    return PS_OK;
+}
+
 ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,
                      ps_result **out, ps_error *err) {
     double start = now_ms();
@@ -465,16 +484,8 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     if (st != PS_OK) return st;
     ps_surface_fill fill = {0};
     ps_input filled = *in;
-    if (pl.params.method == PS_METHOD_AUTO)
-        st = ps_surface_fill_build(in, PS_DENSITY_REFERENCE_POINTS, &fill, err);
+    st = fill_surface(&pl, &fill, &filled, err);
     if (st != PS_OK) return st;
-    if (fill.n_added) {
-        filled.points = fill.points, filled.normals = fill.normals;
-        filled.n = in->n + fill.n_added;
-        pl.in = &filled;
-    }
-    pl.n_input = in->n;
-    pl.host_of_added = fill.host;
     pl.points = (double *)pl.in->points;
     pl.threads = ps_parallel_threads(pl.params.threads);
     st = remove_duplicates(&pl, err);

@@ -7,8 +7,9 @@
  * with the mesh under rotation and scaling, and adds nothing to a dense
  * mesh or to faces without area.  End to end, a bare point set of rings
  * falls apart into its rings, the same points with their faces come out
- * whole, and the answers cover the caller's points only; a face pointing
- * past the points is refused.
+ * whole (but with exact centrality, which runs on the input as given),
+ * and the answers cover the caller's points only; a face pointing past
+ * the points is refused.
  */
 #include "surface_fill.h"
 #include "testlib.h"
@@ -157,11 +158,13 @@ static void test_nothing_to_add(void) {
 
 /* Segments of the tube's points, with or without its faces; checks that the
  * answers cover the caller's points and that every sink is one of them. */
-static int segments_of(const tube *t, int with_faces, int *components) {
+static int segments_of(const tube *t, int with_faces, ps_centrality_mode centrality,
+                       int *components) {
     ps_input in = tube_input(t);
     if (!with_faces) in.faces = NULL, in.n_faces = 0;
     ps_params p;
     ps_params_default(&p);
+    p.centrality = centrality;
     ps_result *r = NULL;
     ps_error err;
     if (ps_segment(&in, &p, NULL, &r, &err) != PS_OK) {
@@ -188,10 +191,20 @@ static void test_segment_fills_the_faces(void) {
     static tube t;
     tube_make(&t);
     int components = 0;
-    CHECK(segments_of(&t, 0, &components) >= RINGS);
+    CHECK(segments_of(&t, 0, PS_CENTRALITY_AUTO, &components) >= RINGS);
     CHECK(components == RINGS);
-    CHECK(segments_of(&t, 1, &components) <= 3);
+    CHECK(segments_of(&t, 1, PS_CENTRALITY_AUTO, &components) <= 3);
     CHECK(components == 1);
+}
+
+/* Exact centrality is quadratic in the points: it runs on the input as
+ * given, and the rings stay apart. */
+static void test_exact_centrality_not_filled(void) {
+    static tube t;
+    tube_make(&t);
+    int components = 0;
+    CHECK(segments_of(&t, 1, PS_CENTRALITY_EXACT, &components) >= RINGS);
+    CHECK(components == RINGS);
 }
 
 static void test_face_past_the_points_refused(void) {
@@ -210,4 +223,5 @@ static void test_face_past_the_points_refused(void) {
 
 PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
              TEST(test_moves_with_the_mesh), TEST(test_nothing_to_add),
-             TEST(test_segment_fills_the_faces), TEST(test_face_past_the_points_refused))
+             TEST(test_segment_fills_the_faces), TEST(test_exact_centrality_not_filled),
+             TEST(test_face_past_the_points_refused))
