@@ -237,7 +237,8 @@ void ps_result_free(ps_result *r);
 /* Bytes ps_segment is expected to take at its peak for n points of dim
  * coordinates with params (the input's own arrays not included): an upper
  * estimate from measured runs (memory_estimate.c), for a service to refuse
- * a job that cannot fit before it starts. */
+ * a job that cannot fit before it starts; below 40,000 points it covers a
+ * mesh filled up to that many (ps_input.faces). */
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params);
 
 /* ---- scoring (Princeton Segmentation Benchmark conventions) ------------ */

@@ -1,7 +1,8 @@
 /* test_memory_estimate.c: ps_segment_memory_estimate is an upper estimate
  * that is not wasteful: a child process segments a 100,000-point dumbbell
  * and its peak RSS (getrusage of the waited children) must lie between half the estimate and the
- * estimate; the estimate grows with n, k and the sample count.  Skipped
+ * estimate; the estimate grows with n, k and the sample count, and below
+ * 40,000 points covers a mesh filled up to that many.  Skipped
  * under AddressSanitizer, whose shadow memory is no part of the model. */
 #include "pointseg.h"
 #include "shapes.h"
@@ -71,4 +72,16 @@ static void test_estimate_grows(void) {
     CHECK(ps_segment_memory_estimate(1000000, 3, &more_samples) > base);
 }
 
-PS_TEST_MAIN(TEST(test_estimate_bounds_measured_peak), TEST(test_estimate_grows))
+/* A small mesh may be filled up to the reference sampling: below it the
+ * estimate is that of the reference, but with exact centrality. */
+static void test_estimate_covers_the_fill(void) {
+    ps_params p, exact;
+    ps_params_default(&p);
+    exact = p;
+    exact.centrality = PS_CENTRALITY_EXACT;
+    CHECK(ps_segment_memory_estimate(100, 3, &p) == ps_segment_memory_estimate(40000, 3, &p));
+    CHECK(ps_segment_memory_estimate(100, 3, &exact) < ps_segment_memory_estimate(40000, 3, &exact));
+}
+
+PS_TEST_MAIN(TEST(test_estimate_bounds_measured_peak), TEST(test_estimate_grows),
+             TEST(test_estimate_covers_the_fill))
