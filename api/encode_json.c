@@ -196,6 +196,7 @@ static int fill_document(cJSON *doc, const ps_pointset *in, const ps_result *r, 
     if (add_number(doc, "n_points", (double)r->n_points) || add_number(doc, "dimension", r->dim) ||
         add_number(doc, "n_components", r->n_components) ||
         add_number(doc, "normal_smoothing", r->normal_smoothing) ||
+        add_number(doc, "n_filled", (double)r->n_filled) ||
         add_number(doc, "n_outliers", (double)r->n_outliers) ||
         add_raw(doc, "labels", int_array_text(r->labels, n_labels)) ||
         add_number(doc, "n_segments", r->n_segments))

@@ -205,6 +205,8 @@ typedef struct ps_result {
                               filled surface when faces were given) */
     int normal_smoothing;  /* iterations the estimated normals were smoothed
                               (params.smooth_normals on a noisy scan; else 0) */
+    size_t n_filled;       /* points added on the faces (ps_input.faces), 0
+                              when none were; they get no answers */
     size_t n_outliers;     /* distinct points left out as stray (method auto:
                               far from their neighbours' spacing); each takes
                               the answers of its nearest kept neighbour */

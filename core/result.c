@@ -140,6 +140,7 @@ ps_status ps_result_build(const ps_result_parts *pp, const ps_params *params,
         r->dim = pp->dim;
         r->n_components = pp->n_components;
         r->normal_smoothing = pp->normal_smoothing;
+        r->n_filled = pp->n_filled;
         r->n_outliers = pp->n_outliers;
         r->n_supernodes = pp->n_supernodes;
         r->n_segments = n_segments;

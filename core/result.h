@@ -21,6 +21,7 @@ typedef struct ps_result_parts {
     const double *f;             /* #U centrality */
     int n_components;
     int normal_smoothing;        /* normals.h */
+    size_t n_filled;             /* points added after the #P (surface_fill.h) */
     size_t n_outliers;           /* outliers.h */
     int n_supernodes;            /* #S */
     const uint32_t *sinks;       /* #S distinct index of each sink */

@@ -423,6 +423,7 @@ static ps_result_parts parts_of(const pipeline *pl) {
     return (ps_result_parts){
         .n_input = pl->n_input,
         .host_of_added = pl->host_of_added,
+        .n_filled = pl->in->n - pl->n_input,
         .dim = pl->in->dim,
         .n_unique = pl->dedup.n_unique,
         .unique_of = pl->dedup.unique_of,

@@ -46,6 +46,7 @@ static ps_result small_result(void) {
     r.n_components = 1;
     r.normal_smoothing = 3;
     r.n_outliers = 2;
+    r.n_filled = 7;
     r.n_supernodes = 3;
     r.supernodes = supernodes;
     r.n_tree_nodes = 5;
@@ -109,12 +110,13 @@ static void test_json_top_level(void) {
     CHECK(num(doc, "n_components") == 1);
     CHECK(num(doc, "normal_smoothing") == 3);
     CHECK(num(doc, "n_outliers") == 2);
+    CHECK(num(doc, "n_filled") == 7);
     CHECK(int_array_is(doc, "labels", labels, N));
     CHECK(num(doc, "n_segments") == 2);
     CHECK(cJSON_GetObjectItemCaseSensitive(doc, "point_supernode") == NULL);
     CHECK(cJSON_GetObjectItemCaseSensitive(doc, "centrality") == NULL);
     CHECK(cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(doc, "warnings")) == 0);
-    CHECK(cJSON_GetArraySize(doc) == 14);
+    CHECK(cJSON_GetArraySize(doc) == 15);
     cJSON_Delete(doc);
 }
 

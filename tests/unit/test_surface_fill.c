@@ -172,6 +172,8 @@ static int segments_of(const tube *t, int with_faces, ps_centrality_mode central
         return -1;
     }
     CHECK(r->n_points == N_TUBE);
+    if (with_faces && centrality != PS_CENTRALITY_EXACT) CHECK(r->n_filled > 10000);
+    else CHECK(r->n_filled == 0);
     size_t total = 0;
     for (int g = 0; g < r->n_segments; g++) total += r->segments[g].size;
     CHECK(total == N_TUBE);
