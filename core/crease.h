@@ -42,15 +42,27 @@
 ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
                             int threads, ps_error *err);
 
+/* An edge is concave when (n_q - n_p) . (q - p) < 0 by more than this
+ * fraction of |n_q - n_p| |q - p|: where the two are nearly perpendicular
+ * (points side by side on the two faces of a thin slab, normals opposite)
+ * the sign is rounding, and a rotated copy flipped it (PSB 114). */
+#define PS_CREASE_CONCAVE_TOLERANCE 1e-9
+
 /* The angular term of one edge: eta * (1 - n_p . n_q), eta 1 when the edge
  * is concave, eta_convex otherwise.  p, q: 3 coordinates; np, nq: their
  * unit normals.  Symmetric in (p, np) and (q, nq). */
 static inline double ps_crease_angular(const double *p, const double *np, const double *q,
                                        const double *nq, double eta_convex) {
     double cosine = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
-    double opening = (nq[0] - np[0]) * (q[0] - p[0]) + (nq[1] - np[1]) * (q[1] - p[1]) +
-                     (nq[2] - np[2]) * (q[2] - p[2]);
-    return (opening < 0 ? 1.0 : eta_convex) * (1 - cosine);
+    double dn[3] = {nq[0] - np[0], nq[1] - np[1], nq[2] - np[2]};
+    double dq[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    double opening = dn[0] * dq[0] + dn[1] * dq[1] + dn[2] * dq[2];
+    const double tolerance2 = PS_CREASE_CONCAVE_TOLERANCE * PS_CREASE_CONCAVE_TOLERANCE;
+    int concave = opening < 0 && /* the norms only where the sign says concave */
+                  opening * opening > tolerance2 *
+                                          (dn[0] * dn[0] + dn[1] * dn[1] + dn[2] * dn[2]) *
+                                          (dq[0] * dq[0] + dq[1] * dq[1] + dq[2] * dq[2]);
+    return (concave ? 1.0 : eta_convex) * (1 - cosine);
 }
 
 /* How strongly each point lies on a concave crease: strength[p] is p's

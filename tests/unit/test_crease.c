@@ -1,6 +1,7 @@
 /* test_crease.c: the convexity test and the crease metric: an edge across
  * a concave valley grows, one across a convex ridge of the same angle or a
- * flat one does not; on the star the edges where the arms meet the centre
+ * flat one does not; an edge whose test is 0 but for rounding is convex
+ * however it is turned; on the star the edges where the arms meet the centre
  * (a known concave crease) come out much longer than the rest; the
  * weights and strengths do not depend on the thread count. */
 #include "crease.h"
@@ -86,5 +87,31 @@ static void test_same_for_any_threads(void) {
     ps_star_free(&s);
 }
 
-PS_TEST_MAIN(TEST(test_valley_ridge_flat), TEST(test_star_crease_edges_grow),
+/* Rotates v by angle a about z, then b about x. */
+static void turn(const double *v, double a, double b, double *out) {
+    double x = cos(a) * v[0] - sin(a) * v[1], y = sin(a) * v[0] + cos(a) * v[1];
+    out[0] = x, out[1] = cos(b) * y - sin(b) * v[2], out[2] = sin(b) * y + cos(b) * v[2];
+}
+
+/* Two points side by side on the two faces of a thin slab: normals
+ * opposite, the edge across them perpendicular, so (n_q - n_p) . (q - p)
+ * is 0 but for rounding.  Turned many ways, the edge is never concave (its
+ * sign used to follow the rounding); a valley as gentle as 1e-6 still is. */
+static void test_slab_sign_is_no_rounding(void) {
+    const double p0[3] = {0, 0, 0}, q0[3] = {1, 0, 0}, up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
+    const double lean = 1e-6, in_l[3] = {lean, 0, 1}, in_r[3] = {-lean, 0, 1};
+    int concave = 0, valleys = 0;
+    for (int i = 0; i < 200; i++) {
+        double a = 0.1 + 0.37 * i, b = 0.2 + 0.53 * i, p[3], q[3], np[3], nq[3], nl[3], nr[3];
+        turn(p0, a, b, p), turn(q0, a, b, q), turn(up, a, b, np), turn(down, a, b, nq);
+        concave += ps_crease_angular(p, np, q, nq, 0.0) > 0;
+        turn(in_l, a, b, nl), turn(in_r, a, b, nr);
+        valleys += ps_crease_angular(p, nl, q, nr, 0.0) > 0;
+    }
+    CHECK_MSG(concave == 0, "%d of 200 turned slab edges concave", concave);
+    CHECK_MSG(valleys == 200, "%d of 200 turned gentle valleys concave", valleys);
+}
+
+PS_TEST_MAIN(TEST(test_valley_ridge_flat), TEST(test_slab_sign_is_no_rounding),
+             TEST(test_star_crease_edges_grow),
              TEST(test_same_for_any_threads))
