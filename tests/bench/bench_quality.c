@@ -18,7 +18,9 @@
  * development model and prints those whose partition moved (Rand index
  * below 0.99 or another segment count).  --noise and --strays make the
  * input a noisy or outlier-ridden scan; --seed N draws the random inputs
- * (surface samples, noise, strays) anew.  See tests/bench/README.md.
+ * (surface samples, noise, strays) anew, --seeds K runs K draws of each
+ * mode that has any and prints their mean and range.  See
+ * tests/bench/README.md.
  */
 #include <errno.h>
 #include <math.h>
@@ -40,12 +42,15 @@
 #define N_CATEGORIES 20
 #define MAX_RUNS 2   /* the given parameters, then method=paper */
 #define MAX_DIRS 8
-#define MAX_MODES 4
+#define MAX_MODES 32
+#define MAX_SEEDS 8
 #define STABLE_RI 0.99 /* the least Rand index a moved copy must keep */
 
 typedef struct input_mode {
     char name[32];
     size_t surface_points; /* 0: the vertices alone */
+    uint64_t seed;         /* the draw of its random inputs (--seed, --seeds) */
+    int first;             /* the mode that its other draws repeat (itself) */
 } input_mode;
 
 typedef struct quality_options {
@@ -63,6 +68,7 @@ typedef struct quality_options {
     double noise;              /* --noise: sigma in mean mesh edge lengths */
     double strays;             /* --strays: stray points per vertex */
     uint64_t seed;             /* --seed: another draw of the random inputs */
+    int seeds;                 /* --seeds: draws of each mode that has any */
     ps_request_params params;  /* defaults + --param + --threads */
 } quality_options;
 
@@ -95,11 +101,11 @@ static const char usage[] =
     "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N]... [--ids 1,2,21]\n"
     "                     [--param name=value]... [--threads N] [--jobs N] [--single]\n"
     "                     [--dev-only] [--stability] [--out DIR] [--baseline none]\n"
-    "                     [--noise F] [--strays F] [--seed N]\n"
+    "                     [--noise F] [--strays F] [--seed N] [--seeds K]\n"
     "Segments every model of the PSB folders (default: psb-dev and psb-train, see\n"
     "tests/bench/README.md) in each input mode (default: vertices), with the given\n"
     "parameters (default: method auto) and with method=paper.  Validation models\n"
-    "((ID-1) %% 20 in 15..18) are reported as a mean only.\n";
+    "((ID-1) % 20 in 15..18) are reported as a mean only.\n";
 
 static double now_ms(void) {
     struct timespec ts;
@@ -181,7 +187,28 @@ static int value_flag(quality_options *o, const char *a, const char *v) {
     else if (!strcmp(a, "--noise") && (o->noise = atof(v)) >= 0 && o->noise <= 100) return 0;
     else if (!strcmp(a, "--strays") && (o->strays = atof(v)) >= 0 && o->strays <= 1) return 0;
     else if (!strcmp(a, "--seed")) o->seed = strtoull(v, NULL, 10);
+    else if (!strcmp(a, "--seeds") && (o->seeds = atoi(v)) >= 1 && o->seeds <= MAX_SEEDS) return 0;
     else return -1;
+    return 0;
+}
+
+/* Seeds every mode with --seed and, with --seeds K, appends K - 1 more
+ * draws (seeds --seed + 1 ...) of each mode that draws anything (surface
+ * samples, --noise, --strays), named "MODE#J"; 0 or -1. */
+static int add_draws(quality_options *o) {
+    int given = o->n_modes;
+    for (int m = 0; m < given; m++) o->modes[m].seed = o->seed, o->modes[m].first = m;
+    for (int m = 0; m < given; m++) {
+        const input_mode *base = &o->modes[m];
+        if (!base->surface_points && o->noise == 0 && o->strays == 0) continue;
+        for (int j = 1; j < o->seeds; j++) {
+            if (o->n_modes == MAX_MODES) return -1;
+            input_mode *draw = &o->modes[o->n_modes++];
+            *draw = *base;
+            draw->seed = o->seed + (uint64_t)j;
+            snprintf(draw->name, sizeof draw->name, "%.24s#%c", base->name, (char)('0' + j));
+        }
+    }
     return 0;
 }
 
@@ -209,7 +236,7 @@ static int parse_options(int argc, char **argv, quality_options *o) {
     if (o->n_modes == 0) add_mode(o, "vertices");
     /* Models run in parallel; each one single-threaded unless asked. */
     if (o->params.core.threads == 0 && o->jobs > 1) o->params.core.threads = 1;
-    return 0;
+    return add_draws(o);
 }
 
 /* The category slot of a benchmark id, or -1 outside 1..400. */
@@ -283,8 +310,8 @@ static double uniform(uint64_t *state) {
 
 /* The key of a model's random draws (surface samples, noise, strays): its
  * id, and with --seed N another draw for every N. */
-static uint64_t draw_key(const quality_options *o, int id) {
-    return (uint64_t)id ^ (o->seed * 0xD1B54A32D192ED03ull);
+static uint64_t draw_key(const input_mode *mode, int id) {
+    return (uint64_t)id ^ (mode->seed * 0xD1B54A32D192ED03ull);
 }
 
 /* Gaussian noise of sigma = noise x mean edge on every coordinate
@@ -391,12 +418,12 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
     ps_pointset mesh;
     ps_psb_humans humans;
     if (ps_psb_load_mesh(row->dir, row->id, &mesh) != 0) return -1;
-    if (o->noise > 0) add_noise(&mesh, o->noise, draw_key(o, row->id));
+    if (o->noise > 0) add_noise(&mesh, o->noise, draw_key(mode, row->id));
     row->points = mesh.n;
     double *points = NULL;
     size_t n = 0;
     int rc = -1;
-    if (build_input(&mesh, mode, o->strays, draw_key(o, row->id), &points, &n) == 0 &&
+    if (build_input(&mesh, mode, o->strays, draw_key(mode, row->id), &points, &n) == 0 &&
         ps_psb_load_humans(row->dir, row->id, mesh.n_faces, &humans) == 0) {
         row->human_segments = ps_psb_mean_segments(&humans);
         ps_input in = {.points = points, .n = n, .dim = 3};
@@ -609,6 +636,33 @@ static void print_totals(const quality_options *o, const input_mode *modes, cons
         }
 }
 
+/* With --seeds: each mode's mean over its draws, with the least and the
+ * most of them (how far one draw of the inputs moves the figure). */
+static void print_draws(const quality_options *o, const split_means *s) {
+    if (o->seeds < 2) return;
+    printf("\n== over %d draws of the random inputs (seeds %llu to %llu): mean (least to most) ==\n",
+           o->seeds, (unsigned long long)o->seed, (unsigned long long)(o->seed + o->seeds - 1));
+    printf("%-16s %-6s %-26s %-26s\n", "input", "method", "development", "validation");
+    for (int m = 0; m < o->n_modes; m++) {
+        if (o->modes[m].first != m) continue;
+        for (int run = 0; run < o->runs; run++) {
+            double sum[2] = {0, 0}, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+            int draws = 0;
+            for (int d = 0; d < o->n_modes; d++) {
+                if (o->modes[d].first != m) continue;
+                draws++;
+                for (int v = 0; v < 2; v++) {
+                    double x = s[d].mean[v][run];
+                    sum[v] += x, lo[v] = fmin(lo[v], x), hi[v] = fmax(hi[v], x);
+                }
+            }
+            if (draws < 2) continue;
+            printf("%-16s %-6s %.4f (%.4f to %.4f)   %.4f (%.4f to %.4f)\n", o->modes[m].name,
+                   run_name(o, run), sum[0] / draws, lo[0], hi[0], sum[1] / draws, lo[1], hi[1]);
+        }
+    }
+}
+
 /* The folders to read: the given ones, else psb-dev and psb-train. */
 static int resolve_dirs(const quality_options *o, char dirs[][4096]) {
     int n = 0;
@@ -659,6 +713,7 @@ int main(int argc, char **argv) {
         if (o.stability) unstable += print_stability(rows, n);
     }
     print_totals(&o, o.modes, means, o.n_modes);
+    print_draws(&o, means);
     printf("models failed: %d\n", failed);
     free(rows);
     return failed || unstable ? 1 : 0;
