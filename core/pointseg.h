@@ -123,8 +123,8 @@ typedef struct ps_input {
                               centrality not exact: a mesh of fewer than
                               40,000 points is filled with points on its
                               triangles up to that many (an even sampling,
-                              core/surface_fill.h); only the input points
-                              get answers */
+                              core/surface_fill.h; not a noisy mesh); only
+                              the input points get answers */
     size_t n_faces;        /* #F */
 } ps_input;
 

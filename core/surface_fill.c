@@ -10,6 +10,8 @@
  */
 #include "surface_fill.h"
 
+#include "sort_util.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,6 +95,41 @@ static double area_of(const ps_input *in, size_t t) {
     return triangle_area(in->points + 3 * v[0], in->points + 3 * v[1], in->points + 3 * v[2]);
 }
 
+static void face_normal(const ps_input *in, size_t t, double n[3]) {
+    const uint32_t *v = in->faces + 3 * t;
+    const double *a = in->points + 3 * v[0], *b = in->points + 3 * v[1], *c = in->points + 3 * v[2];
+    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2];
+    n[2] = u[0] * w[1] - u[1] * w[0];
+}
+
+double ps_surface_fill_roughness(const ps_input *in) {
+    if (in->dim != 3 || !in->faces || in->n_faces == 0) return 0;
+    double *corner = calloc(3 * in->n, sizeof *corner); /* area-weighted normals */
+    double *deviation = malloc(in->n_faces * sizeof *deviation);
+    if (!corner || !deviation) return free(corner), free(deviation), -1;
+    for (size_t t = 0; t < in->n_faces; t++) {
+        double n[3];
+        face_normal(in, t, n);
+        for (int c = 0; c < 3; c++)
+            for (int d = 0; d < 3; d++) corner[3 * (size_t)in->faces[3 * t + c] + d] += n[d];
+    }
+    size_t count = 0;
+    for (size_t t = 0; t < in->n_faces; t++) {
+        double n[3], m[3] = {0, 0, 0};
+        face_normal(in, t, n);
+        for (int c = 0; c < 3; c++)
+            for (int d = 0; d < 3; d++) m[d] += corner[3 * (size_t)in->faces[3 * t + c] + d];
+        double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+        if (nn > 0 && mm > 0)
+            deviation[count++] = 1 - (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]) / sqrt(nn * mm);
+    }
+    double median = count ? ps_select_kth(deviation, count, count / 2) : 0;
+    free(corner), free(deviation);
+    return median;
+}
+
 ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
                                 ps_error *err) {
     memset(out, 0, sizeof *out);
@@ -100,6 +137,9 @@ ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fi
     double total = 0;
     for (size_t t = 0; t < in->n_faces; t++) total += area_of(in, t);
     if (!(total > 0) || !isfinite(total)) return PS_OK;
+    double roughness = ps_surface_fill_roughness(in);
+    if (roughness < 0) return ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
+    if (roughness > PS_FILL_MAX_ROUGHNESS) return PS_OK;
     double step = total / (double)(target - in->n);
     size_t m = 0;
     for (size_t t = 0; t < in->n_faces; t++) m += count_of(t, area_of(in, t), step);

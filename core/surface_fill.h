@@ -18,6 +18,18 @@
  * Each triangle's points depend on that triangle alone: the result follows
  * the mesh under translation, rotation and scaling, but where a rounded
  * area moves a count across a whole number.
+ *
+ * A noisy mesh is not filled.  Its triangles are noise, and points spread
+ * over them would hide it from the noise measure of normals_smooth.h (each
+ * point's neighbours would lie on one or two flat triangles), so that the
+ * crease steps took the jagged facets for creases.  Roughness: the median
+ * over the triangles of 1 - cos between a triangle's normal and the
+ * area-weighted normal of its three corners.  On the 228 development PSB
+ * meshes: clean 0 to 0.0047, but for two coarse ones (0.017, 0.024); with
+ * Gaussian noise of 0.1 mean edge lengths 0.012 to 0.019, of 0.25 0.07 to
+ * 0.12.  Filling noisy meshes cost 0.04 at noise 0.1 (development 0.126
+ * -> 0.168) and 0.022 at 0.25; the limit, between clean and noisy, keeps
+ * 0.129 and 0.187 there (docs/method.md).
  */
 #ifndef PS_SURFACE_FILL_H
 #define PS_SURFACE_FILL_H
@@ -33,10 +45,17 @@ typedef struct ps_surface_fill {
     size_t n_added;   /* #A */
 } ps_surface_fill;
 
+#define PS_FILL_MAX_ROUGHNESS 0.01
+
+/* The roughness of in's triangles (above; in->dim 3); 0 without faces,
+ * -1 when out of memory. */
+double ps_surface_fill_roughness(const ps_input *in);
+
 /* Points added on in's triangles (in->dim must be 3) until #P+#A reaches
- * about target (within the dither's rounding); nothing when #P >= target or the faces have no area (then
- * out->n_added is 0 and out's arrays are NULL).  Face indices must be < #P
- * (the caller checks). */
+ * about target (within the dither's rounding).  Nothing when #P >= target,
+ * when the faces have no area, or when they are rougher than
+ * PS_FILL_MAX_ROUGHNESS: then out->n_added is 0 and out's arrays are NULL.
+ * Face indices must be < #P (the caller checks). */
 ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
                                 ps_error *err);
 

@@ -5,7 +5,7 @@
  * (every band between two rings gets its area's share), with each host a
  * corner of the point's triangle and interpolated unit normals; it moves
  * with the mesh under rotation and scaling, and adds nothing to a dense
- * mesh or to faces without area.  End to end, a bare point set of rings
+ * mesh, to faces without area or to a noisy mesh.  End to end, a bare point set of rings
  * falls apart into its rings, the same points with their faces come out
  * whole (but with exact centrality, which runs on the input as given),
  * and the answers cover the caller's points only; a face pointing past
@@ -156,6 +156,26 @@ static void test_nothing_to_add(void) {
     CHECK(s.n_added == 0);
 }
 
+/* A mesh whose vertices are jittered by up to half their spacing along a
+ * ring is noise on its triangles, and is not filled; the clean tube is
+ * smooth. */
+static void test_noisy_mesh_not_filled(void) {
+    static tube t;
+    tube_make(&t);
+    ps_input in = tube_input(&t);
+    CHECK(ps_surface_fill_roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
+    uint64_t state = 88172645463325252ull;
+    for (size_t i = 0; i < 3 * N_TUBE; i++) {
+        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+        t.points[i] += 0.1 * ((double)(state >> 11) / 9007199254740992.0 - 0.5);
+    }
+    CHECK(ps_surface_fill_roughness(&in) > PS_FILL_MAX_ROUGHNESS);
+    ps_surface_fill s;
+    ps_error err;
+    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    CHECK(s.n_added == 0 && s.points == NULL);
+}
+
 /* Segments of the tube's points, with or without its faces; checks that the
  * answers cover the caller's points and that every sink is one of them. */
 static int segments_of(const tube *t, int with_faces, ps_centrality_mode centrality,
@@ -225,5 +245,6 @@ static void test_face_past_the_points_refused(void) {
 
 PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
              TEST(test_moves_with_the_mesh), TEST(test_nothing_to_add),
+             TEST(test_noisy_mesh_not_filled),
              TEST(test_segment_fills_the_faces), TEST(test_exact_centrality_not_filled),
              TEST(test_face_past_the_points_refused))
