@@ -13,6 +13,7 @@
 #include "centrality.h"
 #include "coarse_graph.h"
 #include "normals_smooth.h"
+#include "surface_fill.h"
 
 /* Fitted 2026-11-24 to the peaks of the horse sampled at 300,000 to 10M
  * points, k = 7, 14 and 28 (bench_scale and a progress probe of VmHWM):
@@ -27,10 +28,8 @@
 #define CELL_POINTS 15                /* points per centrality cell, low end */
 
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
-    /* a mesh may be filled up to the reference sampling (surface_fill.h) */
-    if (dim == 3 && params->method == PS_METHOD_AUTO && params->centrality != PS_CENTRALITY_EXACT &&
-        n < PS_DENSITY_REFERENCE_POINTS)
-        n = PS_DENSITY_REFERENCE_POINTS;
+    /* a mesh may be filled up to the reference sampling */
+    if (ps_surface_fill_wanted(params, dim, n)) n = PS_DENSITY_REFERENCE_POINTS;
     size_t per_point = BYTES_PER_POINT + BYTES_PER_NEIGHBOUR * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
     size_t table = 0;

@@ -453,16 +453,14 @@ static void apply_method(ps_params *p) {
     if (p->ncut_threshold == 0) p->ncut_threshold = paper ? PS_NCUT_PAPER : PS_NCUT_NEVER_STOP;
 }
 
-/* Method auto: a mesh's triangles filled up to the reference sampling
- * (surface_fill.h); pl->in becomes *filled, the input points first.  Not
- * with exact centrality, which is quadratic in the points: it runs on the
- * input as given. */
+/* A mesh's triangles filled up to the reference sampling where the
+ * parameters want it (surface_fill.h); pl->in becomes *filled, the input
+ * points first. */
 static ps_status fill_surface(pipeline *pl, ps_surface_fill *fill, ps_input *filled,
                               ps_error *err) {
     const ps_input *in = pl->in;
     pl->n_input = in->n;
-    if (pl->params.method != PS_METHOD_AUTO || pl->params.centrality == PS_CENTRALITY_EXACT)
-        return PS_OK;
+    if (!ps_surface_fill_wanted(&pl->params, in->dim, in->n)) return PS_OK;
     ps_status st = ps_surface_fill_build(in, PS_DENSITY_REFERENCE_POINTS, fill, err);
     if (st != PS_OK || !fill->n_added) return st;
     filled->points = fill->points, filled->normals = fill->normals;

@@ -10,6 +10,7 @@
  */
 #include "surface_fill.h"
 
+#include "normals_smooth.h"
 #include "sort_util.h"
 
 #include <math.h>
@@ -18,14 +19,6 @@
 
 #define R2_A1 0.75487766624669276005 /* 1 / phi2 */
 #define R2_A2 0.56984029099805326591 /* 1 / phi2^2 */
-
-static double triangle_area(const double *a, const double *b, const double *c) {
-    double u[3], v[3];
-    for (int i = 0; i < 3; i++) u[i] = b[i] - a[i], v[i] = c[i] - a[i];
-    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
-           z = u[0] * v[1] - u[1] * v[0];
-    return 0.5 * sqrt(x * x + y * y + z * z);
-}
 
 /* splitmix64's finalizer: a well-mixed 64-bit hash of x. */
 static uint64_t mix64(uint64_t x) {
@@ -90,11 +83,11 @@ static size_t count_of(size_t t, double area, double step) {
     return (size_t)floor(area / step + unit_of(mix64((uint64_t)t ^ 0x5F1Dull)));
 }
 
-static double area_of(const ps_input *in, size_t t) {
-    const uint32_t *v = in->faces + 3 * t;
-    return triangle_area(in->points + 3 * v[0], in->points + 3 * v[1], in->points + 3 * v[2]);
+static double dot3(const double *a, const double *b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* Triangle t's normal, twice its area long. */
 static void face_normal(const ps_input *in, size_t t, double n[3]) {
     const uint32_t *v = in->faces + 3 * t;
     const double *a = in->points + 3 * v[0], *b = in->points + 3 * v[1], *c = in->points + 3 * v[2];
@@ -102,6 +95,17 @@ static void face_normal(const ps_input *in, size_t t, double n[3]) {
     double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2];
     n[2] = u[0] * w[1] - u[1] * w[0];
+}
+
+/* area #F out: each triangle's area; returns their sum. */
+static double face_areas(const ps_input *in, double *area) {
+    double total = 0;
+    for (size_t t = 0; t < in->n_faces; t++) {
+        double n[3];
+        face_normal(in, t, n);
+        total += area[t] = 0.5 * sqrt(dot3(n, n));
+    }
+    return total;
 }
 
 double ps_surface_fill_roughness(const ps_input *in) {
@@ -121,45 +125,68 @@ double ps_surface_fill_roughness(const ps_input *in) {
         face_normal(in, t, n);
         for (int c = 0; c < 3; c++)
             for (int d = 0; d < 3; d++) m[d] += corner[3 * (size_t)in->faces[3 * t + c] + d];
-        double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
-        if (nn > 0 && mm > 0)
-            deviation[count++] = 1 - (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]) / sqrt(nn * mm);
+        double nn = dot3(n, n), mm = dot3(m, m);
+        if (nn > 0 && mm > 0) deviation[count++] = 1 - dot3(n, m) / sqrt(nn * mm);
     }
     double median = count ? ps_select_kth(deviation, count, count / 2) : 0;
     free(corner), free(deviation);
     return median;
 }
 
-ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
-                                ps_error *err) {
-    memset(out, 0, sizeof *out);
-    if (in->dim != 3 || !in->faces || in->n_faces == 0 || in->n >= target) return PS_OK;
-    double total = 0;
-    for (size_t t = 0; t < in->n_faces; t++) total += area_of(in, t);
-    if (!(total > 0) || !isfinite(total)) return PS_OK;
-    double roughness = ps_surface_fill_roughness(in);
-    if (roughness < 0) return ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
-    if (roughness > PS_FILL_MAX_ROUGHNESS) return PS_OK;
-    double step = total / (double)(target - in->n);
-    size_t m = 0;
-    for (size_t t = 0; t < in->n_faces; t++) m += count_of(t, area_of(in, t), step);
-    if (m == 0) return PS_OK;
+/* out's arrays for the #P input points and m added ones, the input's
+ * copied in; 0 when out of memory (out freed). */
+static int allocate(const ps_input *in, size_t m, ps_surface_fill *out) {
     out->points = malloc(3 * (in->n + m) * sizeof *out->points);
     out->host = malloc(m * sizeof *out->host);
     if (in->normals) out->normals = malloc(3 * (in->n + m) * sizeof *out->normals);
     if (!out->points || !out->host || (in->normals && !out->normals)) {
         ps_surface_fill_free(out);
-        return ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
+        return 0;
     }
     memcpy(out->points, in->points, 3 * in->n * sizeof *out->points);
     if (in->normals) memcpy(out->normals, in->normals, 3 * in->n * sizeof *out->normals);
     out->n_added = m;
+    return 1;
+}
+
+/* Fills out from the triangles' areas (#F), or leaves it empty (see
+ * surface_fill.h); 0 when out of memory. */
+static int fill_from_areas(const ps_input *in, size_t target, const double *area, double total,
+                           ps_surface_fill *out) {
+    if (!(total > 0) || !isfinite(total)) return 1;
+    double roughness = ps_surface_fill_roughness(in);
+    if (roughness < 0) return 0;
+    if (roughness > PS_FILL_MAX_ROUGHNESS) return 1;
+    double step = total / (double)(target - in->n);
+    size_t m = 0;
+    for (size_t t = 0; t < in->n_faces; t++) m += count_of(t, area[t], step);
+    if (m == 0) return 1;
+    if (!allocate(in, m, out)) return 0;
     filler fl = {in, out, 0};
     for (size_t t = 0; t < in->n_faces; t++) {
-        size_t count = count_of(t, area_of(in, t), step);
+        size_t count = count_of(t, area[t], step);
         for (size_t i = 0; i < count; i++) place(&fl, t, i);
     }
-    return PS_OK;
+    return 1;
+}
+
+int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n) {
+    return params->method == PS_METHOD_AUTO && params->centrality != PS_CENTRALITY_EXACT &&
+           dim == 3 && n < PS_DENSITY_REFERENCE_POINTS;
+}
+
+ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
+                                ps_error *err) {
+    memset(out, 0, sizeof *out);
+    if (in->dim != 3 || !in->faces || in->n_faces == 0 || in->n >= target) return PS_OK;
+    double *area = malloc(in->n_faces * sizeof *area);
+    int ok = area != NULL;
+    if (ok) {
+        double total = face_areas(in, area);
+        ok = fill_from_areas(in, target, area, total, out);
+    }
+    free(area);
+    return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
 }
 
 void ps_surface_fill_free(ps_surface_fill *s) {

@@ -51,6 +51,12 @@ typedef struct ps_surface_fill {
  * -1 when out of memory. */
 double ps_surface_fill_roughness(const ps_input *in);
 
+/* Whether params (method auto, centrality not exact: exact is quadratic
+ * in the points and runs on the input as given) let a mesh of n points of
+ * dim coordinates be filled up to PS_DENSITY_REFERENCE_POINTS; whether it
+ * is then depends on its faces (ps_surface_fill_build). */
+int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n);
+
 /* Points added on in's triangles (in->dim must be 3) until #P+#A reaches
  * about target (within the dither's rounding).  Nothing when #P >= target,
  * when the faces have no area, or when they are rougher than
