@@ -45,6 +45,7 @@
 #define MAX_MODES 32
 #define MAX_SEEDS 8
 #define STABLE_RI 0.99 /* the least Rand index a moved copy must keep */
+#define PAIRED_SAME 5e-5 /* a smaller change of a model's 1 - RI counts as none */
 
 typedef struct input_mode {
     char name[32];
@@ -60,6 +61,7 @@ typedef struct quality_options {
     int n_modes;
     const char *ids_arg;       /* --ids list, or NULL for every model */
     const char *out_dir;       /* --out: write ID.lab predictions here */
+    const char *against_dir;   /* --against: an earlier --out folder to compare with */
     int baseline_none;         /* --baseline none: every vertex labelled 0 */
     int runs;                  /* 1 with --single (or a baseline), else 2 */
     int jobs;                  /* models segmented at once */
@@ -86,6 +88,8 @@ typedef struct model_row {
     double ms[MAX_RUNS];
     double moved_ri;           /* --stability: RI between the copy and the original */
     int moved_segments;
+    int compared;              /* --against: the earlier labels were found and scored */
+    double earlier_error;      /* --against: their 1 - RI */
 } model_row;
 
 typedef struct pool {
@@ -101,7 +105,7 @@ static const char usage[] =
     "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N]... [--ids 1,2,21]\n"
     "                     [--param name=value]... [--threads N] [--jobs N] [--single]\n"
     "                     [--dev-only] [--stability] [--out DIR] [--baseline none]\n"
-    "                     [--noise F] [--strays F] [--seed N] [--seeds K]\n"
+    "                     [--noise F] [--strays F] [--seed N] [--seeds K] [--against DIR]\n"
     "Segments every model of the PSB folders (default: psb-dev and psb-train, see\n"
     "tests/bench/README.md) in each input mode (default: vertices), with the given\n"
     "parameters (default: method auto) and with method=paper.  Validation models\n"
@@ -179,6 +183,7 @@ static int switch_flag(quality_options *o, const char *a) {
 static int value_flag(quality_options *o, const char *a, const char *v) {
     if (!strcmp(a, "--ids")) o->ids_arg = v;
     else if (!strcmp(a, "--out")) o->out_dir = v;
+    else if (!strcmp(a, "--against")) o->against_dir = v;
     else if (!strcmp(a, "--input")) return add_mode(o, v);
     else if (!strcmp(a, "--param")) return apply_assignment(&o->params, v);
     else if (!strcmp(a, "--threads")) return set_param(&o->params, "threads", v);
@@ -263,6 +268,35 @@ static int write_labels(const char *dir, const char *mode, int id, const int *la
     for (size_t i = 0; i < n; i++) fprintf(f, "%d\n", labels[i]);
     if (fclose(f) != 0) { perror(path); return -1; }
     return 0;
+}
+
+/* n labels from dir/ID.MODE.lab (an earlier run's --out), or NULL when the
+ * file is missing or holds another count. */
+static int *read_labels(const char *dir, const char *mode, int id, size_t n) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%d.%s.lab", dir, id, mode);
+    FILE *f = fopen(path, "r");
+    if (!f) return NULL;
+    int *labels = malloc((n ? n : 1) * sizeof *labels);
+    size_t got = 0;
+    int extra;
+    while (labels && got < n && fscanf(f, "%d", &labels[got]) == 1) got++;
+    int complete = labels && got == n && fscanf(f, "%d", &extra) != 1;
+    fclose(f);
+    if (complete) return labels;
+    free(labels);
+    return NULL;
+}
+
+/* --against: scores the earlier run's labels of this model and mode. */
+static void score_earlier(const quality_options *o, const input_mode *mode,
+                          const ps_pointset *mesh, const ps_psb_humans *humans, model_row *row) {
+    int *labels = read_labels(o->against_dir, mode->name, row->id, mesh->n);
+    if (!labels) return;
+    double under, over;
+    row->earlier_error = ps_psb_score_parts(mesh, labels, humans, &under, &over);
+    row->compared = 1;
+    free(labels);
 }
 
 /* The parameters of run `run`: the given ones, or the paper's method. */
@@ -433,6 +467,7 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
             in.n_faces = mesh.n_faces;
         }
         rc = score_runs(o, mode, &in, &mesh, &humans, row);
+        if (rc == 0 && o->against_dir) score_earlier(o, mode, &mesh, &humans, row);
         ps_psb_humans_free(&humans);
     }
     free(points);
@@ -565,11 +600,20 @@ static void print_categories(const quality_options *o, const model_row *rows, si
     }
 }
 
+/* --against: the first run's change from the earlier labels, per split. */
+typedef struct paired_change {
+    int models;           /* models with earlier labels */
+    double mean, se;      /* mean change of 1 - RI (negative: better) and its standard error */
+    int better, worse;    /* models whose 1 - RI moved by over PAIRED_SAME either way */
+    int categories_better, categories_worse; /* by the category means (development) */
+} paired_change;
+
 typedef struct split_means {
     double mean[2][MAX_RUNS]; /* [validation][run] */
     double over[2][MAX_RUNS]; /* its part from over-segmentation; the rest is under */
     int models[2];
     int failed;
+    paired_change change[2];  /* [validation] */
 } split_means;
 
 static split_means split_summary(const quality_options *o, const model_row *rows, size_t n) {
@@ -588,6 +632,58 @@ static split_means split_summary(const quality_options *o, const model_row *rows
             s.over[v][run] = s.models[v] ? s.over[v][run] / s.models[v] : NAN;
         }
     return s;
+}
+
+/* --against: per split, the mean change of the first run's 1 - RI from the
+ * earlier labels, its standard error (the models' changes are paired:
+ * their spread, not the models' own, bounds what the mean can show), how
+ * many models and (development) categories moved each way. */
+static void paired_summary(const model_row *rows, size_t n, paired_change change[2]) {
+    double sum[2] = {0, 0}, sum2[2] = {0, 0}, category[N_CATEGORIES] = {0};
+    memset(change, 0, 2 * sizeof *change);
+    for (size_t i = 0; i < n; i++) {
+        const model_row *row = &rows[i];
+        if (row->failed || !row->compared) continue;
+        double d = row->error[0] - row->earlier_error;
+        paired_change *c = &change[row->validation];
+        c->models++;
+        sum[row->validation] += d, sum2[row->validation] += d * d;
+        c->better += d < -PAIRED_SAME, c->worse += d > PAIRED_SAME;
+        int k = category_index(row->id);
+        if (!row->validation && k >= 0) category[k] += d;
+    }
+    for (int v = 0; v < 2; v++) {
+        paired_change *c = &change[v];
+        if (c->models == 0) continue;
+        c->mean = sum[v] / c->models;
+        double var = c->models > 1 ? (sum2[v] - c->models * c->mean * c->mean) / (c->models - 1) : 0;
+        c->se = sqrt(fmax(var, 0) / c->models);
+    }
+    for (int k = 0; k < N_CATEGORIES; k++) {
+        change[0].categories_better += category[k] < -PAIRED_SAME;
+        change[0].categories_worse += category[k] > PAIRED_SAME;
+    }
+}
+
+/* --against: each mode's change from the earlier run's labels.  Validation
+ * models count only in the mean, as everywhere. */
+static void print_changes(const quality_options *o, const split_means *s) {
+    if (!o->against_dir) return;
+    printf("\n== change of 1-RI against %s (%s; negative: better; +- one standard error of "
+           "the paired mean) ==\n", o->against_dir, run_name(o, 0));
+    printf("%-16s %-48s %s\n", "input", "development", "validation");
+    for (int m = 0; m < o->n_modes; m++) {
+        const paired_change *d = &s[m].change[0], *v = &s[m].change[1];
+        printf("%-16s", o->modes[m].name);
+        if (d->models)
+            printf(" %+.4f +- %.4f (%3d: %3d better, %3d worse; categories %2d / %2d) ", d->mean,
+                   d->se, d->models, d->better, d->worse, d->categories_better,
+                   d->categories_worse);
+        else
+            printf(" %-48s", "- (no earlier labels)");
+        if (v->models) printf(" %+.4f +- %.4f (%d)\n", v->mean, v->se, v->models);
+        else printf(" -\n");
+    }
 }
 
 /* --stability: the development models whose moved copy's partition moved. */
@@ -611,6 +707,19 @@ static int print_stability(const model_row *rows, size_t n) {
     return moved;
 }
 
+/* "0.1234 (228)", or "   -   (  0)" for no models. */
+static void print_mean(double mean, int models) {
+    if (models) printf(" %7.4f (%3d)", mean, models);
+    else printf(" %7s (%3d)", "-", models);
+}
+
+/* "0.1234 + 0.0567" (over + under), or "-" for no models. */
+static void print_parts(double mean, double over, int models) {
+    char text[40] = "-";
+    if (models) snprintf(text, sizeof text, "%.4f + %.4f", over, mean - over);
+    printf(" %-17s", text);
+}
+
 static void print_totals(const quality_options *o, const input_mode *modes, const split_means *s,
                          int n_modes) {
     printf("\n== mean 1-RI per input mode (development | validation | all) ==\n");
@@ -620,8 +729,11 @@ static void print_totals(const quality_options *o, const input_mode *modes, cons
             int nd = s[m].models[0], nv = s[m].models[1];
             double all = ((nd ? s[m].mean[0][run] * nd : 0) + (nv ? s[m].mean[1][run] * nv : 0)) /
                          (nd + nv ? nd + nv : 1);
-            printf("%-16s %-6s %7.4f (%3d) %7.4f (%3d) %7.4f (%3d)\n", modes[m].name,
-                   run_name(o, run), s[m].mean[0][run], nd, s[m].mean[1][run], nv, all, nd + nv);
+            printf("%-16s %-6s ", modes[m].name, run_name(o, run));
+            print_mean(s[m].mean[0][run], nd);
+            print_mean(s[m].mean[1][run], nv);
+            print_mean(all, nd + nv);
+            printf("\n");
         }
     printf("references (1-RI): people 0.101, PCL CPC 0.124 (unseen PSB models, scan-like input)\n");
     printf("\n== 1-RI = over + under: pairs of faces split where people join them, and joined "
@@ -629,10 +741,9 @@ static void print_totals(const quality_options *o, const input_mode *modes, cons
     printf("%-16s %-6s %-17s %-17s\n", "input", "method", "development", "validation");
     for (int m = 0; m < n_modes; m++)
         for (int run = 0; run < o->runs; run++) {
-            const double *mean = s[m].mean[0], *over = s[m].over[0];
-            const double *vmean = s[m].mean[1], *vover = s[m].over[1];
-            printf("%-16s %-6s %.4f + %.4f   %.4f + %.4f\n", modes[m].name, run_name(o, run), over[run],
-                   mean[run] - over[run], vover[run], vmean[run] - vover[run]);
+            printf("%-16s %-6s", modes[m].name, run_name(o, run));
+            for (int v = 0; v < 2; v++) print_parts(s[m].mean[v][run], s[m].over[v][run], s[m].models[v]);
+            printf("\n");
         }
 }
 
@@ -657,8 +768,11 @@ static void print_draws(const quality_options *o, const split_means *s) {
                 }
             }
             if (draws < 2) continue;
-            printf("%-16s %-6s %.4f (%.4f to %.4f)   %.4f (%.4f to %.4f)\n", o->modes[m].name,
-                   run_name(o, run), sum[0] / draws, lo[0], hi[0], sum[1] / draws, lo[1], hi[1]);
+            printf("%-16s %-6s", o->modes[m].name, run_name(o, run));
+            for (int v = 0; v < 2; v++)
+                if (s[m].models[v]) printf(" %.4f (%.4f to %.4f)  ", sum[v] / draws, lo[v], hi[v]);
+                else printf(" %-26s", "-");
+            printf("\n");
         }
     }
 }
@@ -709,11 +823,13 @@ int main(int argc, char **argv) {
         print_model_rows(&o, rows, n);
         print_categories(&o, rows, n);
         means[m] = split_summary(&o, rows, n);
+        paired_summary(rows, n, means[m].change);
         failed += means[m].failed;
         if (o.stability) unstable += print_stability(rows, n);
     }
     print_totals(&o, o.modes, means, o.n_modes);
     print_draws(&o, means);
+    print_changes(&o, means);
     printf("models failed: %d\n", failed);
     free(rows);
     return failed || unstable ? 1 : 0;
