@@ -49,22 +49,11 @@ typedef struct pair {
     size_t small, large;  /* sizes of the smaller and larger segment */
 } pair;
 
-/* The mean edge length L and angular scale A0 of the capacities
- * (boundary_cut.h), over every arc in order. */
+/* L, A0 and whether the surface has creases, from the edges' scales. */
 static void edge_scales(cut_context *cx) {
-    const ps_graph *g = cx->in->graph;
-    const double *x = cx->in->points, *nx = cx->in->normals;
-    size_t edges = g->offsets[g->n];
-    double sum_len = 0, sum_ang = 0;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            size_t q = g->neighbors[e];
-            sum_len += ps_distance3(x + 3 * p, x + 3 * q);
-            sum_ang += ps_crease_angular(x + 3 * p, nx + 3 * p, x + 3 * q, nx + 3 * q, 0.0);
-        }
-    cx->mean_edge = sum_len / (double)edges;
-    cx->angle_scale = PS_BOUNDARY_CUT_ANGLE * sum_ang / (double)edges;
-    cx->creased = sum_ang / (double)edges >= PS_CREASE_FLAT;
+    cx->mean_edge = cx->in->scales.mean_length;
+    cx->angle_scale = PS_BOUNDARY_CUT_ANGLE * cx->in->scales.mean_concave;
+    cx->creased = cx->in->scales.mean_concave >= PS_CREASE_FLAT;
 }
 
 /* capacity[e] = |p-q| / L * exp(-ang / A0) of arc e out of p, computed on

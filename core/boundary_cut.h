@@ -34,6 +34,7 @@
 #ifndef PS_BOUNDARY_CUT_H
 #define PS_BOUNDARY_CUT_H
 
+#include "crease.h"
 #include "knn_graph.h"
 
 /* PSB dev set, mean 1 - RI (without the cut 0.1930), over BAND x ANGLE:
@@ -54,6 +55,8 @@ typedef struct ps_boundary_cut_input {
     const ps_graph *graph;   /* kNN graph on #P points (its weights are not used) */
     const double *points;    /* #P by 3 */
     const double *normals;   /* #P by 3, outward unit normals (normals.h) */
+    ps_edge_scales scales;   /* of graph over normals (ps_crease_scales; the
+                                metric's pass gives them too) */
     int n_groups;            /* segment ids are in [0, n_groups) */
     int n_supernodes;        /* #S */
     const uint32_t *sinks;   /* #S sink point of each supernode */

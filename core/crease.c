@@ -6,22 +6,25 @@
  */
 #include "crease.h"
 
+#include "dijkstra.h"
 #include "parallel.h"
 
 #include <stdlib.h>
 
 #define CREASE_BLOCK 4096
 
-/* One pass over blocks of points: sums[2 b], sums[2 b + 1] are block b's
- * two sums (what they are depends on the pass). */
+/* One pass over blocks of points: sums[SUMS b + i] is block b's sum i
+ * (what they are depends on the pass). */
 typedef struct crease_pass {
     const ps_graph *g;
     double *weights;          /* the weights pass: g's weights, rewritten */
     const double *points, *normals;
     double L, A;              /* the weights pass: the metric's means */
     ps_crease_points *cp;     /* the strengths pass */
-    double *sums;             /* #blocks by 2 */
+    double *sums;             /* #blocks by SUMS */
 } crease_pass;
+
+#define SUMS 3
 
 static size_t block_count(size_t n) {
     return (n + CREASE_BLOCK - 1) / CREASE_BLOCK;
@@ -38,20 +41,23 @@ static double arc_angular(const crease_pass *c, size_t p, size_t e, double eta) 
                              c->normals + 3 * q, eta);
 }
 
-/* Each block's sum of edge lengths and of angular terms; a ps_range_fn
- * over blocks. */
+/* Each block's sums of edge lengths, of the metric's angular terms and of
+ * the concave ones (the same while PS_CREASE_ETA_CONVEX is 0); a
+ * ps_range_fn over blocks. */
 static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
     (void)worker;
     crease_pass *c = ctx;
     const ps_graph *g = c->g;
     for (size_t b = begin; b < end; b++) {
-        double len = 0, ang = 0;
+        double len = 0, ang = 0, concave = 0;
         for (size_t p = b * CREASE_BLOCK, end_p = block_end(g->n, b); p < end_p; p++)
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-                len += g->weights[e];
-                ang += arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
+                double a0 = arc_angular(c, p, e, 0.0);
+                len += ps_distance3(c->points + 3 * p, c->points + 3 * g->neighbors[e]);
+                ang += PS_CREASE_ETA_CONVEX == 0 ? a0 : arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
+                concave += a0;
             }
-        c->sums[2 * b] = len, c->sums[2 * b + 1] = ang;
+        c->sums[SUMS * b] = len, c->sums[SUMS * b + 1] = ang, c->sums[SUMS * b + 2] = concave;
     }
 }
 
@@ -86,33 +92,49 @@ static void strength_blocks(void *ctx, size_t begin, size_t end, int worker) {
             }
             c->cp->strength[p] = most;
         }
-        c->sums[2 * b] = sum, c->sums[2 * b + 1] = 0;
+        c->sums[SUMS * b] = sum, c->sums[SUMS * b + 1] = c->sums[SUMS * b + 2] = 0;
     }
 }
 
-/* Runs fn over the blocks of g's points; out[0], out[1]: the two sums over
- * all blocks, in block order.  -1 when out of memory. */
-static int over_blocks(crease_pass *c, int threads, ps_range_fn fn, double out[2]) {
+/* Runs fn over the blocks of g's points; out[i]: sum i over all blocks,
+ * in block order.  -1 when out of memory. */
+static int over_blocks(crease_pass *c, int threads, ps_range_fn fn, double out[SUMS]) {
     size_t blocks = block_count(c->g->n);
-    c->sums = malloc(2 * (blocks ? blocks : 1) * sizeof *c->sums);
+    c->sums = malloc(SUMS * (blocks ? blocks : 1) * sizeof *c->sums);
     if (!c->sums) return -1;
     ps_parallel_for(ps_parallel_threads(threads), blocks, 1, fn, c);
-    out[0] = out[1] = 0;
-    for (size_t b = 0; b < blocks; b++) out[0] += c->sums[2 * b], out[1] += c->sums[2 * b + 1];
+    for (int i = 0; i < SUMS; i++) out[i] = 0;
+    for (size_t b = 0; b < blocks; b++)
+        for (int i = 0; i < SUMS; i++) out[i] += c->sums[SUMS * b + (size_t)i];
     free(c->sums);
     return 0;
 }
 
-ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
-                            int threads, ps_error *err) {
-    size_t edges = g->offsets[g->n];
+/* The sums pass: c's metric means L and A, and the scales. */
+static ps_status measure(crease_pass *c, int threads, ps_edge_scales *scales, ps_error *err) {
+    double edges = (double)c->g->offsets[c->g->n], sums[SUMS];
+    *scales = (ps_edge_scales){0, 0};
     if (edges == 0) return PS_OK;
-    crease_pass c = {.g = g, .weights = g->weights, .points = points, .normals = normals};
-    double sums[2];
-    if (over_blocks(&c, threads, sum_blocks, sums) != 0)
+    if (over_blocks(c, threads, sum_blocks, sums) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease metric)");
-    c.L = sums[0] / (double)edges, c.A = sums[1] / (double)edges;
-    if (c.A < PS_CREASE_FLAT) return PS_OK;
+    c->L = sums[0] / edges, c->A = sums[1] / edges;
+    *scales = (ps_edge_scales){.mean_length = c->L, .mean_concave = sums[2] / edges};
+    return PS_OK;
+}
+
+ps_status ps_crease_scales(const ps_graph *g, const double *points, const double *normals,
+                           int threads, ps_edge_scales *scales, ps_error *err) {
+    crease_pass c = {.g = g, .points = points, .normals = normals};
+    return measure(&c, threads, scales, err);
+}
+
+ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
+                            int threads, ps_edge_scales *scales, ps_error *err) {
+    crease_pass c = {.g = g, .weights = g->weights, .points = points, .normals = normals};
+    ps_edge_scales measured;
+    ps_status st = measure(&c, threads, &measured, err);
+    if (scales) *scales = measured;
+    if (st != PS_OK || g->offsets[g->n] == 0 || c.A < PS_CREASE_FLAT) return st;
     ps_parallel_for(ps_parallel_threads(threads), g->n, 0, weigh_points, &c);
     return PS_OK;
 }
@@ -120,7 +142,7 @@ ps_status ps_crease_weights(ps_graph *g, const double *points, const double *nor
 ps_status ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
                               int threads, ps_crease_points *cp, ps_error *err) {
     crease_pass c = {.g = g, .points = points, .normals = normals, .cp = cp};
-    double sums[2];
+    double sums[SUMS];
     if (over_blocks(&c, threads, strength_blocks, sums) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease strengths)");
     cp->mean = g->offsets[g->n] ? sums[0] / (double)g->offsets[g->n] : 0;

@@ -37,10 +37,24 @@
 
 #include "knn_graph.h"
 
+/* The scales of a kNN graph's edges over given normals, which the metric
+ * and the boundary cut (boundary_cut.h) measure their edges by. */
+typedef struct ps_edge_scales {
+    double mean_length;   /* L: mean Euclidean length of the arcs */
+    double mean_concave;  /* mean angular term with eta_convex 0 (concave arcs only) */
+} ps_edge_scales;
+
+/* g's edge scales over points #P by 3 and normals #P by 3 (outward,
+ * unit), on threads (ps_parallel_threads) threads; the same for any count. */
+ps_status ps_crease_scales(const ps_graph *g, const double *points, const double *normals,
+                           int threads, ps_edge_scales *scales, ps_error *err);
+
 /* points #P by 3, normals #P by 3 (outward, unit).  Rewrites g->weights,
- * on threads (ps_parallel_threads) threads; the same for any count. */
+ * on threads (ps_parallel_threads) threads; the same for any count.
+ * scales out (may be NULL): g's scales as ps_crease_scales gives them, from
+ * the same pass. */
 ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
-                            int threads, ps_error *err);
+                            int threads, ps_edge_scales *scales, ps_error *err);
 
 /* An edge is concave when (n_q - n_p) . (q - p) < 0 by more than this
  * fraction of |n_q - n_p| |q - p|: where the two are nearly perpendicular

@@ -75,6 +75,7 @@ typedef struct pipeline {
                                  (crease_scale), or normals itself */
     ps_crease_points creases; /* with normals: crease strengths of the #U points
                                  at the crease scale, and their mean */
+    ps_edge_scales edge_scales; /* with normals: the graph's edges over them */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;
@@ -197,7 +198,8 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
                                  &pl->creases, err);
     if (st == PS_OK) {
         ps_control_progress(pl->ctl, PS_PHASE_KNN, KNN_STRENGTHS_DONE);
-        st = ps_crease_weights(&pl->graph, pl->points, pl->normals, pl->threads, err);
+        st = ps_crease_weights(&pl->graph, pl->points, pl->normals, pl->threads,
+                               &pl->edge_scales, err);
     }
     free(given);
     return st;
@@ -339,6 +341,7 @@ static ps_status boundary_cut(pipeline *pl, ps_error *err) {
         .graph = &pl->graph,
         .points = pl->points,
         .normals = pl->normals,
+        .scales = pl->edge_scales,
         .n_groups = pl->n_tree,
         .n_supernodes = pl->sn.m,
         .sinks = pl->sn.sinks,

@@ -87,10 +87,19 @@ static double boundary_on_crease(const star *s, const int *group, double toleran
     return crossing ? (double)on_crease / (double)crossing : 0;
 }
 
+/* The edge scales the cut reads, as the pipeline's metric pass gives them. */
+static ps_edge_scales scales_of(const ps_star *sh) {
+    ps_edge_scales scales = {0, 0};
+    ps_error err = {0};
+    CHECK(ps_crease_scales(&sh->graph, sh->points, sh->normals, 1, &scales, &err) == PS_OK);
+    return scales;
+}
+
 static ps_status run_tracked(const star *s, int *group, int *supernode_of,
                              const ps_progress_span *span) {
     ps_boundary_cut_input in = {.graph = &s->shape.graph, .points = s->shape.points,
-                                .normals = s->shape.normals, .n_groups = N_PARTS,
+                                .normals = s->shape.normals, .scales = scales_of(&s->shape),
+                                .n_groups = N_PARTS,
                                 .n_supernodes = N_PARTS, .sinks = s->sinks, .span = span};
     for (size_t p = 0; p < s->shape.n; p++) supernode_of[p] = group[p];
     ps_error err = {0};
@@ -248,7 +257,8 @@ static void test_messy_segments_move_only_near_boundaries(void) {
     messy_groups(&s, start);
     int m = messy_supernodes(&s, start, supernode_of, sinks);
     ps_boundary_cut_input in = {.graph = &s.shape.graph, .points = s.shape.points,
-                                .normals = s.shape.normals, .n_groups = N_MESSY,
+                                .normals = s.shape.normals, .scales = scales_of(&s.shape),
+                                .n_groups = N_MESSY,
                                 .n_supernodes = m, .sinks = sinks};
     ps_error err = {0};
     memcpy(group, start, n * sizeof *group);

@@ -23,7 +23,7 @@ static void test_valley_ridge_flat(void) {
     uint32_t nbr[6] = {1, 0, 3, 2, 5, 4};
     double w[6] = {1, 1, 1, 1, 1, 1};
     ps_graph g = {6, off, nbr, w};
-    REQUIRE(ps_crease_weights(&g, pts, nrm, 1, NULL) == PS_OK);
+    REQUIRE(ps_crease_weights(&g, pts, nrm, 1, NULL, NULL) == PS_OK);
     CHECK(w[0] == w[1] && w[2] == w[3] && w[4] == w[5]);
     CHECK_MSG(w[0] > 1.5 * w[2], "valley %g, ridge %g", w[0], w[2]);
     CHECK_NEAR(w[2], w[4], 1e-12); /* convex edges weigh no more than flat */
@@ -38,7 +38,7 @@ static void test_star_crease_edges_grow(void) {
     ps_graph *g = &s.graph;
     double ratio[2];
     for (int pass = 0; pass < 2; pass++) {
-        if (pass == 1) REQUIRE(ps_crease_weights(g, s.points, s.normals, 0, NULL) == PS_OK);
+        if (pass == 1) REQUIRE(ps_crease_weights(g, s.points, s.normals, 0, NULL, NULL) == PS_OK);
         double cross = 0, rest = 0;
         size_t n_cross = 0, n_rest = 0;
         for (size_t p = 0; p < s.n; p++)
@@ -74,7 +74,7 @@ static void test_same_for_any_threads(void) {
         ps_crease_points cp = {strength[t], 0};
         REQUIRE(ps_crease_strengths(&s.graph, s.points, s.normals, threads[t], &cp, NULL) ==
                 PS_OK);
-        REQUIRE(ps_crease_weights(&s.graph, s.points, s.normals, threads[t], NULL) == PS_OK);
+        REQUIRE(ps_crease_weights(&s.graph, s.points, s.normals, threads[t], NULL, NULL) == PS_OK);
         memcpy(weights[t], s.graph.weights, arcs * sizeof *base);
         mean[t] = cp.mean;
     }
