@@ -73,21 +73,30 @@ static ps_boundary edge_record(const ps_segment_graph_input *in, size_t p, size_
     return r;
 }
 
-/* One record per edge p < q joining two segments. */
+/* Room for one more record in sg->list (*capacity records allocated);
+ * 0 when out of memory. */
+static int reserve_record(ps_segment_graph *sg, size_t *capacity) {
+    if (sg->count < *capacity) return 1;
+    size_t grown = *capacity ? 2 * *capacity : 1024;
+    ps_boundary *list = realloc(sg->list, grown * sizeof *list);
+    if (!list) return 0;
+    sg->list = list, *capacity = grown;
+    return 1;
+}
+
+/* One record per edge p < q joining two segments, in one pass over the
+ * arcs. */
 static int gather_boundaries(ps_segment_graph *sg, const ps_segment_graph_input *in) {
     const ps_graph *g = in->graph;
     const int *group = in->group;
-    size_t crossing = 0;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            if (g->neighbors[e] > p && group[g->neighbors[e]] != group[p]) crossing++;
-    sg->list = malloc((crossing ? crossing : 1) * sizeof *sg->list);
-    if (!sg->list) return 0;
+    size_t capacity = 0;
     for (size_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             size_t q = g->neighbors[e];
             int a = group[p], b = group[q];
-            if (q > p && a != b) sg->list[sg->count++] = edge_record(in, p, q, a, b);
+            if (q <= p || a == b) continue;
+            if (!reserve_record(sg, &capacity)) return 0;
+            sg->list[sg->count++] = edge_record(in, p, q, a, b);
         }
     coalesce(sg);
     return 1;
