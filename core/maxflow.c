@@ -70,7 +70,8 @@ static void activate(flow_state *st, uint32_t v) {
     ps_maxflow_workspace *w = st->w;
     if (w->queued[v]) return;
     w->queued[v] = 1;
-    w->active[(st->head + st->count++) % st->g->n] = v;
+    size_t at = st->head + st->count++;
+    w->active[at < st->g->n ? at : at - st->g->n] = v;
 }
 
 /* The next active node still in a tree, or UINT32_MAX. */
@@ -78,7 +79,7 @@ static uint32_t next_active(flow_state *st) {
     ps_maxflow_workspace *w = st->w;
     while (st->count > 0) {
         uint32_t v = w->active[st->head];
-        st->head = (st->head + 1) % st->g->n, st->count--;
+        st->head = st->head + 1 < st->g->n ? st->head + 1 : 0, st->count--;
         w->queued[v] = 0;
         if (w->tree[v] != FREE) return v;
     }
