@@ -40,6 +40,7 @@ static int compare_boundary(const void *x, const void *y) {
 
 /* Sorts the records and sums those of one pair; drops a == b. */
 static void coalesce(ps_segment_graph *sg) {
+    if (sg->count == 0) return;
     qsort(sg->list, sg->count, sizeof *sg->list, compare_boundary);
     size_t out = 0;
     for (size_t i = 0; i < sg->count; i++) {

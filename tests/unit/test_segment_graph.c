@@ -5,7 +5,9 @@
  * records the loser's feature size, and is applied to points and leaves;
  * a boundary's width is the spread of its edges' midpoints.  A segment's
  * bulge is +1 on a sphere with outward normals, -1 on the inside of a
- * sphere, 0 on a plane, and a merge sums it exactly.
+ * sphere, 0 on a plane, and a merge sums it exactly.  One segment has no
+ * boundary records, and many boundaries (more than one allocation of
+ * records) sum as few.
  */
 #include "hand_graph.h"
 #include "segment_graph.h"
@@ -153,4 +155,46 @@ static void test_bulge(void) {
     ps_segment_graph_free(&sg);
 }
 
-PS_TEST_MAIN(TEST(test_records_per_pair), TEST(test_merge_sums_and_applies), TEST(test_bulge))
+static void test_one_segment_no_records(void) {
+    ps_hand_graph h;
+    ps_segment_graph sg;
+    int group[8] = {0};
+    ps_hand_graph_path(&h, 8, 1.0, 0);
+    ps_error err = {0};
+    ps_segment_graph_input in = {.graph = &h.g, .f = path_f, .group = group, .n_groups = 1};
+    REQUIRE(ps_segment_graph_build(&sg, &in, &err) == PS_OK);
+    CHECK(sg.count == 0);
+    CHECK(sg.size[0] == 8 && sg.f_min[0] == 0 && sg.f_max[0] == 7);
+    ps_segment_graph_free(&sg);
+}
+
+/* A path of 5,000 points in segments alternating every point: 4,999
+ * boundary edges, gathered past the first allocation, sum into one record
+ * with every edge. */
+static void test_many_boundary_edges(void) {
+    enum { N = 5000 };
+    static size_t offsets[N + 1];
+    static uint32_t neighbors[2 * N];
+    static int group[N];
+    static double f[N];
+    size_t arcs = 0;
+    for (uint32_t p = 0; p < N; p++) {
+        offsets[p] = arcs;
+        if (p > 0) neighbors[arcs++] = p - 1;
+        if (p + 1 < N) neighbors[arcs++] = p + 1;
+        group[p] = (int)(p % 2), f[p] = p;
+    }
+    offsets[N] = arcs;
+    ps_graph path = {.n = N, .offsets = offsets, .neighbors = neighbors};
+    ps_segment_graph sg;
+    ps_error err = {0};
+    ps_segment_graph_input in = {.graph = &path, .f = f, .group = group, .n_groups = 2};
+    REQUIRE(ps_segment_graph_build(&sg, &in, &err) == PS_OK);
+    REQUIRE(sg.count == 1);
+    CHECK(sg.list[0].a == 0 && sg.list[0].b == 1 && sg.list[0].edges == N - 1);
+    CHECK(sg.size[0] == N / 2 && sg.size[1] == N / 2);
+    ps_segment_graph_free(&sg);
+}
+
+PS_TEST_MAIN(TEST(test_records_per_pair), TEST(test_merge_sums_and_applies), TEST(test_bulge),
+             TEST(test_one_segment_no_records), TEST(test_many_boundary_edges))
