@@ -4,7 +4,9 @@
  * models horse.ply and bunny.ply (approx centrality), on a ~4,700-point
  * model with exact centrality (PSB 1.off, or a synthetic hand), and on
  * 1,000,000 points sampled from the horse's surface, with peak RSS.  Small
- * cases print the median of 5 runs, the 1M case one run.  See
+ * cases print the median of 5 runs, the 1M case one run.  Then the horse's
+ * cost of method auto over method paper, from interleaved pairs of runs (a
+ * drift of the machine's speed then moves both alike).  See
  * tests/bench/README.md.
  */
 #include <math.h>
@@ -25,6 +27,7 @@
 #include "testlib.h"
 
 #define SMALL_RUNS 5
+#define RATIO_PAIRS 11 /* interleaved auto / paper runs of the horse */
 #define LARGE_POINTS 1000000
 
 /* Columns of one measured run, in milliseconds (segments, points: counts). */
@@ -177,6 +180,31 @@ static void run_scan_models(const char *shared) {
     }
 }
 
+/* The horse end to end with method auto over method paper, in RATIO_PAIRS
+ * interleaved pairs of runs: the median ratio and the least and most. */
+static void run_ratio(const char *shared) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/models/horse.ply", shared ? shared : ".");
+    if (!shared || !file_exists(path)) {
+        printf("horse auto / paper: SKIP: %s not found\n", path);
+        return;
+    }
+    speed_case cases[2] = {{"horse auto", path, NULL, PS_CENTRALITY_APPROX, 1, PS_METHOD_AUTO},
+                           {"horse paper", path, NULL, PS_CENTRALITY_APPROX, 1, PS_METHOD_PAPER}};
+    double ratio[RATIO_PAIRS];
+    for (int i = 0; i < RATIO_PAIRS; i++) {
+        run_times t[2];
+        if (run_once(&cases[0], &t[0]) != 0 || run_once(&cases[1], &t[1]) != 0) {
+            printf("horse auto / paper: FAILED\n");
+            return;
+        }
+        ratio[i] = t[0].v[COL_TOTAL] / t[1].v[COL_TOTAL];
+    }
+    qsort(ratio, RATIO_PAIRS, sizeof ratio[0], compare_double);
+    printf("\nhorse auto / paper, end to end, %d interleaved pairs: median %.2f (%.2f to %.2f)\n",
+           RATIO_PAIRS, ratio[RATIO_PAIRS / 2], ratio[0], ratio[RATIO_PAIRS - 1]);
+}
+
 /* Exact centrality on PSB 1.off (4,706 vertices), or a synthetic hand. */
 static void run_exact(const char *shared) {
     char path[4096];
@@ -233,5 +261,6 @@ int main(int argc, char **argv) {
     run_scan_models(shared);
     run_exact(shared);
     if (!skip_large) run_large(shared);
+    run_ratio(shared);
     return 0;
 }
