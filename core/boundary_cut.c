@@ -63,7 +63,7 @@ double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e) {
     const double *x = cx->in->points, *nx = cx->in->normals;
     size_t q = cx->in->graph->neighbors[e], i = p;
     double ang = ps_crease_angular(x + 3 * i, nx + 3 * i, x + 3 * q, nx + 3 * q, 0.0);
-    double crease = cx->creased ? exp(-ang / cx->angle_scale) : 1;
+    double crease = cx->creased && ang > 0 ? exp(-ang / cx->angle_scale) : 1;
     cx->capacity[e] = ps_distance3(x + 3 * i, x + 3 * q) / cx->mean_edge * crease;
     return cx->capacity[e];
 }

@@ -140,7 +140,7 @@ size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, i
     size_t nb = 0;
     for (size_t i = 0; i < n_reached; i++)
         if (cx->dist[cx->reached[i]] <= width) cx->band[nb++] = cx->reached[i];
-    qsort(cx->band, nb, sizeof *cx->band, ps_compare_u32);
+    ps_sort_u32(cx->band, nb, cx->queue); /* the queue is free until the pieces */
     for (size_t i = 0; i < nb; i++) {
         cx->band_of[cx->band[i]] = (uint32_t)i;
         cx->old_group[i] = cx->group[cx->band[i]];

@@ -78,7 +78,8 @@ typedef struct cut_context {
     uint32_t *piece_start;     /* #P first band index of each piece (its lowest point) */
     size_t *piece_size;        /* #P */
     unsigned char *anchored;   /* #P 1 for a piece with a neighbour outside the band */
-    uint32_t *queue;           /* #P */
+    uint32_t *queue;           /* #P: the breadth-first queues (pieces, supernodes), and
+                                  the scratch of the band's sort before them */
 } cut_context;
 
 /* boundary_cut.c */

@@ -1,15 +1,31 @@
 /*
- * sort_util.c: the qsort / bsearch comparisons and the selection of
- * sort_util.h.
+ * sort_util.c: the qsort / bsearch comparisons, the radix sort and the
+ * selection of sort_util.h.
  */
 #include "sort_util.h"
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 int ps_compare_u32(const void *a, const void *b) {
     uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
     return (x > y) - (x < y);
+}
+
+void ps_sort_u32(uint32_t *x, size_t n, uint32_t *scratch) {
+    if (n < 2) return;
+    uint32_t *from = x, *to = scratch;
+    for (int shift = 0; shift < 32; shift += 8) {
+        size_t start[257] = {0};
+        for (size_t i = 0; i < n; i++) start[((from[i] >> shift) & 255u) + 1]++;
+        if (start[((from[0] >> shift) & 255u) + 1] == n) continue; /* one byte for all */
+        for (int d = 0; d < 256; d++) start[d + 1] += start[d];
+        for (size_t i = 0; i < n; i++) to[start[(from[i] >> shift) & 255u]++] = from[i];
+        uint32_t *t = from;
+        from = to, to = t;
+    }
+    if (from != x) memcpy(x, from, n * sizeof *x);
 }
 
 double ps_select_kth(double *x, size_t n, size_t k) {

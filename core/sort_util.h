@@ -1,15 +1,21 @@
 /*
- * sort_util.h: comparison functions for qsort and bsearch, and selection
- * of the k-th smallest value, shared by the core modules.
+ * sort_util.h: comparison functions for qsort and bsearch, a radix sort of
+ * unsigned 32-bit keys, and selection of the k-th smallest value, shared by
+ * the core modules.
  */
 #ifndef PS_SORT_UTIL_H
 #define PS_SORT_UTIL_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 /* a, b: each points at one uint32_t.  Returns -1, 0 or 1 as *a is below,
  * equal to or above *b (ascending order). */
 int ps_compare_u32(const void *a, const void *b);
+
+/* Sorts x #n ascending in O(n): least significant byte first, skipping a
+ * byte every key shares.  scratch #n is overwritten. */
+void ps_sort_u32(uint32_t *x, size_t n, uint32_t *scratch);
 
 /* The k-th smallest (0-based, k < n) of x #n, in expected O(n): Hoare
  * partition around the middle element.  Reorders x. */

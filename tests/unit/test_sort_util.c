@@ -1,6 +1,8 @@
 /* test_sort_util.c: the shared qsort / bsearch comparison (sort_util.h),
- * including values whose difference overflows an int, and the selection
- * of the k-th smallest value against a sort, with ties. */
+ * including values whose difference overflows an int; the radix sort
+ * against qsort on keys over the full range, with ties, and on keys that
+ * share their high bytes; and the selection of the k-th smallest value
+ * against a sort, with ties. */
 #include "sort_util.h"
 #include "testlib.h"
 
@@ -45,4 +47,32 @@ static void test_select_kth_matches_sort(void) {
     CHECK(ps_select_kth(&one, 1, 0) == 3.5);
 }
 
-PS_TEST_MAIN(TEST(test_compare_u32_orders_full_range), TEST(test_select_kth_matches_sort))
+/* ps_sort_u32 on n keys drawn with mask (full range, or sharing high
+ * bytes), against qsort. */
+static void check_radix(size_t n, uint32_t mask) {
+    uint32_t *keys = malloc((n ? n : 1) * sizeof *keys), *expect = malloc((n ? n : 1) * sizeof *keys);
+    uint32_t *scratch = malloc((n ? n : 1) * sizeof *keys);
+    REQUIRE(keys && expect && scratch);
+    uint64_t state = 88172645463325252ull;
+    for (size_t i = 0; i < n; i++) {
+        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+        keys[i] = (uint32_t)(state >> 20) & mask;
+    }
+    if (n > 2) keys[0] = UINT32_MAX & mask, keys[1] = 0;
+    memcpy(expect, keys, n * sizeof *keys);
+    qsort(expect, n, sizeof *expect, ps_compare_u32);
+    ps_sort_u32(keys, n, scratch);
+    CHECK_MSG(n == 0 || memcmp(keys, expect, n * sizeof *keys) == 0, "n %zu mask %x", n,
+              (unsigned)mask);
+    free(keys), free(expect), free(scratch);
+}
+
+static void test_radix_sort_matches_qsort(void) {
+    static const size_t sizes[] = {0, 1, 2, 3, 255, 1000, 100000};
+    static const uint32_t masks[] = {UINT32_MAX, 0xFFFFu, 0xF0F0u, 7u};
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++)
+        for (size_t m = 0; m < sizeof masks / sizeof *masks; m++) check_radix(sizes[i], masks[m]);
+}
+
+PS_TEST_MAIN(TEST(test_compare_u32_orders_full_range), TEST(test_select_kth_matches_sort),
+             TEST(test_radix_sort_matches_qsort))
