@@ -6,7 +6,6 @@
  */
 #include "crease.h"
 
-#include "dijkstra.h"
 #include "parallel.h"
 
 #include <stdlib.h>
@@ -53,7 +52,7 @@ static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
         for (size_t p = b * CREASE_BLOCK, end_p = block_end(g->n, b); p < end_p; p++)
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
                 double a0 = arc_angular(c, p, e, 0.0);
-                len += ps_distance3(c->points + 3 * p, c->points + 3 * g->neighbors[e]);
+                len += g->weights[e];
                 ang += PS_CREASE_ETA_CONVEX == 0 ? a0 : arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
                 concave += a0;
             }

@@ -45,7 +45,9 @@ typedef struct ps_edge_scales {
 } ps_edge_scales;
 
 /* g's edge scales over points #P by 3 and normals #P by 3 (outward,
- * unit), on threads (ps_parallel_threads) threads; the same for any count. */
+ * unit), on threads (ps_parallel_threads) threads; the same for any count.
+ * g's weights must be its Euclidean edge lengths, as the kNN graph is
+ * built (not yet rewritten by ps_crease_weights). */
 ps_status ps_crease_scales(const ps_graph *g, const double *points, const double *normals,
                            int threads, ps_edge_scales *scales, ps_error *err);
 
