@@ -5,7 +5,11 @@
  * both is augmented; nodes cut off from their tree by a saturated arc
  * (orphans) look for a new parent in the same tree or are freed.  When no
  * tree can grow the flow is maximum, and a breadth-first search from the
- * source over unsaturated arcs gives the cut's source side.
+ * source over unsaturated arcs gives the cut's source side.  Trees are kept
+ * shallow by Boykov and Kolmogorov's own heuristic: each node knows its
+ * depth as of a round (a stamp per augmentation), an orphan takes the
+ * valid parent nearest its root, and growing reparents a neighbour whose
+ * known depth is larger, so paths to augment and to check stay short.
  *
  * Residual capacities live per arc: pushing x along p->q lowers r(p->q) and
  * raises r(q->p) by x, which is exactly an undirected edge of capacity c
@@ -33,6 +37,8 @@ struct ps_maxflow_workspace {
     uint32_t *parent;        /* nodes */
     uint64_t *checked;       /* nodes: stamp of the last round v's origin was
                                 found to be its tree's root */
+    uint32_t *depth;         /* nodes: arcs from v up to its root, as of round
+                                checked[v] */
     uint32_t *active;        /* nodes: FIFO ring of active nodes */
     uint32_t *orphans;       /* nodes: stack */
 };
@@ -104,9 +110,14 @@ static size_t grow(flow_state *st, uint32_t p) {
         uint32_t q = g->heads[e];
         if (w->tree[q] == FREE) {
             w->tree[q] = t, w->parent[q] = p, w->parent_arc[q] = a;
+            w->checked[q] = w->checked[p], w->depth[q] = w->depth[p] + 1;
             activate(st, q);
         } else if (w->tree[q] != t) {
             return a;
+        } else if (w->parent_arc[q] != NO_ARC && w->checked[q] <= w->checked[p] &&
+                   w->depth[q] > w->depth[p] + 1) {
+            w->parent[q] = p, w->parent_arc[q] = a;
+            w->checked[q] = w->checked[p], w->depth[q] = w->depth[p] + 1;
         }
     }
     return NO_ARC;
@@ -153,16 +164,20 @@ static double augment(flow_state *st, size_t bridge) {
 
 /* 1 when q's parent chain reaches its tree's root (then every node on it
  * is stamped with this round, which ends later walks early). */
-static int rooted(flow_state *st, uint32_t q) {
+static uint32_t rooted_depth(flow_state *st, uint32_t q) {
     ps_maxflow_workspace *w = st->w;
-    uint32_t v = q;
-    while (v != st->source && v != st->sink && w->checked[v] != st->round) {
-        if (w->parent_arc[v] == NO_ARC) return 0;
-        v = w->parent[v];
+    uint32_t v = q, d = 0;
+    for (; v != st->source && v != st->sink; v = w->parent[v], d++) {
+        if (w->checked[v] == st->round) {
+            d += w->depth[v];
+            break;
+        }
+        if (w->parent_arc[v] == NO_ARC) return UINT32_MAX;
     }
+    uint32_t total = d;
     for (v = q; v != st->source && v != st->sink && w->checked[v] != st->round; v = w->parent[v])
-        w->checked[v] = st->round;
-    return 1;
+        w->checked[v] = st->round, w->depth[v] = d--;
+    return total;
 }
 
 /* Orphan p takes the first neighbour of its tree that reaches it along an
@@ -172,11 +187,18 @@ static void adopt(flow_state *st, uint32_t p) {
     const ps_flow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
     unsigned char t = w->tree[p];
+    uint32_t best = UINT32_MAX, best_depth = UINT32_MAX;
+    size_t best_arc = NO_ARC;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->heads[e];
         size_t a = tree_arc(st, t, w->reverse[e]); /* the arc q's tree would use into p */
-        if (w->tree[q] != t || w->residual[a] <= st->tolerance || !rooted(st, q)) continue;
-        w->parent[p] = q, w->parent_arc[p] = a;
+        if (w->tree[q] != t || w->residual[a] <= st->tolerance) continue;
+        uint32_t d = rooted_depth(st, q);
+        if (d < best_depth) best = q, best_depth = d, best_arc = a;
+    }
+    if (best != UINT32_MAX) {
+        w->parent[p] = best, w->parent_arc[p] = best_arc;
+        w->checked[p] = st->round, w->depth[p] = best_depth + 1;
         return;
     }
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
@@ -203,6 +225,7 @@ static double max_flow(flow_state *st) {
     for (uint32_t p; (p = next_active(st)) != UINT32_MAX;) {
         for (size_t bridge; st->w->tree[p] != FREE && (bridge = grow(st, p)) != NO_ARC;) {
             st->round++;
+            st->w->checked[st->source] = st->w->checked[st->sink] = st->round;
             total += augment(st, bridge);
             while (st->n_orphans > 0) adopt(st, st->w->orphans[--st->n_orphans]);
         }
@@ -245,6 +268,7 @@ static int workspace_reserve(ps_maxflow_workspace *ws, const ps_flow_graph *g) {
         ws->parent_arc = fresh_array(ws->parent_arc, nodes, sizeof *ws->parent_arc);
         ws->parent = fresh_array(ws->parent, nodes, sizeof *ws->parent);
         ws->checked = fresh_array(ws->checked, nodes, sizeof *ws->checked);
+        ws->depth = fresh_array(ws->depth, nodes, sizeof *ws->depth);
         ws->active = fresh_array(ws->active, nodes, sizeof *ws->active);
         ws->orphans = fresh_array(ws->orphans, nodes, sizeof *ws->orphans);
     }
@@ -253,7 +277,8 @@ static int workspace_reserve(ps_maxflow_workspace *ws, const ps_flow_graph *g) {
         ws->reverse = fresh_array(ws->reverse, arcs, sizeof *ws->reverse);
         ws->residual = fresh_array(ws->residual, arcs, sizeof *ws->residual);
     }
-    if (ws->tree && ws->queued && ws->parent_arc && ws->parent && ws->checked && ws->active &&
+    if (ws->tree && ws->queued && ws->parent_arc && ws->parent && ws->checked && ws->depth &&
+        ws->active &&
         ws->orphans && ws->reverse && ws->residual)
         return 0;
     ws->nodes = ws->arcs = 0;
@@ -267,7 +292,7 @@ ps_maxflow_workspace *ps_maxflow_workspace_new(void) {
 void ps_maxflow_workspace_free(ps_maxflow_workspace *ws) {
     if (!ws) return;
     free(ws->reverse), free(ws->residual), free(ws->tree), free(ws->queued);
-    free(ws->parent_arc), free(ws->parent), free(ws->checked), free(ws->active);
+    free(ws->parent_arc), free(ws->parent), free(ws->checked), free(ws->depth), free(ws->active);
     free(ws->orphans);
     free(ws);
 }
@@ -277,7 +302,8 @@ static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_g
     *st = (flow_state){.g = g, .w = ws, .source = source, .sink = sink,
                        .tolerance = 1e-12 * largest_capacity(g)};
     for (size_t e = 0; e < g->offsets[g->n]; e++) ws->residual[e] = g->capacity[e];
-    for (size_t v = 0; v < g->n; v++) ws->tree[v] = FREE, ws->queued[v] = 0, ws->checked[v] = 0;
+    for (size_t v = 0; v < g->n; v++)
+        ws->tree[v] = FREE, ws->queued[v] = 0, ws->checked[v] = 0, ws->depth[v] = 0;
     ws->tree[source] = SOURCE_TREE;
     ws->tree[sink] = SINK_TREE;
 }
