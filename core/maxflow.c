@@ -162,8 +162,9 @@ static double augment(flow_state *st, size_t bridge) {
     return x;
 }
 
-/* 1 when q's parent chain reaches its tree's root (then every node on it
- * is stamped with this round, which ends later walks early). */
+/* q's depth when its parent chain reaches its tree's root, else
+ * UINT32_MAX; the nodes on the chain are then stamped with this round and
+ * their depths, which ends later walks early. */
 static uint32_t rooted_depth(flow_state *st, uint32_t q) {
     ps_maxflow_workspace *w = st->w;
     uint32_t v = q, d = 0;
@@ -180,9 +181,10 @@ static uint32_t rooted_depth(flow_state *st, uint32_t q) {
     return total;
 }
 
-/* Orphan p takes the first neighbour of its tree that reaches it along an
- * unsaturated arc and is rooted; failing that it is freed, its children
- * become orphans and the neighbours that could reach it become active. */
+/* Orphan p takes the rooted neighbour of its tree nearest the root (the
+ * first of those) that reaches it along an unsaturated arc; failing that it
+ * is freed, its children become orphans and the neighbours that could
+ * reach it become active. */
 static void adopt(flow_state *st, uint32_t p) {
     const ps_flow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
