@@ -87,42 +87,37 @@ static double dot3(const double *a, const double *b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* Triangle t's normal, twice its area long. */
-static void face_normal(const ps_input *in, size_t t, double n[3]) {
-    const uint32_t *v = in->faces + 3 * t;
-    const double *a = in->points + 3 * v[0], *b = in->points + 3 * v[1], *c = in->points + 3 * v[2];
-    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2];
-    n[2] = u[0] * w[1] - u[1] * w[0];
-}
-
-/* area #F out: each triangle's area; returns their sum. */
-static double face_areas(const ps_input *in, double *area) {
-    double total = 0;
+/* normal #F by 3 out: each triangle's normal, twice its area long. */
+static void face_normals(const ps_input *in, double *normal) {
     for (size_t t = 0; t < in->n_faces; t++) {
-        double n[3];
-        face_normal(in, t, n);
-        total += area[t] = 0.5 * sqrt(dot3(n, n));
+        const uint32_t *v = in->faces + 3 * t;
+        const double *a = in->points + 3 * v[0], *b = in->points + 3 * v[1],
+                     *c = in->points + 3 * v[2];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double *n = normal + 3 * t;
+        n[0] = u[1] * w[2] - u[2] * w[1], n[1] = u[2] * w[0] - u[0] * w[2];
+        n[2] = u[0] * w[1] - u[1] * w[0];
     }
-    return total;
 }
 
-double ps_surface_fill_roughness(const ps_input *in) {
-    if (in->dim != 3 || !in->faces || in->n_faces == 0) return 0;
+/* The area of the triangle whose face_normals entry is n. */
+static double area_of(const double *n) { return 0.5 * sqrt(dot3(n, n)); }
+
+/* The roughness (surface_fill.h) from the triangles' normals #F by 3; -1
+ * when out of memory. */
+static double roughness_of(const ps_input *in, const double *normal) {
     double *corner = calloc(3 * in->n, sizeof *corner); /* area-weighted normals */
     double *deviation = malloc(in->n_faces * sizeof *deviation);
     if (!corner || !deviation) return free(corner), free(deviation), -1;
-    for (size_t t = 0; t < in->n_faces; t++) {
-        double n[3];
-        face_normal(in, t, n);
+    for (size_t t = 0; t < in->n_faces; t++)
         for (int c = 0; c < 3; c++)
-            for (int d = 0; d < 3; d++) corner[3 * (size_t)in->faces[3 * t + c] + d] += n[d];
-    }
+            for (int d = 0; d < 3; d++)
+                corner[3 * (size_t)in->faces[3 * t + c] + d] += normal[3 * t + d];
     size_t count = 0;
     for (size_t t = 0; t < in->n_faces; t++) {
-        double n[3], m[3] = {0, 0, 0};
-        face_normal(in, t, n);
+        const double *n = normal + 3 * t;
+        double m[3] = {0, 0, 0};
         for (int c = 0; c < 3; c++)
             for (int d = 0; d < 3; d++) m[d] += corner[3 * (size_t)in->faces[3 * t + c] + d];
         double nn = dot3(n, n), mm = dot3(m, m);
@@ -131,6 +126,16 @@ double ps_surface_fill_roughness(const ps_input *in) {
     double median = count ? ps_select_kth(deviation, count, count / 2) : 0;
     free(corner), free(deviation);
     return median;
+}
+
+double ps_surface_fill_roughness(const ps_input *in) {
+    if (in->dim != 3 || !in->faces || in->n_faces == 0) return 0;
+    double *normal = malloc(3 * in->n_faces * sizeof *normal);
+    if (!normal) return -1;
+    face_normals(in, normal);
+    double roughness = roughness_of(in, normal);
+    free(normal);
+    return roughness;
 }
 
 /* out's arrays for the #P input points and m added ones, the input's
@@ -149,22 +154,24 @@ static int allocate(const ps_input *in, size_t m, ps_surface_fill *out) {
     return 1;
 }
 
-/* Fills out from the triangles' areas (#F), or leaves it empty (see
- * surface_fill.h); 0 when out of memory. */
-static int fill_from_areas(const ps_input *in, size_t target, const double *area, double total,
-                           ps_surface_fill *out) {
+/* Fills out from the triangles' normals (#F by 3, face_normals), or
+ * leaves it empty (see surface_fill.h); 0 when out of memory. */
+static int fill_from_normals(const ps_input *in, size_t target, const double *normal,
+                             ps_surface_fill *out) {
+    double total = 0;
+    for (size_t t = 0; t < in->n_faces; t++) total += area_of(normal + 3 * t);
     if (!(total > 0) || !isfinite(total)) return 1;
-    double roughness = ps_surface_fill_roughness(in);
+    double roughness = roughness_of(in, normal);
     if (roughness < 0) return 0;
     if (roughness > PS_FILL_MAX_ROUGHNESS) return 1;
     double step = total / (double)(target - in->n);
     size_t m = 0;
-    for (size_t t = 0; t < in->n_faces; t++) m += count_of(t, area[t], step);
+    for (size_t t = 0; t < in->n_faces; t++) m += count_of(t, area_of(normal + 3 * t), step);
     if (m == 0) return 1;
     if (!allocate(in, m, out)) return 0;
     filler fl = {in, out, 0};
     for (size_t t = 0; t < in->n_faces; t++) {
-        size_t count = count_of(t, area[t], step);
+        size_t count = count_of(t, area_of(normal + 3 * t), step);
         for (size_t i = 0; i < count; i++) place(&fl, t, i);
     }
     return 1;
@@ -179,13 +186,13 @@ ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fi
                                 ps_error *err) {
     memset(out, 0, sizeof *out);
     if (in->dim != 3 || !in->faces || in->n_faces == 0 || in->n >= target) return PS_OK;
-    double *area = malloc(in->n_faces * sizeof *area);
-    int ok = area != NULL;
+    double *normal = malloc(3 * in->n_faces * sizeof *normal);
+    int ok = normal != NULL;
     if (ok) {
-        double total = face_areas(in, area);
-        ok = fill_from_areas(in, target, area, total, out);
+        face_normals(in, normal);
+        ok = fill_from_normals(in, target, normal, out);
     }
-    free(area);
+    free(normal);
     return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
 }
 
