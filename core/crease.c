@@ -133,7 +133,7 @@ ps_status ps_crease_weights(ps_graph *g, const double *points, const double *nor
     ps_edge_scales measured;
     ps_status st = measure(&c, threads, &measured, err);
     if (scales) *scales = measured;
-    if (st != PS_OK || g->offsets[g->n] == 0 || c.A < PS_CREASE_FLAT) return st;
+    if (st != PS_OK || c.A < PS_CREASE_FLAT) return st; /* no arcs leave A at 0 */
     ps_parallel_for(ps_parallel_threads(threads), g->n, 0, weigh_points, &c);
     return PS_OK;
 }
