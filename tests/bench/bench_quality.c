@@ -273,17 +273,12 @@ static int write_labels(const char *dir, const char *mode, int id, const int *la
 /* n labels from dir/ID.MODE.lab (an earlier run's --out), or NULL when the
  * file is missing or holds another count. */
 static int *read_labels(const char *dir, const char *mode, int id, size_t n) {
-    char path[4096];
+    char path[4096], msg[600];
+    int *labels = NULL;
+    size_t count = 0;
     snprintf(path, sizeof path, "%s/%d.%s.lab", dir, id, mode);
-    FILE *f = fopen(path, "r");
-    if (!f) return NULL;
-    int *labels = malloc((n ? n : 1) * sizeof *labels);
-    size_t got = 0;
-    int extra;
-    while (labels && got < n && fscanf(f, "%d", &labels[got]) == 1) got++;
-    int complete = labels && got == n && fscanf(f, "%d", &extra) != 1;
-    fclose(f);
-    if (complete) return labels;
+    if (ps_read_int_file(path, &labels, &count, msg, sizeof msg) != 0) return NULL;
+    if (count == n) return labels;
     free(labels);
     return NULL;
 }
@@ -293,8 +288,7 @@ static void score_earlier(const quality_options *o, const input_mode *mode,
                           const ps_pointset *mesh, const ps_psb_humans *humans, model_row *row) {
     int *labels = read_labels(o->against_dir, mode->name, row->id, mesh->n);
     if (!labels) return;
-    double under, over;
-    row->earlier_error = ps_psb_score_parts(mesh, labels, humans, &under, &over);
+    row->earlier_error = ps_psb_score(mesh, labels, humans);
     row->compared = 1;
     free(labels);
 }
@@ -605,7 +599,7 @@ typedef struct paired_change {
     int models;           /* models with earlier labels */
     double mean, se;      /* mean change of 1 - RI (negative: better) and its standard error */
     int better, worse;    /* models whose 1 - RI moved by over PAIRED_SAME either way */
-    int categories_better, categories_worse; /* by the category means (development) */
+    int categories_better, categories_worse; /* by the category sums (development) */
 } paired_change;
 
 typedef struct split_means {
