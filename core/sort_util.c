@@ -28,6 +28,21 @@ void ps_sort_u32(uint32_t *x, size_t n, uint32_t *scratch) {
     if (from != x) memcpy(x, from, n * sizeof *x);
 }
 
+void ps_order_by_u32(const uint32_t *key, size_t n, uint32_t *order, uint32_t *scratch) {
+    for (size_t i = 0; i < n; i++) order[i] = (uint32_t)i;
+    uint32_t *from = order, *to = scratch;
+    for (int shift = 0; n > 1 && shift < 32; shift += 8) {
+        size_t start[257] = {0};
+        for (size_t i = 0; i < n; i++) start[((key[from[i]] >> shift) & 255u) + 1]++;
+        if (start[((key[from[0]] >> shift) & 255u) + 1] == n) continue; /* one byte for all */
+        for (int d = 0; d < 256; d++) start[d + 1] += start[d];
+        for (size_t i = 0; i < n; i++) to[start[(key[from[i]] >> shift) & 255u]++] = from[i];
+        uint32_t *t = from;
+        from = to, to = t;
+    }
+    if (from != order) memcpy(order, from, n * sizeof *order);
+}
+
 double ps_select_kth(double *x, size_t n, size_t k) {
     ptrdiff_t lo = 0, hi = (ptrdiff_t)n - 1, target = (ptrdiff_t)k;
     while (lo < hi) {

@@ -17,6 +17,11 @@ int ps_compare_u32(const void *a, const void *b);
  * byte every key shares.  scratch #n is overwritten. */
 void ps_sort_u32(uint32_t *x, size_t n, uint32_t *scratch);
 
+/* order out #n: 0..n-1 ordered by increasing key[i], ties by index (a
+ * stable least significant byte first radix sort).  scratch #n is
+ * overwritten. */
+void ps_order_by_u32(const uint32_t *key, size_t n, uint32_t *order, uint32_t *scratch);
+
 /* The k-th smallest (0-based, k < n) of x #n, in expected O(n): Hoare
  * partition around the middle element.  Reorders x. */
 double ps_select_kth(double *x, size_t n, size_t k);

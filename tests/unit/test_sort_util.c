@@ -74,5 +74,32 @@ static void test_radix_sort_matches_qsort(void) {
         for (size_t m = 0; m < sizeof masks / sizeof *masks; m++) check_radix(sizes[i], masks[m]);
 }
 
+/* ps_order_by_u32: keys in increasing order, ties (mask 7: many) in
+ * increasing index. */
+static void test_order_by_key_stable(void) {
+    enum { N = 20000 };
+    uint32_t *keys = malloc(N * sizeof *keys), *order = malloc(N * sizeof *order);
+    uint32_t *scratch = malloc(N * sizeof *scratch);
+    REQUIRE(keys && order && scratch);
+    static const uint32_t masks[] = {UINT32_MAX, 0xFF00FFu, 7u};
+    for (size_t m = 0; m < sizeof masks / sizeof *masks; m++) {
+        uint64_t state = 88172645463325252ull;
+        for (size_t i = 0; i < N; i++) {
+            state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+            keys[i] = (uint32_t)(state >> 20) & masks[m];
+        }
+        ps_order_by_u32(keys, N, order, scratch);
+        int seen_ok = 1;
+        for (size_t i = 1; i < N; i++) {
+            uint32_t a = order[i - 1], b = order[i];
+            if (keys[a] > keys[b] || (keys[a] == keys[b] && a >= b)) seen_ok = 0;
+        }
+        CHECK_MSG(seen_ok, "mask %x", (unsigned)masks[m]);
+    }
+    ps_order_by_u32(keys, 1, order, scratch);
+    CHECK(order[0] == 0);
+    free(keys), free(order), free(scratch);
+}
+
 PS_TEST_MAIN(TEST(test_compare_u32_orders_full_range), TEST(test_select_kth_matches_sort),
-             TEST(test_radix_sort_matches_qsort))
+             TEST(test_radix_sort_matches_qsort), TEST(test_order_by_key_stable))
