@@ -11,7 +11,9 @@
  * flat segments merge into a neighbour, patch_merge.h), timing each phase,
  * reporting progress and honouring the cancel flag between steps.  The
  * result is assembled by result.c for the caller's points; duplicates get
- * their representative's answers.
+ * their representative's answers.  An input denser than the reference
+ * sampling several times over (method auto) goes to ensemble.h, which runs
+ * the same phases (pipeline.h) on disjoint draws of it.
  */
 #include "boundary_cut.h"
 #include "centrality.h"
@@ -22,6 +24,7 @@
 #include "crease_split.h"
 #include "dedup.h"
 #include "eigen.h"
+#include "ensemble.h"
 #include "f2_split.h"
 #include "knn_graph.h"
 #include "ncut.h"
@@ -30,6 +33,7 @@
 #include "outliers.h"
 #include "parallel.h"
 #include "patch_merge.h"
+#include "pipeline.h"
 #include "pointseg.h"
 #include "refine.h"
 #include "result.h"
@@ -54,40 +58,7 @@
 #define REFINE_CUT_DONE 0.7
 #define REFINE_CREASE_MERGE_DONE 0.85
 
-/* Everything the phases produce for the distinct points. */
-typedef struct pipeline {
-    const ps_input *in;    /* the caller's points, then any added on its faces */
-    size_t n_input;        /* #P the caller's points */
-    const uint32_t *host_of_added; /* surface_fill.h */
-    const ps_control *ctl;
-    ps_params params;
-    int threads;
-    ps_dedup dedup;
-    double *points;        /* #U by dim distinct points (in->points when no dups) */
-    ps_graph graph;
-    ps_knn_memo *knn_memo; /* method auto, until the stray points are out */
-    int *component;        /* #U */
-    int n_components;
-    double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
-    ps_normals_report normals_report; /* the noise measured, the smoothing done (normals.h) */
-    size_t n_outliers;     /* distinct points dropped as stray (outliers.h) */
-    double *crease_normals;   /* #U by 3 the crease split's and merge's normals
-                                 (crease_scale), or normals itself */
-    ps_crease_points creases; /* with normals: crease strengths of the #U points
-                                 at the crease scale, and their mean */
-    ps_edge_scales edge_scales; /* with normals: the graph's edges over them */
-    double *f;             /* #U centrality */
-    ps_supernodes sn;
-    ps_tree_node *tree;
-    int n_tree;
-    int *group_of_leaf;    /* #n_tree */
-    int *group_of_point;   /* #U final group (surviving leaf id) of each point */
-    ps_merge *merges;
-    int n_merges;
-    ps_timings timings;
-} pipeline;
-
-static double now_ms(void) {
+double ps_now_ms(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
@@ -121,7 +92,7 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
 
 /* pl->points: the distinct points of pl->dedup (the input itself when
  * they are every input point in input order); an earlier copy is freed. */
-static ps_status distinct_points(pipeline *pl, ps_error *err) {
+static ps_status distinct_points(ps_pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
     size_t u = pl->dedup.n_unique;
     if (pl->points != in->points) free(pl->points);
@@ -137,9 +108,7 @@ static ps_status distinct_points(pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
-/* Distinct points (in Morton order for a big scan, dedup.h); fails when
- * fewer than k + 1 remain. */
-static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
+ps_status ps_pipeline_dedup(ps_pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
     ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
     if (st != PS_OK) return st;
@@ -156,7 +125,7 @@ static ps_status remove_duplicates(pipeline *pl, ps_error *err) {
  * PS_CREASE_SCALE_SMOOTHING more times, so that a crease must hold at that
  * scale; on a noisy one smoothing would turn the noise into blobs that
  * close loops, and they are the normals themselves. */
-static ps_status crease_scale(pipeline *pl, ps_error *err) {
+static ps_status crease_scale(ps_pipeline *pl, ps_error *err) {
     pl->crease_normals = pl->normals;
     if (!ps_noise_clean(pl->normals_report.noise)) return PS_OK;
     size_t u = pl->graph.n;
@@ -171,7 +140,7 @@ static ps_status crease_scale(pipeline *pl, ps_error *err) {
  * the reference sampling (normals_smooth.h) and kept for the boundary cut
  * and the patch merge; the crease scale's normals and strengths, kept for
  * the crease split and merge; then the crease metric, on the normals. */
-static ps_status crease_metric(pipeline *pl, ps_error *err) {
+static ps_status crease_metric(ps_pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     double *given = NULL;
     pl->normals = malloc(u * 3 * sizeof *pl->normals);
@@ -210,7 +179,7 @@ static ps_status crease_metric(pipeline *pl, ps_error *err) {
  * cannot be, built again on the rest), unless too few would remain.
  * round's share of the knn phase's progress: the search, then the graph.
  * *dropped out: how many left. */
-static ps_status drop_outliers_once(pipeline *pl, int round, size_t *dropped, ps_error *err) {
+static ps_status drop_outliers_once(ps_pipeline *pl, int round, size_t *dropped, ps_error *err) {
     size_t u = pl->dedup.n_unique, count = 0;
     double share = (KNN_OUTLIERS_DONE - KNN_GRAPH_DONE) / PS_OUTLIER_ROUNDS;
     ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_GRAPH_DONE + share * (round + 0.2),
@@ -242,7 +211,7 @@ static ps_status drop_outliers_once(pipeline *pl, int round, size_t *dropped, ps
 
 /* Method auto: rounds of outlier removal until one finds none (a stray
  * point hidden by a farther one shows once that one is gone). */
-static ps_status drop_outliers(pipeline *pl, ps_error *err) {
+static ps_status drop_outliers(ps_pipeline *pl, ps_error *err) {
     size_t dropped = 0;
     ps_status st = PS_OK;
     for (int round = 0; st == PS_OK && round < PS_OUTLIER_ROUNDS; round++) {
@@ -253,7 +222,7 @@ static ps_status drop_outliers(pipeline *pl, ps_error *err) {
     return st;
 }
 
-static ps_status phase_knn(pipeline *pl, ps_error *err) {
+static ps_status phase_knn(ps_pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_KNN, 0.0, KNN_GRAPH_DONE};
     int strays = pl->params.method == PS_METHOD_AUTO;
     ps_status st = ps_knn_graph_build_memo(pl->points, pl->dedup.n_unique, pl->in->dim,
@@ -271,7 +240,7 @@ static ps_status phase_knn(pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
-static ps_status phase_centrality(pipeline *pl, ps_error *err) {
+static ps_status phase_centrality(ps_pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     ps_params *p = &pl->params;
     if (p->centrality == PS_CENTRALITY_AUTO)
@@ -288,7 +257,7 @@ static ps_status phase_centrality(pipeline *pl, ps_error *err) {
     return st;
 }
 
-static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
+static ps_status phase_supernodes(ps_pipeline *pl, ps_error *err) {
     ps_params *p = &pl->params;
     ps_progress_span span = {pl->ctl, PS_PHASE_SUPERNODES, 0.0, SUPERNODES_BUILT};
     ps_status st = ps_supernodes_build_tracked(&pl->graph, pl->f, pl->component,
@@ -302,7 +271,7 @@ static ps_status phase_supernodes(pipeline *pl, ps_error *err) {
     return st;
 }
 
-static ps_status phase_hierarchy(pipeline *pl, ps_error *err) {
+static ps_status phase_hierarchy(ps_pipeline *pl, ps_error *err) {
     ps_supernode_graph sg = {
         .m = pl->sn.m,
         .sinks = pl->sn.sinks,
@@ -315,7 +284,7 @@ static ps_status phase_hierarchy(pipeline *pl, ps_error *err) {
 }
 
 /* group_of_point from the refined groups of the hierarchy leaves. */
-static ps_status point_groups(pipeline *pl, ps_error *err) {
+static ps_status point_groups(ps_pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     int *group_of_supernode = malloc((size_t)(pl->sn.m ? pl->sn.m : 1) * sizeof(int));
     pl->group_of_point = malloc(u * sizeof *pl->group_of_point);
@@ -335,7 +304,7 @@ static ps_status point_groups(pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
-static ps_status boundary_cut(pipeline *pl, ps_error *err) {
+static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE, REFINE_CUT_DONE};
     ps_boundary_cut_input bc = {
         .graph = &pl->graph,
@@ -352,14 +321,14 @@ static ps_status boundary_cut(pipeline *pl, ps_error *err) {
 
 /* The merges' input over the given normals (the crease merge and the
  * convex merge read the crease scale's, the patch merge the raw ones). */
-static ps_merge_input merge_input(const pipeline *pl, const double *normals) {
+static ps_merge_input merge_input(const ps_pipeline *pl, const double *normals) {
     return (ps_merge_input){.graph = &pl->graph, .points = pl->points, .normals = normals,
                             .f = pl->f, .mean_angular = pl->creases.mean,
                             .n_groups = pl->n_tree};
 }
 
 /* The merges after the boundary cut (method auto, 3-D), in order. */
-static ps_status merge_segments(pipeline *pl, ps_error *err) {
+static ps_status merge_segments(ps_pipeline *pl, ps_error *err) {
     ps_merge_input crease = merge_input(pl, pl->crease_normals);
     ps_merge_input raw = merge_input(pl, pl->normals);
     ps_status st = ps_crease_merge(&crease, pl->group_of_point, pl->group_of_leaf, &pl->merges,
@@ -374,7 +343,7 @@ static ps_status merge_segments(pipeline *pl, ps_error *err) {
     return st;
 }
 
-static ps_status phase_refine(pipeline *pl, ps_error *err) {
+static ps_status phase_refine(ps_pipeline *pl, ps_error *err) {
     pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
     if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
     ps_status st = ps_refine(&pl->graph, pl->f, pl->sn.supernode_of, pl->sn.is_minimum,
@@ -388,25 +357,23 @@ static ps_status phase_refine(pipeline *pl, ps_error *err) {
     return st;
 }
 
-typedef ps_status (*phase_fn)(pipeline *pl, ps_error *err);
+typedef ps_status (*phase_fn)(ps_pipeline *pl, ps_error *err);
 
-static ps_status run_phases(pipeline *pl, ps_error *err) {
+ps_status ps_pipeline_phase(ps_pipeline *pl, ps_phase ph, ps_error *err) {
     static const phase_fn phases[PS_PHASE_COUNT] = {phase_knn, phase_centrality,
                                                     phase_supernodes, phase_hierarchy,
                                                     phase_refine};
-    for (int ph = 0; ph < PS_PHASE_COUNT; ph++) {
-        if (ps_control_cancelled(pl->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
-        double start = now_ms();
-        ps_control_progress(pl->ctl, (ps_phase)ph, 0.0);
-        ps_status st = phases[ph](pl, err);
-        if (st != PS_OK) return st;
-        ps_control_progress(pl->ctl, (ps_phase)ph, 1.0);
-        pl->timings.ms[ph] = now_ms() - start;
-    }
+    if (ps_control_cancelled(pl->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
+    double start = ps_now_ms();
+    ps_control_progress(pl->ctl, ph, 0.0);
+    ps_status st = phases[ph](pl, err);
+    if (st != PS_OK) return st;
+    ps_control_progress(pl->ctl, ph, 1.0);
+    pl->timings.ms[ph] = ps_now_ms() - start;
     return PS_OK;
 }
 
-static void pipeline_free(pipeline *pl) {
+void ps_pipeline_free(ps_pipeline *pl) {
     if (pl->points != pl->in->points) free(pl->points);
     ps_dedup_free(&pl->dedup);
     ps_graph_free(&pl->graph);
@@ -422,7 +389,7 @@ static void pipeline_free(pipeline *pl) {
     free(pl->merges);
 }
 
-static ps_result_parts parts_of(const pipeline *pl) {
+ps_result_parts ps_pipeline_parts(const ps_pipeline *pl) {
     return (ps_result_parts){
         .n_input = pl->n_input,
         .host_of_added = pl->host_of_added,
@@ -448,6 +415,20 @@ static ps_result_parts parts_of(const pipeline *pl) {
     };
 }
 
+/* Every phase on the whole input, and the result for the caller's points. */
+static ps_status segment_whole(ps_pipeline *pl, ps_result **out, ps_error *err) {
+    ps_status st = ps_pipeline_dedup(pl, err);
+    for (int ph = 0; st == PS_OK && ph < PS_PHASE_COUNT; ph++)
+        st = ps_pipeline_phase(pl, (ps_phase)ph, err);
+    if (st == PS_OK) {
+        ps_result_parts parts = ps_pipeline_parts(pl);
+        st = ps_result_build(&parts, &pl->params, out, err);
+        /* the tree moved into the result */
+        if (st == PS_OK) pl->tree = NULL, pl->n_tree = 0;
+    }
+    return st;
+}
+
 /* The method's presets: paper has no persistence, minima or f2; an
  * ncut_threshold of 0 becomes the method's own. */
 static void apply_method(ps_params *p) {
@@ -459,7 +440,7 @@ static void apply_method(ps_params *p) {
 /* A mesh's triangles filled up to the reference sampling where the
  * parameters want it (surface_fill.h); pl->in becomes *filled, the input
  * points first. */
-static ps_status fill_surface(pipeline *pl, ps_surface_fill *fill, ps_input *filled,
+static ps_status fill_surface(ps_pipeline *pl, ps_surface_fill *fill, ps_input *filled,
                               ps_error *err) {
     const ps_input *in = pl->in;
     pl->n_input = in->n;
@@ -475,10 +456,10 @@ static ps_status fill_surface(pipeline *pl, ps_surface_fill *fill, ps_input *fil
 
 ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,
                      ps_result **out, ps_error *err) {
-    double start = now_ms();
+    double start = ps_now_ms();
     *out = NULL;
     ps_eigen_setup();
-    pipeline pl = {.in = in, .ctl = ctl};
+    ps_pipeline pl = {.in = in, .ctl = ctl};
     if (params) pl.params = *params;
     else ps_params_default(&pl.params);
     apply_method(&pl.params);
@@ -490,19 +471,13 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     if (st != PS_OK) return st;
     pl.points = (double *)pl.in->points;
     pl.threads = ps_parallel_threads(pl.params.threads);
-    st = remove_duplicates(&pl, err);
-    if (st == PS_OK) st = run_phases(&pl, err);
-    if (st == PS_OK) {
-        ps_result_parts parts = parts_of(&pl);
-        st = ps_result_build(&parts, &pl.params, out, err);
-        /* the tree moved into the result */
-        if (st == PS_OK) pl.tree = NULL, pl.n_tree = 0;
-    }
-    pipeline_free(&pl);
+    int draws = ps_ensemble_draws(&pl.params, pl.in->n);
+    st = draws > 1 ? ps_ensemble_segment(&pl, draws, out, err) : segment_whole(&pl, out, err);
+    ps_pipeline_free(&pl);
     ps_surface_fill_free(&fill);
     if (st == PS_OK) {
         (*out)->timings = pl.timings;
-        (*out)->timings.total_ms = now_ms() - start;
+        (*out)->timings.total_ms = ps_now_ms() - start;
     }
     return st;
 }

@@ -1,0 +1,325 @@
+/*
+ * ensemble.c: method auto's ensemble of disjoint draws (ensemble.h).
+ *
+ * The draws' points (and normals) are copied out of the whole input, each
+ * draw runs the phases of pipeline.h, a FLANN index over each draw's
+ * points (nearest.h, built side by side) finds a point's nearest in a draw
+ * it is not in, and the chosen draw's distinct points become the result's:
+ * result.c reads every caller's point through unique_of (its point in the
+ * draw) and each distinct point's stand-in through first_of (its index in
+ * the whole input).
+ */
+#include "ensemble.h"
+
+#include "centrality.h"
+#include "control.h"
+#include "morton.h"
+#include "nearest.h"
+#include "normals_smooth.h"
+#include "parallel.h"
+#include "sort_util.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A draw's progress reported as the whole's: draw j of count covers the
+ * j-th share of each phase; *last (per phase, shared by the draws) keeps
+ * the rounding of a share from ever reporting less than before. */
+typedef struct progress_share {
+    const ps_control *whole;
+    int j, count;
+    double *last; /* #PS_PHASE_COUNT */
+} progress_share;
+
+typedef struct draw {
+    ps_input in;         /* the draw's points (and normals), no faces */
+    uint32_t *members;   /* #D index in the whole input of each point */
+    ps_pipeline pl;
+    ps_control ctl;
+    progress_share share;
+    ps_nearest_index *index; /* over in.points */
+} draw;
+
+typedef struct ensemble {
+    const ps_pipeline *whole;
+    int count;
+    uint32_t *key;      /* #P each point's key (ps_ensemble_keys) */
+    uint8_t *draw_of;   /* #P the draw of each point of the whole input */
+    uint32_t *local_of; /* #P its index within its draw */
+    draw d[PS_ENSEMBLE_DRAWS];
+    double last_progress[PS_PHASE_COUNT];
+} ensemble;
+
+int ps_ensemble_draws(const ps_params *p, size_t n) {
+    int auto_method = p->method == PS_METHOD_AUTO;
+    return auto_method && n >= (size_t)PS_ENSEMBLE_DRAWS * PS_DENSITY_REFERENCE_POINTS
+               ? PS_ENSEMBLE_DRAWS
+               : 1;
+}
+
+/* splitmix64's finalizer: index i to 64 well-mixed bits. */
+static uint64_t mix(uint64_t x) {
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+/* |x - centre| over dim coordinates. */
+static double from_centre(const double *x, const double *centre, int dim) {
+    double d = 0;
+    for (int c = 0; c < dim; c++) d += (x[c] - centre[c]) * (x[c] - centre[c]);
+    return sqrt(d);
+}
+
+void ps_ensemble_keys(const double *points, size_t n, int dim, uint32_t *key) {
+    double centre[PS_MAX_DIM] = {0}, far = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < dim; c++) centre[c] += points[i * (size_t)dim + (size_t)c];
+    for (int c = 0; c < dim; c++) centre[c] /= (double)n;
+    for (size_t i = 0; i < n; i++) {
+        double d = from_centre(points + i * (size_t)dim, centre, dim);
+        if (d > far) far = d;
+    }
+    double scale = far > 0 ? (double)(1u << PS_ENSEMBLE_KEY_BITS) / far : 0;
+    for (size_t i = 0; i < n; i++)
+        key[i] = (uint32_t)fmin(from_centre(points + i * (size_t)dim, centre, dim) * scale,
+                                (double)((1u << PS_ENSEMBLE_KEY_BITS) - 1));
+}
+
+void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, uint8_t *draw_of) {
+    size_t size[PS_ENSEMBLE_DRAWS] = {0};
+    for (size_t i = 0; i < n; i++) size[draw_of[i] = (uint8_t)(mix(key[i]) % (uint64_t)draws)]++;
+    for (int j = 0; j < draws; j++)
+        if (size[j] < n / (2 * (size_t)draws)) {
+            for (size_t i = 0; i < n; i++) draw_of[i] = (uint8_t)(mix(i) % (uint64_t)draws);
+            return;
+        }
+}
+
+int ps_ensemble_compared(uint32_t key, size_t n, size_t s) {
+    return mix((uint64_t)key ^ 0x5851f42d4c957f2dULL) % (uint64_t)n < (uint64_t)s;
+}
+
+int ps_ensemble_medoid(const int *labels, int draws, size_t s) {
+    double cost[PS_ENSEMBLE_DRAWS] = {0};
+    for (int a = 0; a < draws; a++)
+        for (int b = a + 1; b < draws; b++) {
+            double e = ps_rand_index_error(labels + (size_t)a * s, labels + (size_t)b * s, s);
+            cost[a] += e, cost[b] += e;
+        }
+    int best = 0;
+    for (int a = 1; a < draws; a++)
+        if (cost[a] < cost[best]) best = a;
+    return best;
+}
+
+static void ensemble_free(ensemble *e) {
+    for (int j = 0; j < e->count; j++) {
+        draw *d = &e->d[j];
+        if (d->pl.in) ps_pipeline_free(&d->pl);
+        free((double *)d->in.points), free((double *)d->in.normals);
+        free(d->members);
+        ps_nearest_free(d->index);
+    }
+    free(e->key), free(e->draw_of), free(e->local_of);
+}
+
+static ps_status out_of_memory(ps_error *err) {
+    return ps_fail(err, PS_ERR_NOMEM, "out of memory (ensemble draws)");
+}
+
+/* Each draw's points, normals and members, copied in the order of their
+ * keys (so that a reordered copy of the input gives the draws the same
+ * points in the same order). */
+static ps_status split(ensemble *e, ps_error *err) {
+    const ps_input *in = e->whole->in;
+    size_t n = in->n, dim = (size_t)in->dim, size[PS_ENSEMBLE_DRAWS] = {0};
+    e->key = malloc(n * sizeof *e->key);
+    e->draw_of = malloc(n * sizeof *e->draw_of);
+    e->local_of = malloc(n * sizeof *e->local_of);
+    uint32_t *order = malloc(n * sizeof *order);
+    if (!e->key || !e->draw_of || !e->local_of || !order) {
+        free(order);
+        return out_of_memory(err);
+    }
+    ps_ensemble_keys(in->points, n, in->dim, e->key);
+    ps_ensemble_assign(e->key, n, e->count, e->draw_of);
+    ps_order_by_u32(e->key, n, order, e->local_of); /* local_of: its scratch */
+    for (size_t t = 0; t < n; t++) {
+        size_t i = order[t];
+        e->local_of[i] = (uint32_t)size[e->draw_of[i]]++;
+    }
+    free(order);
+    ps_status st = PS_OK;
+    for (int j = 0; st == PS_OK && j < e->count; j++) {
+        draw *d = &e->d[j];
+        d->in = (ps_input){.n = size[j], .dim = in->dim};
+        d->in.points = malloc(size[j] * dim * sizeof *d->in.points);
+        if (in->normals) d->in.normals = malloc(size[j] * 3 * sizeof *d->in.normals);
+        d->members = malloc(size[j] * sizeof *d->members);
+        if (!d->in.points || (in->normals && !d->in.normals) || !d->members)
+            st = out_of_memory(err);
+    }
+    for (size_t i = 0; st == PS_OK && i < n; i++) {
+        draw *d = &e->d[e->draw_of[i]];
+        size_t l = e->local_of[i];
+        d->members[l] = (uint32_t)i;
+        memcpy((double *)d->in.points + l * dim, in->points + i * dim, dim * sizeof(double));
+        if (in->normals)
+            memcpy((double *)d->in.normals + l * 3, in->normals + i * 3, 3 * sizeof(double));
+    }
+    return st;
+}
+
+static void report_share(void *user, ps_phase phase, double fraction) {
+    const progress_share *s = user;
+    double whole = (s->j + fraction) / s->count;
+    if (whole < s->last[phase]) whole = s->last[phase];
+    s->last[phase] = whole;
+    ps_control_progress(s->whole, phase, whole);
+}
+
+/* Draw j's pipeline: the whole's parameters, its share of the centrality
+ * samples, its share of the progress, the whole's cancel flag. */
+static void draw_setup(ensemble *e, int j) {
+    const ps_pipeline *whole = e->whole;
+    draw *d = &e->d[j];
+    d->share = (progress_share){whole->ctl, j, e->count, e->last_progress};
+    if (whole->ctl) d->ctl = (ps_control){report_share, &d->share, whole->ctl->cancel};
+    d->pl = (ps_pipeline){.in = &d->in, .n_input = d->in.n, .ctl = whole->ctl ? &d->ctl : NULL,
+                          .params = whole->params, .threads = whole->threads};
+    d->pl.points = (double *)d->in.points;
+    int samples = whole->params.samples ? whole->params.samples
+                                        : ps_centrality_default_samples(whole->in->n);
+    d->pl.params.samples = (samples + e->count - 1) / e->count;
+}
+
+/* The phases, each over every draw before the next; phase times summed. */
+static ps_status run(ensemble *e, ps_pipeline *whole, ps_error *err) {
+    ps_status st = PS_OK;
+    for (int j = 0; st == PS_OK && j < e->count; j++) {
+        draw_setup(e, j);
+        st = ps_pipeline_dedup(&e->d[j].pl, err);
+    }
+    for (int ph = 0; st == PS_OK && ph < PS_PHASE_COUNT; ph++)
+        for (int j = 0; st == PS_OK && j < e->count; j++) {
+            st = ps_pipeline_phase(&e->d[j].pl, (ps_phase)ph, err);
+            whole->timings.ms[ph] += e->d[j].pl.timings.ms[ph];
+        }
+    return st;
+}
+
+static void index_draws(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    ensemble *e = ctx;
+    for (size_t j = begin; j < end; j++)
+        e->d[j].index = ps_nearest_build(e->d[j].in.points, e->d[j].in.n, e->d[j].in.dim);
+}
+
+static ps_status index_all(ensemble *e, ps_error *err) {
+    ps_parallel_for(e->whole->threads, (size_t)e->count, 1, index_draws, e);
+    for (int j = 0; j < e->count; j++)
+        if (!e->d[j].index) return out_of_memory(err);
+    return PS_OK;
+}
+
+/* local out: #Q for the whole input's points ids[0..Q), their point in
+ * draw j: their own, or the draw's nearest. */
+static ps_status locate(const ensemble *e, int j, const uint32_t *ids, size_t q,
+                        uint32_t *local, ps_error *err) {
+    const ps_input *in = e->whole->in;
+    size_t dim = (size_t)in->dim, m = 0;
+    for (size_t t = 0; t < q; t++) m += e->draw_of[ids[t]] != j;
+    double *queries = calloc((m ? m : 1) * dim, sizeof *queries);
+    uint32_t *found = malloc((m ? m : 1) * sizeof *found);
+    if (!queries || !found) {
+        free(queries), free(found);
+        return out_of_memory(err);
+    }
+    m = 0;
+    for (size_t t = 0; t < q; t++)
+        if (e->draw_of[ids[t]] != j)
+            memcpy(queries + m++ * dim, in->points + (size_t)ids[t] * dim, dim * sizeof *queries);
+    ps_status st = ps_nearest_query(e->d[j].index, queries, m, e->whole->threads, found, err);
+    m = 0;
+    for (size_t t = 0; st == PS_OK && t < q; t++)
+        local[t] = e->draw_of[ids[t]] == j ? e->local_of[ids[t]] : found[m++];
+    free(queries), free(found);
+    return st;
+}
+
+/* The medoid draw, compared on the points ps_ensemble_compared picks. */
+static ps_status choose(const ensemble *e, int *chosen, ps_error *err) {
+    size_t n = e->whole->in->n, s = 0;
+    for (size_t i = 0; i < n; i++) s += ps_ensemble_compared(e->key[i], n, PS_ENSEMBLE_SAMPLE);
+    uint32_t *ids = calloc(s ? s : 1, sizeof *ids), *local = malloc((s ? s : 1) * sizeof *local);
+    int *labels = malloc((size_t)e->count * (s ? s : 1) * sizeof *labels);
+    ps_status st = ids && local && labels ? PS_OK : out_of_memory(err);
+    for (size_t i = 0, t = 0; st == PS_OK && i < n; i++)
+        if (ps_ensemble_compared(e->key[i], n, PS_ENSEMBLE_SAMPLE)) ids[t++] = (uint32_t)i;
+    for (int j = 0; st == PS_OK && j < e->count; j++) {
+        const ps_pipeline *pl = &e->d[j].pl;
+        st = locate(e, j, ids, s, local, err);
+        for (size_t t = 0; st == PS_OK && t < s; t++)
+            labels[(size_t)j * s + t] = pl->group_of_point[pl->dedup.unique_of[local[t]]];
+    }
+    if (st == PS_OK) *chosen = s ? ps_ensemble_medoid(labels, e->count, s) : 0;
+    free(ids), free(local), free(labels);
+    return st;
+}
+
+/* unique_of out: #P (the caller's points) the distinct point of draw c
+ * whose answers each takes; the queries go in Morton order, near ones
+ * together. */
+static ps_status caller_points(const ensemble *e, int c, uint32_t *unique_of, ps_error *err) {
+    const ps_input *in = e->whole->in;
+    size_t n = e->whole->n_input;
+    uint32_t *order = malloc(n * sizeof *order), *local = malloc(n * sizeof *local);
+    ps_status st = order && local && ps_morton_order(in->points, n, in->dim, order) == PS_OK
+                       ? PS_OK
+                       : out_of_memory(err);
+    if (st == PS_OK) st = locate(e, c, order, n, local, err);
+    const ps_dedup *dd = &e->d[c].pl.dedup;
+    for (size_t t = 0; st == PS_OK && t < n; t++) unique_of[order[t]] = dd->unique_of[local[t]];
+    free(order), free(local);
+    return st;
+}
+
+/* The result from draw c, for the caller's points. */
+static ps_status result(ensemble *e, int c, ps_result **out, ps_error *err) {
+    const ps_pipeline *whole = e->whole;
+    ps_pipeline *pl = &e->d[c].pl;
+    size_t n = whole->n_input, u = pl->dedup.n_unique;
+    uint32_t *unique_of = malloc(n * sizeof *unique_of), *first = malloc(u * sizeof *first);
+    ps_status st = unique_of && first ? caller_points(e, c, unique_of, err) : out_of_memory(err);
+    for (size_t v = 0; st == PS_OK && v < u; v++) first[v] = e->d[c].members[pl->dedup.first[v]];
+    if (st == PS_OK) {
+        ps_result_parts parts = ps_pipeline_parts(pl);
+        parts.n_input = n;
+        parts.host_of_added = whole->host_of_added;
+        parts.n_filled = whole->in->n - n;
+        parts.unique_of = unique_of;
+        parts.first_of = first;
+        st = ps_result_build(&parts, &pl->params, out, err);
+        /* the tree moved into the result */
+        if (st == PS_OK) pl->tree = NULL, pl->n_tree = 0;
+    }
+    free(unique_of), free(first);
+    return st;
+}
+
+ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, ps_result **out, ps_error *err) {
+    ensemble e = {.whole = whole, .count = draws};
+    ps_status st = split(&e, err);
+    if (st == PS_OK) st = run(&e, whole, err);
+    double start = ps_now_ms();
+    int chosen = 0;
+    if (st == PS_OK) st = index_all(&e, err);
+    if (st == PS_OK) st = choose(&e, &chosen, err);
+    if (st == PS_OK) st = result(&e, chosen, out, err);
+    whole->timings.ms[PS_PHASE_REFINE] += ps_now_ms() - start;
+    ensemble_free(&e);
+    return st;
+}

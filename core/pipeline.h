@@ -1,0 +1,67 @@
+/*
+ * pipeline.h: PRIVATE to segment.c and ensemble.c, not part of the public
+ * API: one run of the phases over a point set, what each phase leaves for
+ * the next, and the result's parts taken from it.
+ */
+#ifndef PS_PIPELINE_H
+#define PS_PIPELINE_H
+
+#include "crease.h"
+#include "dedup.h"
+#include "knn_graph.h"
+#include "normals.h"
+#include "pointseg.h"
+#include "result.h"
+#include "supernodes.h"
+
+/* Everything the phases produce for the distinct points. */
+typedef struct ps_pipeline {
+    const ps_input *in;    /* the caller's points, then any added on its faces */
+    size_t n_input;        /* #P the caller's points */
+    const uint32_t *host_of_added; /* surface_fill.h */
+    const ps_control *ctl;
+    ps_params params;
+    int threads;
+    ps_dedup dedup;
+    double *points;        /* #U by dim distinct points (in->points when no dups) */
+    ps_graph graph;
+    ps_knn_memo *knn_memo; /* method auto, until the stray points are out */
+    int *component;        /* #U */
+    int n_components;
+    double *normals;       /* #U by 3 outward normals (method auto, 3-D), else NULL */
+    ps_normals_report normals_report; /* the noise measured, the smoothing done (normals.h) */
+    size_t n_outliers;     /* distinct points dropped as stray (outliers.h) */
+    double *crease_normals;   /* #U by 3 the crease split's and merge's normals
+                                 (crease_scale), or normals itself */
+    ps_crease_points creases; /* with normals: crease strengths of the #U points
+                                 at the crease scale, and their mean */
+    ps_edge_scales edge_scales; /* with normals: the graph's edges over them */
+    double *f;             /* #U centrality */
+    ps_supernodes sn;
+    ps_tree_node *tree;
+    int n_tree;
+    int *group_of_leaf;    /* #n_tree */
+    int *group_of_point;   /* #U final group (surviving leaf id) of each point */
+    ps_merge *merges;
+    int n_merges;
+    ps_timings timings;
+} ps_pipeline;
+
+/* Milliseconds on the monotonic clock. */
+double ps_now_ms(void);
+
+/* pl->points: the distinct points of pl->in (in Morton order for a big
+ * scan, dedup.h); fails when fewer than k + 1 remain. */
+ps_status ps_pipeline_dedup(ps_pipeline *pl, ps_error *err);
+
+/* Phase ph on pl (after ps_pipeline_dedup and the phases before it),
+ * progress 0 and 1 around it, its wall time in pl->timings; fails with
+ * PS_ERR_CANCELLED when pl->ctl asks to cancel before it starts. */
+ps_status ps_pipeline_phase(ps_pipeline *pl, ps_phase ph, ps_error *err);
+
+/* The result's parts for pl's own input points (after every phase). */
+ps_result_parts ps_pipeline_parts(const ps_pipeline *pl);
+
+void ps_pipeline_free(ps_pipeline *pl);
+
+#endif

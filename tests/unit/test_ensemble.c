@@ -1,0 +1,231 @@
+/*
+ * test_ensemble.c: method auto's ensemble of draws (ensemble.h): when it
+ * runs, the draws' assignment and the medoid, and end to end on a star
+ * dense enough for three draws: its arms come out apart, every point is
+ * answered consistently, and the answer is the same for any thread count
+ * and for a rotated, scaled, moved and reordered copy, with progress that
+ * never goes back.
+ */
+#include "ensemble.h"
+#include "normals_smooth.h"
+#include "pointseg.h"
+#include "progress_seen.h"
+#include "shapes.h"
+#include "testlib.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define DENSE_STAR 2500.0 /* ps_shape_star density: about 128,000 points */
+
+static void test_draws_only_when_each_keeps_the_reference(void) {
+    ps_params p;
+    ps_params_default(&p);
+    size_t enough = (size_t)PS_ENSEMBLE_DRAWS * PS_DENSITY_REFERENCE_POINTS;
+    CHECK(ps_ensemble_draws(&p, enough - 1) == 1);
+    CHECK(ps_ensemble_draws(&p, enough) == PS_ENSEMBLE_DRAWS);
+    p.method = PS_METHOD_PAPER;
+    CHECK(ps_ensemble_draws(&p, 10 * enough) == 1);
+}
+
+/* Draw sizes within 2% of an even share. */
+static void check_balanced(const uint8_t *draw_of, size_t n) {
+    size_t count[PS_ENSEMBLE_DRAWS] = {0};
+    for (size_t i = 0; i < n; i++) {
+        REQUIRE(draw_of[i] < PS_ENSEMBLE_DRAWS);
+        count[draw_of[i]]++;
+    }
+    for (int j = 0; j < PS_ENSEMBLE_DRAWS; j++)
+        CHECK_MSG(count[j] > 0.98 * n / PS_ENSEMBLE_DRAWS && count[j] < 1.02 * n / PS_ENSEMBLE_DRAWS,
+                  "draw %d has %zu of %zu points", j, count[j], n);
+}
+
+/* The keys of a rotated, scaled, moved and reversed copy are the same
+ * (but for rounding on a handful of points), and so are the draws. */
+static void test_keys_invariant(void) {
+    size_t n;
+    double *pts = ps_shape_hand(400.0, &n, NULL);
+    double *copy = malloc(3 * n * sizeof *copy);
+    uint32_t *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    uint8_t *draw_a = malloc(n), *draw_b = malloc(n);
+    REQUIRE(pts && copy && a && b && draw_a && draw_b);
+    for (size_t i = 0; i < n; i++) memcpy(copy + 3 * i, pts + 3 * (n - 1 - i), 3 * sizeof *copy);
+    const double t[3] = {-12.0, 3.5, 900.0};
+    ps_shape_transform(copy, n, 0.2, 0.9, -0.4, 2.2, 37.0, t);
+    ps_ensemble_keys(pts, n, 3, a);
+    ps_ensemble_keys(copy, n, 3, b);
+    size_t same = 0;
+    for (size_t i = 0; i < n; i++) same += a[i] == b[n - 1 - i];
+    CHECK_MSG(same + 5 >= n, "%zu of %zu keys kept", same, n);
+    ps_ensemble_assign(a, n, PS_ENSEMBLE_DRAWS, draw_a);
+    ps_ensemble_assign(b, n, PS_ENSEMBLE_DRAWS, draw_b);
+    check_balanced(draw_a, n);
+    same = 0;
+    for (size_t i = 0; i < n; i++) same += draw_a[i] == draw_b[n - 1 - i];
+    CHECK_MSG(same + 5 >= n, "%zu of %zu points kept their draw", same, n);
+    size_t compared = 0;
+    for (size_t i = 0; i < n; i++) compared += ps_ensemble_compared(a[i], n, 4096);
+    CHECK_MSG(compared > 3700 && compared < 4500, "%zu points compared", compared);
+    free(pts), free(copy), free(a), free(b), free(draw_a), free(draw_b);
+}
+
+/* Every point as far from the centre: the draws still share the points. */
+static void test_assign_tied_keys(void) {
+    size_t n = 30000;
+    uint32_t *key = malloc(n * sizeof *key);
+    uint8_t *draw_of = malloc(n);
+    REQUIRE(key && draw_of);
+    for (size_t i = 0; i < n; i++) key[i] = 4000000000u;
+    ps_ensemble_assign(key, n, PS_ENSEMBLE_DRAWS, draw_of);
+    check_balanced(draw_of, n);
+    free(key), free(draw_of);
+}
+
+/* One labelling all in one part, one in halves, one in quarters: the
+ * halves lie between the other two. */
+static void test_medoid_is_the_middle(void) {
+    enum { S = 400 };
+    int labels[3 * S];
+    for (int t = 0; t < S; t++) {
+        labels[t] = 0;
+        labels[S + t] = t / (S / 2);
+        labels[2 * S + t] = t / (S / 4);
+    }
+    CHECK(ps_ensemble_medoid(labels, 3, S) == 1);
+    for (int t = 0; t < S; t++) labels[S + t] = 0; /* two alike: the lower wins */
+    CHECK(ps_ensemble_medoid(labels, 3, S) == 0);
+}
+
+static ps_result *segment_star(const double *pts, size_t n, int threads, const ps_control *ctl) {
+    ps_params p;
+    ps_params_default(&p);
+    p.threads = threads;
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_result *r = NULL;
+    ps_error err = {0};
+    ps_status st = ps_segment(&in, &p, ctl, &r, &err);
+    CHECK_MSG(st == PS_OK, "ps_segment failed: %s", err.message);
+    return r;
+}
+
+/* Each arm's points mostly (80%) in one segment of its own. */
+static void check_arms(const ps_result *r, const int *part) {
+    int label_of[7];
+    for (int a = 1; a <= 6; a++) {
+        int *count = calloc((size_t)r->n_segments, sizeof *count);
+        size_t total = 0;
+        for (size_t i = 0; i < r->n_points; i++)
+            if (part[i] == a) count[r->labels[i]]++, total++;
+        int best = 0;
+        for (int s = 1; s < r->n_segments; s++)
+            if (count[s] > count[best]) best = s;
+        CHECK_MSG(count[best] >= 0.8 * total, "arm %d: %d of %zu in one segment", a, count[best],
+                  total);
+        label_of[a] = best;
+        for (int b = 1; b < a; b++) CHECK_MSG(label_of[a] != label_of[b], "arms %d, %d joined", a, b);
+        free(count);
+    }
+}
+
+/* Every point answered, sizes adding up, supernodes inside their segment. */
+static void check_answers(const ps_result *r, size_t n) {
+    REQUIRE(r->n_points == n);
+    size_t total = 0, sn_total = 0;
+    for (size_t i = 0; i < n; i++) {
+        REQUIRE(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
+        REQUIRE(r->point_supernode[i] >= 0 && r->point_supernode[i] < r->n_supernodes);
+        CHECK(r->supernodes[r->point_supernode[i]].segment == r->labels[i]);
+    }
+    for (int s = 0; s < r->n_segments; s++) total += r->segments[s].size;
+    for (int s = 0; s < r->n_supernodes; s++) {
+        sn_total += r->supernodes[s].size;
+        CHECK(r->supernodes[s].sink < n);
+    }
+    CHECK(total == n && sn_total == n);
+}
+
+static void test_dense_star_in_draws(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_star(DENSE_STAR, &n, &part);
+    REQUIRE(pts && part);
+    REQUIRE(ps_ensemble_draws(&(ps_params){.method = PS_METHOD_AUTO}, n) > 1);
+    ps_result *one = segment_star(pts, n, 1, NULL), *two = segment_star(pts, n, 2, NULL);
+    REQUIRE(one && two);
+    check_answers(one, n);
+    check_arms(one, part);
+    CHECK(memcmp(one->labels, two->labels, n * sizeof *one->labels) == 0);
+    CHECK(memcmp(one->centrality, two->centrality, n * sizeof *one->centrality) == 0);
+    ps_result_free(one), ps_result_free(two);
+    free(pts), free(part);
+}
+
+/* Share of the n points outside the segment of b that overlaps most with
+ * their segment of a. */
+static double moved_share(const ps_result *a, const int *b, int nb, size_t n) {
+    size_t na = (size_t)a->n_segments, agree = 0;
+    size_t *table = calloc(na * (size_t)nb, sizeof *table);
+    if (!table) return 1;
+    for (size_t i = 0; i < n; i++) table[(size_t)a->labels[i] * (size_t)nb + (size_t)b[i]]++;
+    for (size_t s = 0; s < na; s++) {
+        size_t best = 0;
+        for (int t = 0; t < nb; t++)
+            if (table[s * (size_t)nb + (size_t)t] > best) best = table[s * (size_t)nb + (size_t)t];
+        agree += best;
+    }
+    free(table);
+    return 1.0 - (double)agree / (double)n;
+}
+
+/* Rotated, scaled, moved and reversed: the same partition, but for the
+ * points the reversed order moves between draws' tie breaks (as the
+ * single run's, test_segment.c's test_permutation). */
+static void test_dense_star_rotated_and_reordered(void) {
+    size_t n;
+    double *pts = ps_shape_star(DENSE_STAR, &n, NULL);
+    double *copy = malloc(3 * n * sizeof *copy);
+    REQUIRE(pts && copy);
+    for (size_t i = 0; i < n; i++) memcpy(copy + 3 * i, pts + 3 * (n - 1 - i), 3 * sizeof *copy);
+    const double t[3] = {250.0, -40.0, 7.0};
+    ps_shape_transform(copy, n, 0.3, -0.5, 0.81, 1.1, 100.0, t);
+    ps_result *a = segment_star(pts, n, 0, NULL), *b = segment_star(copy, n, 0, NULL);
+    REQUIRE(a && b);
+    CHECK(a->n_segments == b->n_segments);
+    int *b_in_a_order = malloc(n * sizeof *b_in_a_order);
+    REQUIRE(b_in_a_order);
+    for (size_t i = 0; i < n; i++) b_in_a_order[i] = b->labels[n - 1 - i];
+    double moved = moved_share(a, b_in_a_order, b->n_segments, n);
+    CHECK_MSG(moved <= 0.005, "%.4f of the points changed segment", moved);
+    ps_result_free(a), ps_result_free(b);
+    free(pts), free(copy), free(b_in_a_order);
+}
+
+/* Progress within every phase, never backwards across the draws; a raised
+ * cancel flag stops the run. */
+static void test_dense_star_progress_and_cancel(void) {
+    size_t n;
+    double *pts = ps_shape_star(DENSE_STAR, &n, NULL);
+    REQUIRE(pts);
+    ps_progress_seen m = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &m};
+    ps_result *r = segment_star(pts, n, 0, &ctl);
+    CHECK(r != NULL);
+    for (int p = 0; p < PS_PHASE_COUNT; p++)
+        CHECK_MSG(m.inside[p] >= PS_ENSEMBLE_DRAWS - 1, "%s: %d fractions inside (0, 1)",
+                  ps_phase_name(p), m.inside[p]);
+    CHECK(!m.went_back);
+    ps_result_free(r);
+    volatile int cancel = 1;
+    ctl.cancel = &cancel;
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_error err;
+    r = NULL;
+    CHECK(ps_segment(&in, NULL, &ctl, &r, &err) == PS_ERR_CANCELLED);
+    CHECK(r == NULL);
+    free(pts);
+}
+
+PS_TEST_MAIN(TEST(test_draws_only_when_each_keeps_the_reference), TEST(test_keys_invariant),
+             TEST(test_assign_tied_keys), TEST(test_medoid_is_the_middle),
+             TEST(test_dense_star_in_draws), TEST(test_dense_star_rotated_and_reordered),
+             TEST(test_dense_star_progress_and_cancel))
