@@ -38,7 +38,7 @@ typedef struct draw {
     ps_pipeline pl;
     ps_control ctl;
     progress_share share;
-    ps_nearest_index *index; /* over in.points */
+    ps_nearest_index *index; /* over the pipeline's distinct points */
 } draw;
 
 typedef struct ensemble {
@@ -196,7 +196,16 @@ static void draw_setup(ensemble *e, int j) {
     d->pl.params.samples = (samples + e->count - 1) / e->count;
 }
 
-/* The phases, each over every draw before the next; phase times summed. */
+/* Draw d's copy of its points once its pipeline has its own (distinct
+ * points, after the kNN phase's stray points). */
+static void drop_copy(draw *d) {
+    if (d->pl.points == d->in.points) return;
+    free((double *)d->in.points), free((double *)d->in.normals);
+    d->in.points = d->in.normals = NULL;
+}
+
+/* The phases, each over every draw before the next; phase times summed;
+ * then each draw keeps only what its answers need. */
 static ps_status run(ensemble *e, ps_pipeline *whole, ps_error *err) {
     ps_status st = PS_OK;
     for (int j = 0; st == PS_OK && j < e->count; j++) {
@@ -207,7 +216,9 @@ static ps_status run(ensemble *e, ps_pipeline *whole, ps_error *err) {
         for (int j = 0; st == PS_OK && j < e->count; j++) {
             st = ps_pipeline_phase(&e->d[j].pl, (ps_phase)ph, err);
             whole->timings.ms[ph] += e->d[j].pl.timings.ms[ph];
+            if (ph == PS_PHASE_KNN) drop_copy(&e->d[j]);
         }
+    for (int j = 0; st == PS_OK && j < e->count; j++) ps_pipeline_shed(&e->d[j].pl);
     return st;
 }
 
@@ -215,7 +226,8 @@ static void index_draws(void *ctx, size_t begin, size_t end, int worker) {
     (void)worker;
     ensemble *e = ctx;
     for (size_t j = begin; j < end; j++)
-        e->d[j].index = ps_nearest_build(e->d[j].in.points, e->d[j].in.n, e->d[j].in.dim);
+        e->d[j].index = ps_nearest_build(e->d[j].pl.points, e->d[j].pl.dedup.n_unique,
+                                         e->whole->in->dim);
 }
 
 static ps_status index_all(ensemble *e, ps_error *err) {
@@ -225,11 +237,13 @@ static ps_status index_all(ensemble *e, ps_error *err) {
     return PS_OK;
 }
 
-/* local out: #Q for the whole input's points ids[0..Q), their point in
- * draw j: their own, or the draw's nearest. */
+/* unique out: #Q for the whole input's points ids[0..Q), the distinct
+ * point of draw j that answers for each: its own point's, or the draw's
+ * nearest. */
 static ps_status locate(const ensemble *e, int j, const uint32_t *ids, size_t q,
-                        uint32_t *local, ps_error *err) {
+                        uint32_t *unique, ps_error *err) {
     const ps_input *in = e->whole->in;
+    const ps_dedup *dd = &e->d[j].pl.dedup;
     size_t dim = (size_t)in->dim, m = 0;
     for (size_t t = 0; t < q; t++) m += e->draw_of[ids[t]] != j;
     double *queries = calloc((m ? m : 1) * dim, sizeof *queries);
@@ -245,7 +259,7 @@ static ps_status locate(const ensemble *e, int j, const uint32_t *ids, size_t q,
     ps_status st = ps_nearest_query(e->d[j].index, queries, m, e->whole->threads, found, err);
     m = 0;
     for (size_t t = 0; st == PS_OK && t < q; t++)
-        local[t] = e->draw_of[ids[t]] == j ? e->local_of[ids[t]] : found[m++];
+        unique[t] = e->draw_of[ids[t]] == j ? dd->unique_of[e->local_of[ids[t]]] : found[m++];
     free(queries), free(found);
     return st;
 }
@@ -254,19 +268,19 @@ static ps_status locate(const ensemble *e, int j, const uint32_t *ids, size_t q,
 static ps_status choose(const ensemble *e, int *chosen, ps_error *err) {
     size_t n = e->whole->in->n, s = 0;
     for (size_t i = 0; i < n; i++) s += ps_ensemble_compared(e->key[i], n, PS_ENSEMBLE_SAMPLE);
-    uint32_t *ids = calloc(s ? s : 1, sizeof *ids), *local = malloc((s ? s : 1) * sizeof *local);
+    uint32_t *ids = calloc(s ? s : 1, sizeof *ids), *unique = malloc((s ? s : 1) * sizeof *unique);
     int *labels = malloc((size_t)e->count * (s ? s : 1) * sizeof *labels);
-    ps_status st = ids && local && labels ? PS_OK : out_of_memory(err);
+    ps_status st = ids && unique && labels ? PS_OK : out_of_memory(err);
     for (size_t i = 0, t = 0; st == PS_OK && i < n; i++)
         if (ps_ensemble_compared(e->key[i], n, PS_ENSEMBLE_SAMPLE)) ids[t++] = (uint32_t)i;
     for (int j = 0; st == PS_OK && j < e->count; j++) {
         const ps_pipeline *pl = &e->d[j].pl;
-        st = locate(e, j, ids, s, local, err);
+        st = locate(e, j, ids, s, unique, err);
         for (size_t t = 0; st == PS_OK && t < s; t++)
-            labels[(size_t)j * s + t] = pl->group_of_point[pl->dedup.unique_of[local[t]]];
+            labels[(size_t)j * s + t] = pl->group_of_point[unique[t]];
     }
     if (st == PS_OK) *chosen = s ? ps_ensemble_medoid(labels, e->count, s) : 0;
-    free(ids), free(local), free(labels);
+    free(ids), free(unique), free(labels);
     return st;
 }
 
@@ -276,14 +290,13 @@ static ps_status choose(const ensemble *e, int *chosen, ps_error *err) {
 static ps_status caller_points(const ensemble *e, int c, uint32_t *unique_of, ps_error *err) {
     const ps_input *in = e->whole->in;
     size_t n = e->whole->n_input;
-    uint32_t *order = malloc(n * sizeof *order), *local = malloc(n * sizeof *local);
-    ps_status st = order && local && ps_morton_order(in->points, n, in->dim, order) == PS_OK
+    uint32_t *order = malloc(n * sizeof *order), *unique = malloc(n * sizeof *unique);
+    ps_status st = order && unique && ps_morton_order(in->points, n, in->dim, order) == PS_OK
                        ? PS_OK
                        : out_of_memory(err);
-    if (st == PS_OK) st = locate(e, c, order, n, local, err);
-    const ps_dedup *dd = &e->d[c].pl.dedup;
-    for (size_t t = 0; st == PS_OK && t < n; t++) unique_of[order[t]] = dd->unique_of[local[t]];
-    free(order), free(local);
+    if (st == PS_OK) st = locate(e, c, order, n, unique, err);
+    for (size_t t = 0; st == PS_OK && t < n; t++) unique_of[order[t]] = unique[t];
+    free(order), free(unique);
     return st;
 }
 

@@ -59,6 +59,11 @@ ps_status ps_pipeline_dedup(ps_pipeline *pl, ps_error *err);
  * PS_ERR_CANCELLED when pl->ctl asks to cancel before it starts. */
 ps_status ps_pipeline_phase(ps_pipeline *pl, ps_phase ph, ps_error *err);
 
+/* Frees what only the phases read (the kNN graph, components, normals,
+ * crease strengths), keeping what the result and the distinct points
+ * need (after every phase). */
+void ps_pipeline_shed(ps_pipeline *pl);
+
 /* The result's parts for pl's own input points (after every phase). */
 ps_result_parts ps_pipeline_parts(const ps_pipeline *pl);
 

@@ -373,14 +373,20 @@ ps_status ps_pipeline_phase(ps_pipeline *pl, ps_phase ph, ps_error *err) {
     return PS_OK;
 }
 
-void ps_pipeline_free(ps_pipeline *pl) {
-    if (pl->points != pl->in->points) free(pl->points);
-    ps_dedup_free(&pl->dedup);
+void ps_pipeline_shed(ps_pipeline *pl) {
     ps_graph_free(&pl->graph);
     free(pl->component);
     if (pl->crease_normals != pl->normals) free(pl->crease_normals);
     free(pl->normals);
     free(pl->creases.strength);
+    pl->component = NULL;
+    pl->crease_normals = pl->normals = pl->creases.strength = NULL;
+}
+
+void ps_pipeline_free(ps_pipeline *pl) {
+    if (pl->points != pl->in->points) free(pl->points);
+    ps_dedup_free(&pl->dedup);
+    ps_pipeline_shed(pl);
     free(pl->f);
     ps_supernodes_free(&pl->sn);
     ps_tree_free(pl->tree, pl->n_tree);
