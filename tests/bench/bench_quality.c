@@ -788,9 +788,23 @@ static int resolve_dirs(const quality_options *o, char dirs[][4096]) {
     return n;
 }
 
-/* Makes the --out folder when it is missing; 0, or -1 with a message. */
+/* Makes the --out folder and any missing parents (as mkdir -p); 0, or -1
+ * with a message. */
 static int make_out_dir(const char *dir) {
-    if (!dir || mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
+    if (!dir) return 0;
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s", dir) >= (int)sizeof path) {
+        fprintf(stderr, "bench_quality: --out %s: path too long\n", dir);
+        return -1;
+    }
+    for (char *p = path + 1; *p; p++) {
+        if (*p != '/') continue;
+        *p = '\0';
+        int made = mkdir(path, 0777) == 0 || errno == EEXIST;
+        *p = '/';
+        if (!made) break;
+    }
+    if (mkdir(path, 0777) == 0 || errno == EEXIST) return 0;
     fprintf(stderr, "bench_quality: --out %s: %s\n", dir, strerror(errno));
     return -1;
 }

@@ -5,7 +5,7 @@
 # --out then --against the same labels must report no change; against
 # every vertex in one segment (--baseline none) the default must be better
 # on both models; --dev-only must print "-" for the absent validation
-# split, never nan.  SKIP (loud) without ../shared/data/psb-dev.  Prints
+# split, never nan; --out makes missing parent folders.  SKIP (loud) without ../shared/data/psb-dev.  Prints
 # "PASS bench_quality:NAME" / "FAIL ..."; exits 1 on any failure.
 SUITE=bench_quality
 . "$(dirname "$0")/lib.sh"
@@ -64,6 +64,12 @@ if bq --against "$tmp/missing" >"$tmp/missing.txt" 2>&1 &&
     pass against_missing_folder
 else
     fail against_missing_folder "$(change_line "$tmp/missing.txt")"
+fi
+
+if bq --baseline none --out "$tmp/a/b/c" >/dev/null 2>&1 && [ -s "$tmp/a/b/c/1.vertices.lab" ]; then
+    pass out_makes_parents
+else
+    fail out_makes_parents "no $tmp/a/b/c/1.vertices.lab"
 fi
 
 [ "$failures" -eq 0 ]
