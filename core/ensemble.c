@@ -47,15 +47,16 @@ typedef struct ensemble {
     uint32_t *key;      /* #P each point's key (ps_ensemble_keys) */
     uint8_t *draw_of;   /* #P the draw of each point of the whole input */
     uint32_t *local_of; /* #P its index within its draw */
-    draw d[PS_ENSEMBLE_DRAWS];
+    draw d[PS_ENSEMBLE_MAX_DRAWS];
     double last_progress[PS_PHASE_COUNT];
 } ensemble;
 
 int ps_ensemble_draws(const ps_params *p, size_t n) {
-    int auto_method = p->method == PS_METHOD_AUTO;
-    return auto_method && n >= (size_t)PS_ENSEMBLE_DRAWS * PS_DENSITY_REFERENCE_POINTS
-               ? PS_ENSEMBLE_DRAWS
-               : 1;
+    if (p->method != PS_METHOD_AUTO) return 1;
+    size_t fit = n / PS_DENSITY_REFERENCE_POINTS;
+    int draws = fit < PS_ENSEMBLE_MAX_DRAWS ? (int)fit : PS_ENSEMBLE_MAX_DRAWS;
+    if (draws % 2 == 0) draws--;
+    return draws >= 3 ? draws : 1;
 }
 
 /* splitmix64's finalizer: index i to 64 well-mixed bits. */
@@ -89,7 +90,7 @@ void ps_ensemble_keys(const double *points, size_t n, int dim, uint32_t *key) {
 }
 
 void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, uint8_t *draw_of) {
-    size_t size[PS_ENSEMBLE_DRAWS] = {0};
+    size_t size[PS_ENSEMBLE_MAX_DRAWS] = {0};
     for (size_t i = 0; i < n; i++) size[draw_of[i] = (uint8_t)(mix(key[i]) % (uint64_t)draws)]++;
     for (int j = 0; j < draws; j++)
         if (size[j] < n / (2 * (size_t)draws)) {
@@ -103,7 +104,7 @@ int ps_ensemble_compared(uint32_t key, size_t n, size_t s) {
 }
 
 int ps_ensemble_medoid(const int *labels, int draws, size_t s) {
-    double cost[PS_ENSEMBLE_DRAWS] = {0};
+    double cost[PS_ENSEMBLE_MAX_DRAWS] = {0};
     for (int a = 0; a < draws; a++)
         for (int b = a + 1; b < draws; b++) {
             double e = ps_rand_index_error(labels + (size_t)a * s, labels + (size_t)b * s, s);
@@ -135,7 +136,7 @@ static ps_status out_of_memory(ps_error *err) {
  * points in the same order). */
 static ps_status split(ensemble *e, ps_error *err) {
     const ps_input *in = e->whole->in;
-    size_t n = in->n, dim = (size_t)in->dim, size[PS_ENSEMBLE_DRAWS] = {0};
+    size_t n = in->n, dim = (size_t)in->dim, size[PS_ENSEMBLE_MAX_DRAWS] = {0};
     e->key = malloc(n * sizeof *e->key);
     e->draw_of = malloc(n * sizeof *e->draw_of);
     e->local_of = malloc(n * sizeof *e->local_of);

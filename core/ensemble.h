@@ -1,10 +1,10 @@
 /*
- * ensemble.h: method auto on an input at least PS_ENSEMBLE_DRAWS times
- * the reference sampling (PS_DENSITY_REFERENCE_POINTS, normals_smooth.h)
- * segments PS_ENSEMBLE_DRAWS disjoint random draws of its points, each
- * still at the reference density, and keeps the draw whose partition the
- * others agree with most: the medoid under the Rand index, compared on
- * PS_ENSEMBLE_SAMPLE of the input's points.  Every caller's point takes
+ * ensemble.h: method auto on an input at least three times the reference
+ * sampling (PS_DENSITY_REFERENCE_POINTS, normals_smooth.h) segments as
+ * many disjoint random draws of its points as keep the reference density
+ * each (an odd number from 3 to PS_ENSEMBLE_MAX_DRAWS), and keeps the
+ * draw whose partition the others agree with most: the medoid under the
+ * Rand index, compared on about PS_ENSEMBLE_SAMPLE of the input's points.  Every caller's point takes
  * the answers (label, supernode, centrality) of its own point in that
  * draw or of the draw's nearest; the supernodes, the hierarchy and the
  * merges are that draw's.
@@ -21,17 +21,19 @@
 
 #include "pipeline.h"
 
-#ifndef PS_ENSEMBLE_DRAWS
-#define PS_ENSEMBLE_DRAWS 3     /* odd: the medoid of two is no choice */
+#ifndef PS_ENSEMBLE_MAX_DRAWS
+#define PS_ENSEMBLE_MAX_DRAWS 5 /* odd: the medoid of two is no choice;
+                                   5 against 3 at 200,000 points: method.md */
 #endif
 #define PS_ENSEMBLE_SAMPLE 4096 /* points the draws are compared on */
 #define PS_ENSEMBLE_KEY_BITS 20 /* a key's resolution: a rotated copy's rounding
                                    (1e-15 of the distance) crosses a step of
                                    2^-20 on one point in 10^9 */
 
-/* Draws for an input of n points (after any surface fill) under p:
- * PS_ENSEMBLE_DRAWS for method auto when each keeps the reference
- * sampling, else 1 (the whole input in one run). */
+/* Draws for an input of n points (after any surface fill) under p: for
+ * method auto the largest odd count from 3 to PS_ENSEMBLE_MAX_DRAWS whose
+ * draws each keep the reference sampling, else 1 (the whole input in one
+ * run). */
 int ps_ensemble_draws(const ps_params *p, size_t n);
 
 /* key out: #P each point's distance to the centroid over the largest

@@ -83,7 +83,7 @@ typedef struct ps_params {
     int k;                    /* neighbours per point in the kNN graph (default 7) */
     ps_centrality_mode centrality;
     int samples;              /* approx centrality samples; 0 = ceil(sqrt(n)), at most 512;
-                                 shared by the draws of ensemble.h (each a third) */
+                                 shared by the draws of ensemble.h (each its share) */
     double persistence;       /* merge sinks whose persistence is below this
                                  fraction of the range of f (persistence.h) */
     double ncut_threshold;    /* stop bisecting when NCut exceeds this; 0 = the

@@ -16,27 +16,31 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define DENSE_STAR 2500.0 /* ps_shape_star density: about 128,000 points */
+#define DENSE_STAR 2500.0 /* ps_shape_star density: about 128,000 points, 3 draws */
+#define DRAWS 3           /* the assignment tests' draw count */
 
 static void test_draws_only_when_each_keeps_the_reference(void) {
     ps_params p;
     ps_params_default(&p);
-    size_t enough = (size_t)PS_ENSEMBLE_DRAWS * PS_DENSITY_REFERENCE_POINTS;
-    CHECK(ps_ensemble_draws(&p, enough - 1) == 1);
-    CHECK(ps_ensemble_draws(&p, enough) == PS_ENSEMBLE_DRAWS);
+    size_t ref = PS_DENSITY_REFERENCE_POINTS;
+    CHECK(ps_ensemble_draws(&p, 3 * ref - 1) == 1);
+    CHECK(ps_ensemble_draws(&p, 3 * ref) == 3);
+    CHECK(ps_ensemble_draws(&p, 5 * ref - 1) == 3);
+    CHECK(ps_ensemble_draws(&p, 5 * ref) == (PS_ENSEMBLE_MAX_DRAWS >= 5 ? 5 : 3));
+    CHECK(ps_ensemble_draws(&p, 100 * ref) == PS_ENSEMBLE_MAX_DRAWS);
     p.method = PS_METHOD_PAPER;
-    CHECK(ps_ensemble_draws(&p, 10 * enough) == 1);
+    CHECK(ps_ensemble_draws(&p, 10 * ref) == 1);
 }
 
 /* Draw sizes within 2% of an even share. */
 static void check_balanced(const uint8_t *draw_of, size_t n) {
-    size_t count[PS_ENSEMBLE_DRAWS] = {0};
+    size_t count[DRAWS] = {0};
     for (size_t i = 0; i < n; i++) {
-        REQUIRE(draw_of[i] < PS_ENSEMBLE_DRAWS);
+        REQUIRE(draw_of[i] < DRAWS);
         count[draw_of[i]]++;
     }
-    for (int j = 0; j < PS_ENSEMBLE_DRAWS; j++)
-        CHECK_MSG(count[j] > 0.98 * n / PS_ENSEMBLE_DRAWS && count[j] < 1.02 * n / PS_ENSEMBLE_DRAWS,
+    for (int j = 0; j < DRAWS; j++)
+        CHECK_MSG(count[j] > 0.98 * n / DRAWS && count[j] < 1.02 * n / DRAWS,
                   "draw %d has %zu of %zu points", j, count[j], n);
 }
 
@@ -57,8 +61,8 @@ static void test_keys_invariant(void) {
     size_t same = 0;
     for (size_t i = 0; i < n; i++) same += a[i] == b[n - 1 - i];
     CHECK_MSG(same + 5 >= n, "%zu of %zu keys kept", same, n);
-    ps_ensemble_assign(a, n, PS_ENSEMBLE_DRAWS, draw_a);
-    ps_ensemble_assign(b, n, PS_ENSEMBLE_DRAWS, draw_b);
+    ps_ensemble_assign(a, n, DRAWS, draw_a);
+    ps_ensemble_assign(b, n, DRAWS, draw_b);
     check_balanced(draw_a, n);
     same = 0;
     for (size_t i = 0; i < n; i++) same += draw_a[i] == draw_b[n - 1 - i];
@@ -76,7 +80,7 @@ static void test_assign_tied_keys(void) {
     uint8_t *draw_of = malloc(n);
     REQUIRE(key && draw_of);
     for (size_t i = 0; i < n; i++) key[i] = 4000000000u;
-    ps_ensemble_assign(key, n, PS_ENSEMBLE_DRAWS, draw_of);
+    ps_ensemble_assign(key, n, DRAWS, draw_of);
     check_balanced(draw_of, n);
     free(key), free(draw_of);
 }
@@ -211,7 +215,7 @@ static void test_dense_star_progress_and_cancel(void) {
     ps_result *r = segment_star(pts, n, 0, &ctl);
     CHECK(r != NULL);
     for (int p = 0; p < PS_PHASE_COUNT; p++)
-        CHECK_MSG(m.inside[p] >= PS_ENSEMBLE_DRAWS - 1, "%s: %d fractions inside (0, 1)",
+        CHECK_MSG(m.inside[p] >= DRAWS - 1, "%s: %d fractions inside (0, 1)",
                   ps_phase_name(p), m.inside[p]);
     CHECK(!m.went_back);
     ps_result_free(r);
