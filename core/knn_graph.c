@@ -19,6 +19,7 @@
 #include "knn_memo.h"
 
 #include "control.h"
+#include "kdtree_params.h"
 #include "morton.h"
 #include "sort_util.h"
 #include "union_find.h"
@@ -28,7 +29,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KNN_LEAF_SIZE 16      /* points per kd-tree leaf (FLANN's default 4 is slower) */
 #define QUERY_BLOCK 2048      /* rows per FLANN query call and per work item */
 #define INDEX_SHARE 0.25      /* progress of the span after the index build ... */
 #define QUERIES_SHARE 0.8     /* ... after the queries ... */
@@ -59,17 +59,6 @@ static void sort_candidates(candidate *c, int m) {
         for (; j > 0 && candidate_less(&x, &c[j - 1]); j--) c[j] = c[j - 1];
         c[j] = x;
     }
-}
-
-static struct FLANNParameters search_parameters(void) {
-    struct FLANNParameters fp = DEFAULT_FLANN_PARAMETERS;
-    fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
-    fp.checks = FLANN_CHECKS_UNLIMITED;
-    fp.eps = 0.0f;
-    fp.cores = 1; /* the workers of ps_parallel_for query blocks side by side */
-    fp.leaf_max_size = KNN_LEAF_SIZE;
-    fp.log_level = FLANN_LOG_NONE;
-    return fp;
 }
 
 /* Queries blocks of rows on the shared index, each worker with its own
@@ -110,7 +99,7 @@ static int keep_nearest(const query_job *j, size_t p, const int *found) {
 /* Query block b: QUERY_BLOCK rows of the order. */
 static void query_block(void *ctx, size_t b, int worker) {
     query_job *j = ctx;
-    struct FLANNParameters fp = search_parameters();
+    struct FLANNParameters fp = ps_kd_parameters();
     size_t width = (size_t)j->memo->dim;
     size_t first = b * QUERY_BLOCK;
     size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
@@ -177,7 +166,7 @@ ps_status ps_knn_query_rows(ps_knn_memo *memo, const double *points, const uint3
  * QUERIES_SHARE. */
 static ps_status directed_knn(ps_knn_memo *memo, const double *points, size_t n, int threads,
                               const ps_progress_span *span, ps_error *err) {
-    struct FLANNParameters fp = search_parameters();
+    struct FLANNParameters fp = ps_kd_parameters();
     float speedup = 0.0f;
     uint32_t *order = malloc(n * sizeof *order);
     if (!order || ps_morton_order(points, n, memo->dim, order) != PS_OK) {
@@ -199,7 +188,7 @@ static ps_status directed_knn(ps_knn_memo *memo, const double *points, size_t n,
 
 void ps_knn_memo_free(ps_knn_memo *memo) {
     if (!memo) return;
-    struct FLANNParameters fp = search_parameters();
+    struct FLANNParameters fp = ps_kd_parameters();
     if (memo->index) flann_free_index_double(memo->index, &fp);
     free(memo->knn), free(memo->saturated), free(memo->current_of);
     free(memo);
@@ -337,7 +326,7 @@ ps_status ps_knn_graph_build_memo(const double *points, size_t n, int dim, int k
     st = directed_knn(mm, points, n, threads, span, err);
     if (st != PS_OK) goto done;
     if (!memo) { /* the index is not needed beyond the queries */
-        struct FLANNParameters fp = search_parameters();
+        struct FLANNParameters fp = ps_kd_parameters();
         flann_free_index_double(mm->index, &fp);
         mm->index = NULL;
     }

@@ -5,14 +5,13 @@
  */
 #include "nearest.h"
 
+#include "kdtree_params.h"
 #include "parallel.h"
 
-#include <flann/flann.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 
-#define BLOCK 1024    /* queries per hand-out */
-#define LEAF_SIZE 16  /* points per kd-tree leaf, as the kNN graph's */
+#define BLOCK 1024 /* queries per hand-out */
 
 struct ps_nearest_index {
     flann_index_t flann;
@@ -30,19 +29,8 @@ typedef struct job {
     atomic_int failed;
 } job;
 
-static struct FLANNParameters parameters(void) {
-    struct FLANNParameters fp = DEFAULT_FLANN_PARAMETERS;
-    fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
-    fp.checks = FLANN_CHECKS_UNLIMITED;
-    fp.eps = 0.0f;
-    fp.cores = 1;
-    fp.leaf_max_size = LEAF_SIZE;
-    fp.log_level = FLANN_LOG_NONE;
-    return fp;
-}
-
 static void query_block(job *j, size_t b, int worker) {
-    struct FLANNParameters fp = parameters();
+    struct FLANNParameters fp = ps_kd_parameters();
     size_t first = b * BLOCK, rows = j->m - first < BLOCK ? j->m - first : BLOCK;
     double *q = (double *)j->queries + first * (size_t)j->dim;
     if (flann_find_nearest_neighbors_index_double(j->index, q, (int)rows, j->found[worker],
@@ -78,7 +66,7 @@ static void scratch_free(job *j, int threads) {
 }
 
 ps_nearest_index *ps_nearest_build(const double *points, size_t n, int dim) {
-    struct FLANNParameters fp = parameters();
+    struct FLANNParameters fp = ps_kd_parameters();
     float speedup = 0.0f;
     ps_nearest_index *index = malloc(sizeof *index);
     if (!index) return NULL;
@@ -90,7 +78,7 @@ ps_nearest_index *ps_nearest_build(const double *points, size_t n, int dim) {
 
 void ps_nearest_free(ps_nearest_index *index) {
     if (!index) return;
-    struct FLANNParameters fp = parameters();
+    struct FLANNParameters fp = ps_kd_parameters();
     flann_free_index_double(index->flann, &fp);
     free(index);
 }
