@@ -67,25 +67,49 @@ static uint64_t mix(uint64_t x) {
     return x ^ (x >> 31);
 }
 
-/* |x - centre| over dim coordinates. */
-static double from_centre(const double *x, const double *centre, int dim) {
+/* |x - origin - centre| over dim coordinates (x - origin first: that
+ * difference is exact for a point near the origin, whatever the offset). */
+static double from_centre(const double *x, const double *origin, const double *centre,
+                          int dim) {
     double d = 0;
-    for (int c = 0; c < dim; c++) d += (x[c] - centre[c]) * (x[c] - centre[c]);
+    for (int c = 0; c < dim; c++) {
+        double r = (x[c] - origin[c]) - centre[c];
+        d += r * r;
+    }
     return sqrt(d);
 }
 
+/* origin out: #dim the middle of the bounding box, the same for any order
+ * of the points. */
+static void box_middle(const double *points, size_t n, int dim, double *origin) {
+    for (int c = 0; c < dim; c++) {
+        double lo = points[c], hi = points[c];
+        for (size_t i = 1; i < n; i++) {
+            double v = points[i * (size_t)dim + (size_t)c];
+            lo = v < lo ? v : lo, hi = v > hi ? v : hi;
+        }
+        origin[c] = lo + (hi - lo) / 2;
+    }
+}
+
+/* The centroid is summed relative to the box's middle: summed as given, a
+ * scan in georeferenced coordinates (millions of metres) rounded its
+ * centroid by about 1e-4 of the scan's size, so that every key moved and
+ * the draws were others than a local copy's. */
 void ps_ensemble_keys(const double *points, size_t n, int dim, uint32_t *key) {
-    double centre[PS_MAX_DIM] = {0}, far = 0;
+    double origin[PS_MAX_DIM] = {0}, centre[PS_MAX_DIM] = {0}, far = 0;
+    if (n == 0) return;
+    box_middle(points, n, dim, origin);
     for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < dim; c++) centre[c] += points[i * (size_t)dim + (size_t)c];
+        for (int c = 0; c < dim; c++) centre[c] += points[i * (size_t)dim + (size_t)c] - origin[c];
     for (int c = 0; c < dim; c++) centre[c] /= (double)n;
     for (size_t i = 0; i < n; i++) {
-        double d = from_centre(points + i * (size_t)dim, centre, dim);
+        double d = from_centre(points + i * (size_t)dim, origin, centre, dim);
         if (d > far) far = d;
     }
     double scale = far > 0 ? (double)(1u << PS_ENSEMBLE_KEY_BITS) / far : 0;
     for (size_t i = 0; i < n; i++)
-        key[i] = (uint32_t)fmin(from_centre(points + i * (size_t)dim, centre, dim) * scale,
+        key[i] = (uint32_t)fmin(from_centre(points + i * (size_t)dim, origin, centre, dim) * scale,
                                 (double)((1u << PS_ENSEMBLE_KEY_BITS) - 1));
 }
 
