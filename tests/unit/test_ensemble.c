@@ -216,7 +216,7 @@ static void test_dense_star_rotated_and_reordered(void) {
     ps_shape_transform(copy, n, 0.3, -0.5, 0.81, 1.1, 100.0, t);
     ps_result *a = segment_star(pts, n, 0, NULL), *b = segment_star(copy, n, 0, NULL);
     REQUIRE(a && b);
-    CHECK(a->n_segments == b->n_segments);
+    CHECK_MSG(a->n_segments == b->n_segments, "%d segments, the copy %d", a->n_segments, b->n_segments);
     int *b_in_a_order = malloc(n * sizeof *b_in_a_order);
     REQUIRE(b_in_a_order);
     for (size_t i = 0; i < n; i++) b_in_a_order[i] = b->labels[n - 1 - i];
