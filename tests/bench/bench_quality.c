@@ -81,6 +81,7 @@ typedef struct model_row {
     int failed;
     size_t points;             /* vertices */
     double human_segments;
+    double people;             /* people among themselves (ps_psb_human_agreement) */
     int segments[MAX_RUNS];
     double error[MAX_RUNS];
     double under[MAX_RUNS];    /* the error's parts (ps_psb_score_parts) */
@@ -454,6 +455,7 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
     if (build_input(&mesh, mode, o->strays, draw_key(mode, row->id), &points, &n) == 0 &&
         ps_psb_load_humans(row->dir, row->id, mesh.n_faces, &humans) == 0) {
         row->human_segments = ps_psb_mean_segments(&humans);
+        row->people = ps_psb_human_agreement(&humans);
         ps_input in = {.points = points, .n = n, .dim = 3};
         if (n == mesh.n) { /* the mesh itself; sampled surface is a scan: points only */
             in.normals = mesh.normals;
@@ -573,20 +575,24 @@ static void print_model_rows(const quality_options *o, const model_row *rows, si
 /* The category table over the development models. */
 static void print_categories(const quality_options *o, const model_row *rows, size_t n) {
     double sum[MAX_RUNS][N_CATEGORIES] = {{0}}, over[MAX_RUNS][N_CATEGORIES] = {{0}};
-    int count[N_CATEGORIES] = {0};
+    double people[N_CATEGORIES] = {0};
+    int count[N_CATEGORIES] = {0}, people_count[N_CATEGORIES] = {0};
     for (size_t i = 0; i < n; i++) {
         int k = category_index(rows[i].id);
         if (rows[i].validation || rows[i].failed || k < 0) continue;
         for (int run = 0; run < o->runs; run++)
             sum[run][k] += rows[i].error[run], over[run][k] += rows[i].over[run];
         count[k]++;
+        if (!isnan(rows[i].people)) people[k] += rows[i].people, people_count[k]++;
     }
-    printf("\n%-10s %6s", "category", "models");
+    printf("\n%-10s %6s %7s", "category", "models", "people");
     for (int run = 0; run < o->runs; run++) printf(" %7s %7s %7s", run_name(o, run), "over", "under");
     printf("   (development models)\n");
     for (int k = 0; k < N_CATEGORIES; k++) {
         if (!count[k]) continue;
         printf("%-10s %6d", ps_psb_category(20 * k + 1), count[k]);
+        if (people_count[k]) printf(" %7.4f", people[k] / people_count[k]);
+        else printf(" %7s", "-");
         for (int run = 0; run < o->runs; run++)
             printf(" %7.4f %7.4f %7.4f", sum[run][k] / count[k], over[run][k] / count[k],
                    (sum[run][k] - over[run][k]) / count[k]);
@@ -606,6 +612,8 @@ typedef struct split_means {
     double mean[2][MAX_RUNS]; /* [validation][run] */
     double over[2][MAX_RUNS]; /* its part from over-segmentation; the rest is under */
     int models[2];
+    double people[2];         /* [validation] people among themselves, over the models with two humans */
+    int people_models[2];
     int failed;
     paired_change change[2];  /* [validation] */
 } split_means;
@@ -619,12 +627,15 @@ static split_means split_summary(const quality_options *o, const model_row *rows
         for (int run = 0; run < o->runs; run++)
             s.mean[v][run] += rows[i].error[run], s.over[v][run] += rows[i].over[run];
         s.models[v]++;
+        if (!isnan(rows[i].people)) s.people[v] += rows[i].people, s.people_models[v]++;
     }
-    for (int v = 0; v < 2; v++)
+    for (int v = 0; v < 2; v++) {
+        s.people[v] = s.people_models[v] ? s.people[v] / s.people_models[v] : NAN;
         for (int run = 0; run < o->runs; run++) {
             s.mean[v][run] = s.models[v] ? s.mean[v][run] / s.models[v] : NAN;
             s.over[v][run] = s.models[v] ? s.over[v][run] / s.models[v] : NAN;
         }
+    }
     return s;
 }
 
@@ -729,7 +740,13 @@ static void print_totals(const quality_options *o, const input_mode *modes, cons
             print_mean(all, nd + nv);
             printf("\n");
         }
-    printf("references (1-RI): people 0.101, PCL CPC 0.124 (unseen PSB models, scan-like input)\n");
+    printf("people among themselves (each pair of a model's human segmentations, the same "
+           "metric):");
+    for (int v = 0; v < 2; v++)
+        if (s[0].people_models[v])
+            printf(" %s %.4f (%d)", v ? "validation" : "development", s[0].people[v],
+                   s[0].people_models[v]);
+    printf("\nreference (1-RI): PCL CPC 0.124 (unseen PSB models, scan-like input; issue 14)\n");
     printf("\n== 1-RI = over + under: pairs of faces split where people join them, and joined "
            "where people split them ==\n");
     printf("%-16s %-6s %-17s %-17s\n", "input", "method", "development", "validation");

@@ -174,6 +174,16 @@ double ps_psb_mean_segments(const ps_psb_humans *h) {
     return total / h->n_humans;
 }
 
+double ps_psb_human_agreement(const ps_psb_humans *h) {
+    if (h->n_humans < 2) return NAN;
+    double total = 0;
+    int pairs = 0;
+    for (int a = 0; a < h->n_humans; a++)
+        for (int b = a + 1; b < h->n_humans; b++, pairs++)
+            total += ps_rand_index_error(h->labels[a], h->labels[b], h->n_faces);
+    return total / pairs;
+}
+
 double ps_psb_score_parts(const ps_pointset *mesh, const int *vertex_labels,
                           const ps_psb_humans *h, double *under, double *over) {
     *under = *over = NAN;

@@ -43,6 +43,11 @@ void ps_psb_humans_free(ps_psb_humans *h);
 /* Mean number of segments (distinct labels) over the human segmentations. */
 double ps_psb_mean_segments(const ps_psb_humans *h);
 
+/* People among themselves: the mean over pairs of the model's human
+ * segmentations of 1 - RI between their face labels (the bench's metric
+ * with one human standing in for the method); NAN with fewer than two. */
+double ps_psb_human_agreement(const ps_psb_humans *h);
+
 /* Mean over humans of 1 - RI of the face labels (majority of the #P
  * vertex_labels over mesh's #F by 3 faces); NAN when out of memory. */
 double ps_psb_score(const ps_pointset *mesh, const int *vertex_labels,

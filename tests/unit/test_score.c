@@ -160,8 +160,44 @@ static void test_psb_none_reference(void) {
     CHECK_NEAR(total / 38, 0.6645, 5e-5);
 }
 
+/* The psb-dev README: each human segmentation against the other humans of
+ * the same model scores 0.092 as the mean over the 38 models. */
+static void test_psb_people_reference(void) {
+    char dir[4096];
+    if (!ps_test_shared_dir() || !ps_psb_find_dir(NULL, dir, sizeof dir))
+        SKIP("PSB developer set not found (../shared/data/psb-dev or $POINTSEG_SHARED)");
+    size_t n_ids = 0;
+    int *ids = ps_psb_model_ids(dir, &n_ids);
+    REQUIRE(n_ids == 38);
+    double total = 0;
+    for (size_t m = 0; m < n_ids; m++) {
+        ps_pointset mesh;
+        ps_psb_humans humans;
+        REQUIRE(ps_psb_load_mesh(dir, ids[m], &mesh) == 0);
+        REQUIRE(ps_psb_load_humans(dir, ids[m], mesh.n_faces, &humans) == 0);
+        double agreement = ps_psb_human_agreement(&humans);
+        CHECK_MSG(agreement > 0 && agreement < 1, "model %d: %g", ids[m], agreement);
+        total += agreement;
+        ps_psb_humans_free(&humans);
+        ps_pointset_free(&mesh);
+    }
+    free(ids);
+    CHECK_NEAR(total / 38, 0.0919, 5e-4);
+}
+
+/* One human segmentation has no one to agree with. */
+static void test_people_need_two(void) {
+    int labels[3] = {0, 0, 1}, *rows[1] = {labels};
+    ps_psb_humans one = {.n_humans = 1, .n_faces = 3, .labels = rows};
+    CHECK(isnan(ps_psb_human_agreement(&one)));
+    int other[3] = {0, 1, 1}, *two_rows[2] = {labels, other};
+    ps_psb_humans two = {.n_humans = 2, .n_faces = 3, .labels = two_rows};
+    CHECK_NEAR(ps_psb_human_agreement(&two), 2.0 / 3.0, 1e-12);
+}
+
 PS_TEST_MAIN(TEST(test_identical_is_zero), TEST(test_relabelled_is_zero),
              TEST(test_one_vs_all_separate_is_one), TEST(test_four_items_by_hand),
              TEST(test_five_items_by_hand), TEST(test_fewer_than_two_items),
              TEST(test_matches_brute_force), TEST(test_parts), TEST(test_face_majority),
-             TEST(test_psb_none_reference))
+             TEST(test_psb_none_reference), TEST(test_psb_people_reference),
+             TEST(test_people_need_two))
