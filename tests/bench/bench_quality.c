@@ -3,7 +3,9 @@
  * Benchmark (PSB).  Reads one or more PSB folders (psb-dev, the unpacked
  * psb-train), segments every model in each input mode (`vertices`: the mesh
  * vertices; `surface:N`: the vertices, then points sampled uniformly by
- * area until N in all, only the vertices scored), turns vertex labels into
+ * area until N in all, only the vertices scored; `uneven:N`: the same with
+ * the samples' density falling tenfold along the model's longest axis, a
+ * scan from one side), turns vertex labels into
  * face labels by majority and prints the Rand Index error against the
  * model's human segmentations, and its two parts: over-segmentation (face
  * pairs a human joins and the method splits) and under-segmentation (the
@@ -43,6 +45,7 @@
 #define MAX_RUNS 2   /* the given parameters, then method=paper */
 #define MAX_DIRS 8
 #define MAX_MODES 32
+#define UNEVEN_FAR 0.1 /* uneven:N: the samples' density at the far end, over the near end's */
 #define MAX_SEEDS 8
 #define STABLE_RI 0.99 /* the least Rand index a moved copy must keep */
 #define PAIRED_SAME 5e-5 /* a smaller change of a model's 1 - RI counts as none */
@@ -50,6 +53,7 @@
 typedef struct input_mode {
     char name[32];
     size_t surface_points; /* 0: the vertices alone */
+    double far;            /* uneven:N: the density at the far end (UNEVEN_FAR), else 1 */
     uint64_t seed;         /* the draw of its random inputs (--seed, --seeds) */
     int first;             /* the mode that its other draws repeat (itself) */
 } input_mode;
@@ -103,7 +107,7 @@ typedef struct pool {
 } pool;
 
 static const char usage[] =
-    "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N]... [--ids 1,2,21]\n"
+    "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N|uneven:N]... [--ids 1,2,21]\n"
     "                     [--param name=value]... [--threads N] [--jobs N] [--single]\n"
     "                     [--dev-only] [--stability] [--out DIR] [--baseline none]\n"
     "                     [--noise F] [--strays F] [--seed N] [--seeds K] [--against DIR]\n"
@@ -143,17 +147,20 @@ static int apply_assignment(ps_request_params *rp, const char *assignment) {
     return set_param(rp, name, eq + 1);
 }
 
-/* Parses "vertices" or "surface:N" into the next mode slot; 0 or -1. */
+/* Parses "vertices", "surface:N" or "uneven:N" into the next mode slot; 0 or -1. */
 static int add_mode(quality_options *o, const char *text) {
     if (o->n_modes == MAX_MODES) return -1;
     input_mode *m = &o->modes[o->n_modes];
     char *end = NULL;
     if (!strcmp(text, "vertices")) {
         m->surface_points = 0;
-    } else if (!strncmp(text, "surface:", 8)) {
-        long n = strtol(text + 8, &end, 10);
-        if (end == text + 8 || *end || n < 1 || n > 10000000) return -1;
+        m->far = 1.0;
+    } else if (!strncmp(text, "surface:", 8) || !strncmp(text, "uneven:", 7)) {
+        const char *count = strchr(text, ':') + 1;
+        long n = strtol(count, &end, 10);
+        if (end == count || *end || n < 1 || n > 10000000) return -1;
         m->surface_points = (size_t)n;
+        m->far = text[0] == 'u' ? UNEVEN_FAR : 1.0;
     } else {
         return -1;
     }
@@ -377,8 +384,9 @@ static int build_input(const ps_pointset *mesh, const input_mode *mode, double s
     if (!all) return -1;
     memcpy(all, mesh->points, 3 * mesh->n * sizeof *all);
     if (n_surface) {
-        if (ps_mesh_sample_surface(mesh, n_surface, 0x5851F42D4C957F2Dull ^ key,
-                                   &samples) != 0)
+        uint64_t seed = 0x5851F42D4C957F2Dull ^ key;
+        if ((mode->far < 1 ? ps_mesh_sample_graded(mesh, n_surface, mode->far, seed, &samples)
+                           : ps_mesh_sample_surface(mesh, n_surface, seed, &samples)) != 0)
             return free(all), -1;
         memcpy(all + 3 * mesh->n, samples, 3 * n_surface * sizeof *all);
         free(samples);

@@ -5,7 +5,8 @@
 # --out then --against the same labels must report no change; against
 # every vertex in one segment (--baseline none) the default must be better
 # on both models; --dev-only must print "-" for the absent validation
-# split, never nan; --out makes missing parent folders.  SKIP (loud) without ../shared/data/psb-dev.  Prints
+# split, never nan; --out makes missing parent folders; people among
+# themselves are printed; the uneven:N mode runs.  SKIP (loud) without ../shared/data/psb-dev.  Prints
 # "PASS bench_quality:NAME" / "FAIL ..."; exits 1 on any failure.
 SUITE=bench_quality
 . "$(dirname "$0")/lib.sh"
@@ -70,6 +71,20 @@ if bq --baseline none --out "$tmp/a/b/c" >/dev/null 2>&1 && [ -s "$tmp/a/b/c/1.v
     pass out_makes_parents
 else
     fail out_makes_parents "no $tmp/a/b/c/1.vertices.lab"
+fi
+
+if grep -q '^people among themselves .*: development 0\.[0-9]\{4\} (2)$' "$tmp/first.txt"; then
+    pass people_among_themselves
+else
+    fail people_among_themselves "$(grep '^people' "$tmp/first.txt" || echo 'no people line')"
+fi
+
+if bq --input uneven:20000 --out "$tmp/uneven" >"$tmp/uneven.txt" 2>&1 &&
+    grep -q '^uneven:20000  *auto  *0\.[0-9]* (  2)' "$tmp/uneven.txt" &&
+    [ -s "$tmp/uneven/1.uneven:20000.lab" ]; then
+    pass uneven_mode
+else
+    fail uneven_mode "$(tail -n 3 "$tmp/uneven.txt")"
 fi
 
 [ "$failures" -eq 0 ]

@@ -1,4 +1,5 @@
-/* mesh_sample.c: uniform area sampling of a triangle mesh (mesh_sample.h). */
+/* mesh_sample.c: area sampling of a triangle mesh, uniform or graded along
+ * an axis (mesh_sample.h). */
 #include "mesh_sample.h"
 
 #include <math.h>
@@ -30,6 +31,47 @@ static size_t find_face(const double *cumulative, size_t n_faces, double target)
         else lo = mid + 1;
     }
     return lo;
+}
+
+/* The slot and extent of the longest axis of the mesh's bounding box. */
+static int longest_axis(const ps_pointset *mesh, double *low, double *extent) {
+    double lo[3], hi[3];
+    for (int d = 0; d < 3; d++) lo[d] = hi[d] = mesh->n ? mesh->points[d] : 0;
+    for (size_t i = 0; i < mesh->n; i++)
+        for (int d = 0; d < 3; d++) {
+            lo[d] = fmin(lo[d], mesh->points[3 * i + d]);
+            hi[d] = fmax(hi[d], mesh->points[3 * i + d]);
+        }
+    int axis = 0;
+    for (int d = 1; d < 3; d++)
+        if (hi[d] - lo[d] > hi[axis] - lo[axis]) axis = d;
+    *low = lo[axis], *extent = hi[axis] - lo[axis];
+    return axis;
+}
+
+int ps_mesh_sample_graded(const ps_pointset *mesh, size_t n, double far, uint64_t seed,
+                          double **out) {
+    *out = NULL;
+    if (!(far > 0 && far <= 1)) return -1;
+    size_t batch = (size_t)ceil((double)n / far) + 16, kept = 0;
+    double *points = malloc(3 * (n ? n : 1) * sizeof *points), *candidates = NULL, low, extent;
+    int axis = longest_axis(mesh, &low, &extent);
+    uint64_t state = (seed ? seed : 0x9E3779B97F4A7C15ull) ^ 0xD1B54A32D192ED03ull;
+    for (uint64_t round = 0; points && kept < n; round++) {
+        if (ps_mesh_sample_surface(mesh, batch, seed + round, &candidates) != 0) break;
+        for (size_t i = 0; i < batch && kept < n; i++) {
+            const double *c = candidates + 3 * i;
+            double t = extent > 0 ? (c[axis] - low) / extent : 0;
+            if (uniform01(&state) >= 1 - (1 - far) * t) continue;
+            for (int d = 0; d < 3; d++) points[3 * kept + d] = c[d];
+            kept++;
+        }
+        free(candidates);
+        candidates = NULL;
+    }
+    if (!points || kept < n) { free(points); return -1; }
+    *out = points;
+    return 0;
 }
 
 int ps_mesh_sample_surface(const ps_pointset *mesh, size_t n, uint64_t seed, double **out) {
