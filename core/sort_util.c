@@ -13,34 +13,33 @@ int ps_compare_u32(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-void ps_sort_u32(uint32_t *x, size_t n, uint32_t *scratch) {
+/* The sort key of item x: key[x], or x itself without key. */
+static inline uint32_t sort_key(const uint32_t *key, uint32_t x) { return key ? key[x] : x; }
+
+/* LSD radix sort of the n items x (scratch: #n) by sort_key, a byte per
+ * pass, each pass stable; a pass where every item has the same byte is
+ * skipped. */
+static void radix_sort(uint32_t *x, size_t n, const uint32_t *key, uint32_t *scratch) {
     if (n < 2) return;
     uint32_t *from = x, *to = scratch;
     for (int shift = 0; shift < 32; shift += 8) {
         size_t start[257] = {0};
-        for (size_t i = 0; i < n; i++) start[((from[i] >> shift) & 255u) + 1]++;
-        if (start[((from[0] >> shift) & 255u) + 1] == n) continue; /* one byte for all */
+        for (size_t i = 0; i < n; i++) start[((sort_key(key, from[i]) >> shift) & 255u) + 1]++;
+        if (start[((sort_key(key, from[0]) >> shift) & 255u) + 1] == n) continue; /* one byte for all */
         for (int d = 0; d < 256; d++) start[d + 1] += start[d];
-        for (size_t i = 0; i < n; i++) to[start[(from[i] >> shift) & 255u]++] = from[i];
+        for (size_t i = 0; i < n; i++)
+            to[start[(sort_key(key, from[i]) >> shift) & 255u]++] = from[i];
         uint32_t *t = from;
         from = to, to = t;
     }
     if (from != x) memcpy(x, from, n * sizeof *x);
 }
 
+void ps_sort_u32(uint32_t *x, size_t n, uint32_t *scratch) { radix_sort(x, n, NULL, scratch); }
+
 void ps_order_by_u32(const uint32_t *key, size_t n, uint32_t *order, uint32_t *scratch) {
     for (size_t i = 0; i < n; i++) order[i] = (uint32_t)i;
-    uint32_t *from = order, *to = scratch;
-    for (int shift = 0; n > 1 && shift < 32; shift += 8) {
-        size_t start[257] = {0};
-        for (size_t i = 0; i < n; i++) start[((key[from[i]] >> shift) & 255u) + 1]++;
-        if (start[((key[from[0]] >> shift) & 255u) + 1] == n) continue; /* one byte for all */
-        for (int d = 0; d < 256; d++) start[d + 1] += start[d];
-        for (size_t i = 0; i < n; i++) to[start[(key[from[i]] >> shift) & 255u]++] = from[i];
-        uint32_t *t = from;
-        from = to, to = t;
-    }
-    if (from != order) memcpy(order, from, n * sizeof *order);
+    radix_sort(order, n, key, scratch);
 }
 
 double ps_select_kth(double *x, size_t n, size_t k) {
