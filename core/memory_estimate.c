@@ -6,12 +6,14 @@
  * kept and scratch), the coordinates copied per dimension, and the
  * two-level centrality's table of cell-to-sample distances (a float per
  * sample for every cell of about CELL_POINTS points; the cell count stops
- * growing at PS_CELL_SCALE_POINTS, coarse_graph.h), over a fixed base.
+ * growing at PS_CELL_SCALE_POINTS, coarse_graph.h), over a fixed base; an
+ * input split in draws has per-point constants of its own.
  */
 #include "pointseg.h"
 
 #include "centrality.h"
 #include "coarse_graph.h"
+#include "ensemble.h"
 #include "normals_smooth.h"
 #include "surface_fill.h"
 
@@ -26,11 +28,20 @@
 #define BYTES_PER_NEIGHBOUR 17        /* per point and unit of k: graph, cut capacities */
 #define BYTES_PER_COORDINATE 16       /* the distinct points and one working copy */
 #define CELL_POINTS 15                /* points per centrality cell, low end */
+/* An input split in draws (ensemble.h) keeps less a point: refitted
+ * 2026-11-26 to the peaks of the horse sampled at 300,000 to 10M points,
+ * k = 7 and 28 (bench_scale --k): without the input and the base, 183 to
+ * 247 bytes a point at k = 7, 510 to 596 at k = 28; these constants give
+ * 1.15 times the largest of each. */
+#define DRAWS_BYTES_PER_POINT 102
+#define DRAWS_BYTES_PER_NEIGHBOUR 19
 
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
     /* a mesh may be filled up to the reference sampling */
     if (ps_surface_fill_wanted(params, dim, n)) n = PS_DENSITY_REFERENCE_POINTS;
-    size_t per_point = BYTES_PER_POINT + BYTES_PER_NEIGHBOUR * (size_t)params->k +
+    int draws = ps_ensemble_draws(params, n) > 1;
+    size_t per_point = (draws ? DRAWS_BYTES_PER_POINT : BYTES_PER_POINT) +
+                       (draws ? DRAWS_BYTES_PER_NEIGHBOUR : BYTES_PER_NEIGHBOUR) * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
     size_t table = 0;
     int approx = params->centrality == PS_CENTRALITY_APPROX ||

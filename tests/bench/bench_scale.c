@@ -2,7 +2,7 @@
  * bench_scale.c: pointseg on big scans.  1M, 2M, 4M and 10M points (or
  * --sizes) sampled uniformly by area on the horse's triangles (seed 0,
  * made in memory, never stored), default parameters, all cores (or
- * --threads).  Each size runs once in a child process of its own, so its
+ * --threads; --k N for another neighbour count).  Each size runs once in a child process of its own, so its
  * peak RSS (wait4) is its own: the sampled input, ps_segment and the
  * labels' encoding.  Printed: per-phase times, total, the child's CPU
  * time (user + system: comparable on a shared machine), peak RSS, bytes per
@@ -61,19 +61,16 @@ static int save_labels(const char *out_dir, size_t n, const char *labels, size_t
 
 /* In the child: sample, segment, encode (and save when out_dir is set);
  * the figures go to fd. */
-static void run_child(const ps_pointset *horse, size_t n, int threads, const char *out_dir,
-                      int fd) {
+static void run_child(const ps_pointset *horse, size_t n, const ps_params *params,
+                      const char *out_dir, int fd) {
     scale_run run = {0};
     double *points = NULL;
-    ps_params params;
-    ps_params_default(&params);
-    params.threads = threads;
     ps_result *r = NULL;
     ps_error err;
     if (ps_mesh_sample_surface(horse, n, 0, &points) == 0) {
         ps_input in = {.points = points, .n = n, .dim = 3};
         double start = ps_bench_now_ms();
-        if (ps_segment(&in, &params, NULL, &r, &err) == PS_OK) {
+        if (ps_segment(&in, params, NULL, &r, &err) == PS_OK) {
             double segmented = ps_bench_now_ms();
             size_t len = 0;
             char *labels = ps_encode_labels(r, &len);
@@ -92,15 +89,15 @@ static void run_child(const ps_pointset *horse, size_t n, int threads, const cha
 }
 
 /* One size in a child; 0, or -1 when it failed. */
-static int measure(const ps_pointset *horse, size_t n, int threads, const char *out_dir,
-                   scale_row *row) {
+static int measure(const ps_pointset *horse, size_t n, const ps_params *params,
+                   const char *out_dir, scale_row *row) {
     int fds[2];
     if (pipe(fds) != 0) return -1;
     fflush(stdout);
     pid_t pid = fork();
     if (pid == 0) {
         close(fds[0]);
-        run_child(horse, n, threads, out_dir, fds[1]);
+        run_child(horse, n, params, out_dir, fds[1]);
     }
     close(fds[1]);
     memset(row, 0, sizeof *row);
@@ -109,23 +106,21 @@ static int measure(const ps_pointset *horse, size_t n, int threads, const char *
     int status = 0;
     struct rusage ru;
     if (pid < 0 || wait4(pid, &status, 0, &ru) != pid) return -1;
-    ps_params params;
-    ps_params_default(&params);
     row->n = n;
     row->rss_mb = ru.ru_maxrss / 1024.0; /* Linux: kilobytes */
     row->cpu_s = (double)ru.ru_utime.tv_sec + ru.ru_utime.tv_usec / 1e6 + (double)ru.ru_stime.tv_sec +
                  ru.ru_stime.tv_usec / 1e6;
-    row->estimate_mb = ps_segment_memory_estimate(n, 3, &params) / 1048576.0 + n * 24.0 / 1048576.0;
+    row->estimate_mb = ps_segment_memory_estimate(n, 3, params) / 1048576.0 + n * 24.0 / 1048576.0;
     return got == (ssize_t)sizeof row->run && WIFEXITED(status) && !WEXITSTATUS(status) ? 0 : -1;
 }
 
-static void print_header(int threads) {
+static void print_header(const ps_params *params) {
     char cpu[256], date[64];
     ps_bench_cpu_name(cpu, sizeof cpu);
     ps_bench_utc_now(date, sizeof date);
     printf("pointseg %s bench_scale, %s\nmachine: nproc %ld, CPU %s; threads %d (0 = all)\n"
-           "points sampled on the horse (seed 0), default parameters; times in s\n\n",
-           PS_VERSION, date, sysconf(_SC_NPROCESSORS_ONLN), cpu, threads);
+           "points sampled on the horse (seed 0), default parameters but k = %d; times in s\n\n",
+           PS_VERSION, date, sysconf(_SC_NPROCESSORS_ONLN), cpu, params->threads, params->k);
     printf("| points | total |");
     for (int p = 0; p < PS_PHASE_COUNT; p++) printf(" %s |", ps_phase_name(p));
     printf(" labels | CPU | segments | peak RSS | bytes/point | estimate |\n|---:|---:|");
@@ -182,17 +177,20 @@ static int load_horse(ps_pointset *horse) {
 
 int main(int argc, char **argv) {
     size_t sizes[MAX_SIZES] = {1000000, 2000000, 4000000, 10000000}, n_sizes = 4;
-    int threads = 0;
+    ps_params params;
+    ps_params_default(&params);
     const char *out_dir = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--sizes") && i + 1 < argc) {
             n_sizes = parse_sizes(argv[++i], sizes);
         } else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
-            threads = atoi(argv[++i]);
+            params.threads = atoi(argv[++i]);
+        } else if (!strcmp(argv[i], "--k") && i + 1 < argc) {
+            params.k = atoi(argv[++i]);
         } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
             out_dir = argv[++i];
         } else {
-            fprintf(stderr, "usage: bench_scale [--sizes N,N,...] [--threads N] [--out DIR]\n");
+            fprintf(stderr, "usage: bench_scale [--sizes N,N,...] [--threads N] [--k N] [--out DIR]\n");
             return strcmp(argv[i], "--help") ? 2 : 0;
         }
     }
@@ -207,11 +205,11 @@ int main(int argc, char **argv) {
     ps_pointset horse;
     if (load_horse(&horse) != 0) return 0;
     setvbuf(stdout, NULL, _IOLBF, 0);
-    print_header(threads);
+    print_header(&params);
     scale_row rows[MAX_SIZES];
     size_t done = 0;
     for (size_t i = 0; i < n_sizes; i++) {
-        if (measure(&horse, sizes[i], threads, out_dir, &rows[done]) != 0) {
+        if (measure(&horse, sizes[i], &params, out_dir, &rows[done]) != 0) {
             printf("| %zu | FAILED (out of memory or killed) |\n", sizes[i]);
             continue;
         }

@@ -1,7 +1,8 @@
 /* test_memory_estimate.c: ps_segment_memory_estimate is an upper estimate
  * that is not wasteful: a child process segments a 100,000-point dumbbell
- * and its peak RSS (getrusage of the waited children) must lie between half the estimate and the
- * estimate; the estimate grows with n, k and the sample count, and below
+ * (one run) and a 250,000-point one (five draws) and its peak RSS
+ * (getrusage of the waited children) must lie between half the estimate
+ * and the estimate; the estimate grows with n, k and the sample count, and below
  * 40,000 points covers a mesh filled up to that many.  Skipped
  * under AddressSanitizer, whose shadow memory is no part of the model. */
 #include "pointseg.h"
@@ -42,15 +43,16 @@ static size_t child_peak_rss(const double *pts, size_t n) {
     return (size_t)ru.ru_maxrss * 1024; /* the largest waited child; Linux: kilobytes */
 }
 
-static void test_estimate_bounds_measured_peak(void) {
-    if (UNDER_ASAN) SKIP("under AddressSanitizer the peak RSS includes its shadow memory");
+/* A dumbbell of about `target` points: the child's peak RSS lies between
+ * half the estimate and the estimate. */
+static void check_bounds_measured_peak(double target) {
     size_t n = 0;
     double *pts = ps_shape_dumbbell(100, &n, NULL);
     REQUIRE(pts && n > 0);
-    double density = 100.0 * 100000.0 / (double)n; /* ~100,000 points */
+    double density = 100.0 * target / (double)n;
     free(pts);
     pts = ps_shape_dumbbell(density, &n, NULL);
-    REQUIRE(pts && n > 50000);
+    REQUIRE(pts && n > target / 2);
     ps_params p;
     ps_params_default(&p);
     size_t estimate = ps_segment_memory_estimate(n, 3, &p), measured = child_peak_rss(pts, n);
@@ -58,6 +60,18 @@ static void test_estimate_bounds_measured_peak(void) {
     CHECK_MSG(measured <= estimate && estimate <= 2 * measured,
               "%zu points: peak RSS %zu MB, estimate %zu MB", n, measured >> 20, estimate >> 20);
     free(pts);
+}
+
+static void test_estimate_bounds_measured_peak(void) {
+    if (UNDER_ASAN) SKIP("under AddressSanitizer the peak RSS includes its shadow memory");
+    check_bounds_measured_peak(100000.0);
+}
+
+/* 250,000 points are segmented in five draws (ensemble.h), which keep
+ * less a point. */
+static void test_estimate_bounds_peak_in_draws(void) {
+    if (UNDER_ASAN) SKIP("under AddressSanitizer the peak RSS includes its shadow memory");
+    check_bounds_measured_peak(250000.0);
 }
 
 static void test_estimate_grows(void) {
@@ -83,5 +97,6 @@ static void test_estimate_covers_the_fill(void) {
     CHECK(ps_segment_memory_estimate(100, 3, &exact) < ps_segment_memory_estimate(40000, 3, &exact));
 }
 
-PS_TEST_MAIN(TEST(test_estimate_bounds_measured_peak), TEST(test_estimate_grows),
+PS_TEST_MAIN(TEST(test_estimate_bounds_measured_peak), TEST(test_estimate_bounds_peak_in_draws),
+             TEST(test_estimate_grows),
              TEST(test_estimate_covers_the_fill))
