@@ -1,9 +1,9 @@
 /*
  * kdtree_params.h: PRIVATE to the core's FLANN users (knn_graph.c,
- * nearest.c), not part of the public API: the one way the project asks
- * FLANN for nearest points, an exact search on a single kd-tree, queried
- * in blocks by the workers of ps_parallel_for side by side (so FLANN's own
- * threads stay off).
+ * nearest.c, kdtree_query.c), not part of the public API: the one way the
+ * project asks FLANN for nearest points, an exact search on a single
+ * kd-tree, queried in blocks by the workers of ps_parallel_for side by
+ * side (kdtree_query.h; so FLANN's own threads stay off).
  */
 #ifndef PS_KDTREE_PARAMS_H
 #define PS_KDTREE_PARAMS_H

@@ -19,13 +19,12 @@
 #include "knn_memo.h"
 
 #include "control.h"
-#include "kdtree_params.h"
+#include "kdtree_query.h"
 #include "morton.h"
 #include "sort_util.h"
 #include "union_find.h"
 
 #include <math.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -61,17 +60,12 @@ static void sort_candidates(candidate *c, int m) {
     }
 }
 
-/* Queries blocks of rows on the shared index, each worker with its own
- * scratch, and keeps the k nearest other points of each row in memo->knn. */
+/* The rows to query on the shared index (kdtree_query.h); each keeps its k
+ * nearest other points in memo->knn. */
 typedef struct query_job {
     ps_knn_memo *memo;
     const double *points;   /* current points, #P by dim */
-    size_t n;               /* rows to query */
-    const uint32_t *order;  /* #n rows to query (Morton order: nearby queries in a row) */
-    double **rows;          /* per worker: #QUERY_BLOCK by dim query points */
-    int **found;            /* per worker: #QUERY_BLOCK by m FLANN indices */
-    double **squared;       /* per worker: #QUERY_BLOCK by m FLANN distances */
-    atomic_int failed;
+    const uint32_t *order;  /* rows to query (Morton order: nearby queries in a row) */
 } query_job;
 
 /* Row p's candidates by (exact distance, index), self left out; 0, or -1
@@ -96,69 +90,32 @@ static int keep_nearest(const query_job *j, size_t p, const int *found) {
     return 0;
 }
 
-/* Query block b: QUERY_BLOCK rows of the order. */
-static void query_block(void *ctx, size_t b, int worker) {
-    query_job *j = ctx;
-    struct FLANNParameters fp = ps_kd_parameters();
+static void gather_rows(void *ctx, size_t first, size_t rows, double *out) {
+    const query_job *j = ctx;
     size_t width = (size_t)j->memo->dim;
-    size_t first = b * QUERY_BLOCK;
-    size_t rows = j->n - first < QUERY_BLOCK ? j->n - first : QUERY_BLOCK;
     for (size_t r = 0; r < rows; r++)
-        memcpy(j->rows[worker] + r * width, j->points + j->order[first + r] * width,
-               width * sizeof *j->points);
-    if (flann_find_nearest_neighbors_index_double(j->memo->index, j->rows[worker], (int)rows,
-                                                  j->found[worker], j->squared[worker],
-                                                  j->memo->m, &fp) != 0) {
-        atomic_store(&j->failed, 1);
-        return;
-    }
-    for (size_t r = 0; r < rows; r++)
-        if (keep_nearest(j, j->order[first + r], j->found[worker] + r * (size_t)j->memo->m) != 0) {
-            atomic_store(&j->failed, 1);
-            return;
-        }
+        memcpy(out + r * width, j->points + j->order[first + r] * width, width * sizeof *out);
 }
 
-static void free_scratch(query_job *j, int threads) {
-    for (int t = 0; t < threads; t++) {
-        if (j->rows) free(j->rows[t]);
-        if (j->found) free(j->found[t]);
-        if (j->squared) free(j->squared[t]);
-    }
-    free(j->rows), free(j->found), free(j->squared);
-}
-
-static int alloc_scratch(query_job *j, int threads) {
-    size_t dim = (size_t)j->memo->dim, m = (size_t)j->memo->m;
-    j->rows = calloc((size_t)threads, sizeof *j->rows);
-    j->found = calloc((size_t)threads, sizeof *j->found);
-    j->squared = calloc((size_t)threads, sizeof *j->squared);
-    if (!j->rows || !j->found || !j->squared) return 0;
-    for (int t = 0; t < threads; t++) {
-        j->rows[t] = malloc(QUERY_BLOCK * dim * sizeof *j->rows[t]);
-        j->found[t] = malloc(QUERY_BLOCK * m * sizeof *j->found[t]);
-        j->squared[t] = malloc(QUERY_BLOCK * m * sizeof *j->squared[t]);
-        if (!j->rows[t] || !j->found[t] || !j->squared[t]) return 0;
-    }
-    return 1;
+static int take_rows(void *ctx, size_t first, size_t rows, const int *found) {
+    const query_job *j = ctx;
+    for (size_t r = 0; r < rows; r++)
+        if (keep_nearest(j, j->order[first + r], found + r * (size_t)j->memo->m) != 0) return -1;
+    return 0;
 }
 
 ps_status ps_knn_query_rows(ps_knn_memo *memo, const double *points, const uint32_t *rows,
                             size_t n_rows, int threads, const ps_progress_span *span,
                             ps_error *err) {
-    query_job j = {.memo = memo, .points = points, .n = n_rows, .order = rows};
-    atomic_init(&j.failed, 0);
-    ps_status st = alloc_scratch(&j, threads) ? PS_OK
-                   : ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query blocks");
-    if (st == PS_OK) {
-        st = ps_parallel_for_tracked(threads, (n_rows + QUERY_BLOCK - 1) / QUERY_BLOCK, 1,
-                                     query_block, &j, span);
-        if (st != PS_OK) st = ps_fail(err, st, "knn: cancelled");
-        else if (atomic_load(&j.failed))
-            st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN search failed");
-    }
-    free_scratch(&j, threads);
-    return st;
+    query_job j = {.memo = memo, .points = points, .order = rows};
+    ps_kd_batch batch = {.index = memo->index, .dim = memo->dim, .neighbours = memo->m,
+                         .count = n_rows, .block = QUERY_BLOCK, .gather = gather_rows,
+                         .take = take_rows, .ctx = &j};
+    ps_status st = ps_kd_query(&batch, threads, span);
+    if (st == PS_ERR_NOMEM) return ps_fail(err, st, "knn: out of memory for the query blocks");
+    if (st == PS_ERR_CANCELLED) return ps_fail(err, st, "knn: cancelled");
+    if (st != PS_OK) return ps_fail(err, st, "knn: FLANN search failed");
+    return PS_OK;
 }
 
 /* memo->index on the points and memo->knn: each point's k nearest other

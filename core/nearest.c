@@ -1,15 +1,13 @@
 /*
  * nearest.c: nearest points of a set (nearest.h).  One kd-tree over the
- * set; the queries go in blocks, the workers of ps_parallel_for side by
- * side on the shared index, each with its own result buffers.
+ * set, queried in blocks on all workers (kdtree_query.h).
  */
 #include "nearest.h"
 
-#include "kdtree_params.h"
-#include "parallel.h"
+#include "kdtree_query.h"
 
-#include <stdatomic.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define BLOCK 1024 /* queries per hand-out */
 
@@ -18,51 +16,25 @@ struct ps_nearest_index {
     int dim;
 };
 
+/* The queries of one call and where their nearest points go. */
 typedef struct job {
-    flann_index_t index;
-    const double *queries;
-    size_t m;
+    const double *queries; /* #Q by dim */
     int dim;
-    uint32_t *nearest;
-    int **found;       /* #threads by BLOCK */
-    double **squared;  /* #threads by BLOCK */
-    atomic_int failed;
+    uint32_t *nearest;     /* #Q */
 } job;
 
-static void query_block(job *j, size_t b, int worker) {
-    struct FLANNParameters fp = ps_kd_parameters();
-    size_t first = b * BLOCK, rows = j->m - first < BLOCK ? j->m - first : BLOCK;
-    double *q = (double *)j->queries + first * (size_t)j->dim;
-    if (flann_find_nearest_neighbors_index_double(j->index, q, (int)rows, j->found[worker],
-                                                  j->squared[worker], 1, &fp) != 0) {
-        atomic_store(&j->failed, 1);
-        return;
-    }
-    for (size_t r = 0; r < rows; r++) j->nearest[first + r] = (uint32_t)j->found[worker][r];
+static void gather_queries(void *ctx, size_t first, size_t rows, double *out) {
+    const job *j = ctx;
+    memcpy(out, j->queries + first * (size_t)j->dim, rows * (size_t)j->dim * sizeof *out);
 }
 
-static void query_blocks(void *ctx, size_t begin, size_t end, int worker) {
-    for (size_t b = begin; b < end; b++) query_block(ctx, b, worker);
-}
-
-static int scratch_alloc(job *j, int threads) {
-    j->found = calloc((size_t)threads, sizeof *j->found);
-    j->squared = calloc((size_t)threads, sizeof *j->squared);
-    if (!j->found || !j->squared) return 0;
-    for (int t = 0; t < threads; t++) {
-        j->found[t] = malloc(BLOCK * sizeof *j->found[t]);
-        j->squared[t] = malloc(BLOCK * sizeof *j->squared[t]);
-        if (!j->found[t] || !j->squared[t]) return 0;
+static int take_nearest(void *ctx, size_t first, size_t rows, const int *found) {
+    const job *j = ctx;
+    for (size_t r = 0; r < rows; r++) {
+        if (found[r] < 0) return -1;
+        j->nearest[first + r] = (uint32_t)found[r];
     }
-    return 1;
-}
-
-static void scratch_free(job *j, int threads) {
-    for (int t = 0; t < threads; t++) {
-        if (j->found) free(j->found[t]);
-        if (j->squared) free(j->squared[t]);
-    }
-    free(j->found), free(j->squared);
+    return 0;
 }
 
 ps_nearest_index *ps_nearest_build(const double *points, size_t n, int dim) {
@@ -85,17 +57,13 @@ void ps_nearest_free(ps_nearest_index *index) {
 
 ps_status ps_nearest_query(const ps_nearest_index *index, const double *queries, size_t m,
                            int threads, uint32_t *nearest, ps_error *err) {
-    if (m == 0) return PS_OK;
-    job j = {.index = index->flann, .queries = queries, .m = m, .dim = index->dim,
-             .nearest = nearest};
-    atomic_init(&j.failed, 0);
-    ps_status st = PS_OK;
-    if (!scratch_alloc(&j, threads)) st = ps_fail(err, PS_ERR_NOMEM, "nearest: out of memory");
-    if (st == PS_OK) {
-        ps_parallel_for(threads, (m + BLOCK - 1) / BLOCK, 1, query_blocks, &j);
-        if (atomic_load(&j.failed))
-            st = ps_fail(err, PS_ERR_INTERNAL, "nearest: FLANN search failed");
-    }
-    scratch_free(&j, threads);
-    return st;
+    job j = {.queries = queries, .dim = index->dim, .nearest = nearest};
+    ps_kd_batch batch = {.index = index->flann, .dim = index->dim, .neighbours = 1, .count = m,
+                         .block = BLOCK, .gather = gather_queries, .take = take_nearest,
+                         .ctx = &j};
+    ps_progress_span untracked = {NULL, PS_PHASE_REFINE, 0.0, 0.0};
+    ps_status st = ps_kd_query(&batch, threads, &untracked);
+    if (st == PS_ERR_NOMEM) return ps_fail(err, st, "nearest: out of memory");
+    if (st != PS_OK) return ps_fail(err, PS_ERR_INTERNAL, "nearest: FLANN search failed");
+    return PS_OK;
 }
