@@ -10,6 +10,7 @@
 #include "normals_smooth.h"
 #include "pointseg.h"
 #include "progress_seen.h"
+#include "result_checks.h"
 #include "shapes.h"
 #include "testlib.h"
 
@@ -134,40 +135,12 @@ static ps_result *segment_star(const double *pts, size_t n, int threads, const p
     return r;
 }
 
-/* Each arm's points mostly (80%) in one segment of its own. */
-static void check_arms(const ps_result *r, const int *part) {
-    int label_of[7];
-    for (int a = 1; a <= 6; a++) {
-        int *count = calloc((size_t)r->n_segments, sizeof *count);
-        size_t total = 0;
-        for (size_t i = 0; i < r->n_points; i++)
-            if (part[i] == a) count[r->labels[i]]++, total++;
-        int best = 0;
-        for (int s = 1; s < r->n_segments; s++)
-            if (count[s] > count[best]) best = s;
-        CHECK_MSG(count[best] >= 0.8 * total, "arm %d: %d of %zu in one segment", a, count[best],
-                  total);
-        label_of[a] = best;
-        for (int b = 1; b < a; b++) CHECK_MSG(label_of[a] != label_of[b], "arms %d, %d joined", a, b);
-        free(count);
-    }
-}
-
-/* Every point answered, sizes adding up, supernodes inside their segment. */
+/* Every point answered and the result self-consistent, every sink one of
+ * the n points. */
 static void check_answers(const ps_result *r, size_t n) {
     REQUIRE(r->n_points == n);
-    size_t total = 0, sn_total = 0;
-    for (size_t i = 0; i < n; i++) {
-        REQUIRE(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
-        REQUIRE(r->point_supernode[i] >= 0 && r->point_supernode[i] < r->n_supernodes);
-        CHECK(r->supernodes[r->point_supernode[i]].segment == r->labels[i]);
-    }
-    for (int s = 0; s < r->n_segments; s++) total += r->segments[s].size;
-    for (int s = 0; s < r->n_supernodes; s++) {
-        sn_total += r->supernodes[s].size;
-        CHECK(r->supernodes[s].sink < n);
-    }
-    CHECK(total == n && sn_total == n);
+    ps_check_result_consistent(r);
+    for (int s = 0; s < r->n_supernodes; s++) CHECK(r->supernodes[s].sink < n);
 }
 
 static void test_dense_star_in_draws(void) {
@@ -179,7 +152,7 @@ static void test_dense_star_in_draws(void) {
     ps_result *one = segment_star(pts, n, 1, NULL), *two = segment_star(pts, n, 2, NULL);
     REQUIRE(one && two);
     check_answers(one, n);
-    check_arms(one, part);
+    ps_check_parts_separate(one, part, 1, 6, 0.8); /* each arm a segment of its own */
     CHECK(memcmp(one->labels, two->labels, n * sizeof *one->labels) == 0);
     CHECK(memcmp(one->centrality, two->centrality, n * sizeof *one->centrality) == 0);
     ps_result_free(one), ps_result_free(two);

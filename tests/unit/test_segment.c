@@ -7,6 +7,7 @@
 #include "centrality.h"
 #include "pointseg.h"
 #include "progress_seen.h"
+#include "result_checks.h"
 #include "shapes.h"
 #include "testlib.h"
 
@@ -29,60 +30,6 @@ static ps_result *segment_default(const double *pts, size_t n) {
     return segment_with(pts, n, &p);
 }
 
-/* Label most points of part `part` carry, and the fraction that carry it. */
-static int majority_label(const ps_result *r, const int *part, int which, double *purity) {
-    int *count = calloc((size_t)r->n_segments, sizeof *count);
-    size_t total = 0;
-    for (size_t i = 0; i < r->n_points; i++)
-        if (part[i] == which) count[r->labels[i]]++, total++;
-    int best = 0;
-    for (int s = 1; s < r->n_segments; s++)
-        if (count[s] > count[best]) best = s;
-    *purity = total ? (double)count[best] / (double)total : 0;
-    free(count);
-    return best;
-}
-
-/* Parts first..last each mostly in one segment, all different segments. */
-static void check_parts_separate(const ps_result *r, const int *part, int first, int last,
-                                 double min_purity) {
-    int labels[16];
-    for (int a = first; a <= last; a++) {
-        double purity;
-        labels[a] = majority_label(r, part, a, &purity);
-        CHECK_MSG(purity >= min_purity, "part %d: only %.2f of it in one segment", a, purity);
-        for (int b = first; b < a; b++)
-            CHECK_MSG(labels[a] != labels[b], "parts %d and %d share segment %d", a, b,
-                      labels[a]);
-    }
-}
-
-static void check_consistent(const ps_result *r) {
-    size_t seg_total = 0, sn_total = 0;
-    for (size_t i = 0; i < r->n_points; i++) {
-        REQUIRE(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
-        REQUIRE(r->point_supernode[i] >= 0 && r->point_supernode[i] < r->n_supernodes);
-        CHECK(r->supernodes[r->point_supernode[i]].segment == r->labels[i]);
-        CHECK(isfinite(r->centrality[i]));
-    }
-    for (int s = 0; s < r->n_segments; s++) {
-        seg_total += r->segments[s].size;
-        CHECK(r->segments[s].feature_size >= 0);
-        if (s > 0) CHECK(r->segments[s].size <= r->segments[s - 1].size);
-    }
-    for (int s = 0; s < r->n_supernodes; s++) sn_total += r->supernodes[s].size;
-    CHECK(seg_total == r->n_points);
-    CHECK(sn_total == r->n_points);
-    REQUIRE(r->n_tree_nodes >= 1);
-    CHECK(r->tree[0].parent == -1 && r->tree[0].n_supernodes == r->n_supernodes);
-    for (int t = 0; t < r->n_tree_nodes; t++) {
-        const ps_tree_node *node = &r->tree[t];
-        if (node->children[0] < 0) continue;
-        const ps_tree_node *a = &r->tree[node->children[0]], *b = &r->tree[node->children[1]];
-        CHECK(a->parent == t && b->parent == t);
-        CHECK(a->n_supernodes + b->n_supernodes == node->n_supernodes);
-    }
-}
 
 /* Segments a synthetic shape with params p and checks that its parts
  * first..last come out apart; frees pts and part.  Returns the result's
@@ -97,8 +44,8 @@ static int check_parts_with(double *pts, size_t n, int *part, int first, int las
     int smoothing = r ? r->normal_smoothing : -1;
     CHECK(r != NULL);
     if (r) {
-        check_consistent(r);
-        check_parts_separate(r, part, first, last, min_purity);
+        ps_check_result_consistent(r);
+        ps_check_parts_separate(r, part, first, last, min_purity);
     }
     ps_result_free(r);
     free(pts);
@@ -125,10 +72,10 @@ static void test_dumbbell_two_spheres(void) {
  * min_purity of it and is no finger's (parts 1..5) majority segment. */
 static void check_palm_apart(const ps_result *r, const int *part, double min_purity) {
     double palm_purity, finger_purity;
-    int palm = majority_label(r, part, 0, &palm_purity);
+    int palm = ps_majority_label(r, part, 0, &palm_purity);
     CHECK_MSG(palm_purity >= min_purity, "palm: only %.2f of it in one segment", palm_purity);
     for (int finger = 1; finger <= 5; finger++)
-        CHECK(majority_label(r, part, finger, &finger_purity) != palm);
+        CHECK(ps_majority_label(r, part, finger, &finger_purity) != palm);
 }
 
 /* The fingers come out whole and apart; the palm's far end is a maximum of
@@ -140,8 +87,8 @@ static void test_hand_five_fingers(void) {
     double *pts = ps_shape_hand(0, &n, &part);
     ps_result *r = segment_default(pts, n);
     REQUIRE(r);
-    check_consistent(r);
-    check_parts_separate(r, part, 1, 5, 0.75);
+    ps_check_result_consistent(r);
+    ps_check_parts_separate(r, part, 1, 5, 0.75);
     check_palm_apart(r, part, 0.45);
     ps_result_free(r);
     free(pts);
@@ -237,7 +184,7 @@ static void test_hand_scanned_from_one_side(void) {
     }
     ps_result *r = segment_default(pts, kept);
     REQUIRE(r);
-    check_consistent(r);
+    ps_check_result_consistent(r);
     check_palm_apart(r, part, 0.9);
     ps_result_free(r);
     free(pts);
@@ -267,7 +214,7 @@ static void test_stray_points_left_out(void) {
     CHECK(r->n_segments == clean->n_segments);
     CHECK(memcmp(r->labels, clean->labels, n * sizeof *r->labels) == 0);
     for (size_t i = n; i < n + 10; i++) CHECK(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
-    check_consistent(r);
+    ps_check_result_consistent(r);
     ps_result_free(clean), ps_result_free(r);
     free(pts), free(part), free(noisy);
 }
@@ -452,7 +399,7 @@ static void test_duplicates_share_labels(void) {
     for (size_t i = n; i < m; i++) memcpy(dup + 3 * i, pts + 3 * ((i - n) * 2), 3 * sizeof *dup);
     ps_result *a = segment_default(pts, n), *b = segment_default(dup, m);
     REQUIRE(a && b);
-    check_consistent(b);
+    ps_check_result_consistent(b);
     for (size_t i = n; i < m; i++) CHECK(b->labels[i] == b->labels[(i - n) * 2]);
     CHECK(a->n_segments == b->n_segments);
     ps_result_free(a);
@@ -473,7 +420,7 @@ static void test_disconnected_scans(void) {
     }
     ps_result *r = segment_default(two, 2 * n);
     REQUIRE(r);
-    check_consistent(r);
+    ps_check_result_consistent(r);
     CHECK(r->n_components == 2);
     CHECK(r->n_segments >= 2);
     int *side = calloc((size_t)r->n_segments, sizeof *side); /* bit 1: first, 2: second */

@@ -1,0 +1,61 @@
+/* result_checks.c: the end-to-end tests' checks of a ps_result
+ * (result_checks.h). */
+#include "result_checks.h"
+
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+int ps_majority_label(const ps_result *r, const int *part, int which, double *purity) {
+    int *count = calloc((size_t)r->n_segments, sizeof *count);
+    size_t total = 0;
+    for (size_t i = 0; i < r->n_points; i++)
+        if (part[i] == which) count[r->labels[i]]++, total++;
+    int best = 0;
+    for (int s = 1; s < r->n_segments; s++)
+        if (count[s] > count[best]) best = s;
+    *purity = total ? (double)count[best] / (double)total : 0;
+    free(count);
+    return best;
+}
+
+void ps_check_parts_separate(const ps_result *r, const int *part, int first, int last,
+                             double min_purity) {
+    int labels[16];
+    for (int a = first; a <= last; a++) {
+        double purity;
+        labels[a] = ps_majority_label(r, part, a, &purity);
+        CHECK_MSG(purity >= min_purity, "part %d: only %.2f of it in one segment", a, purity);
+        for (int b = first; b < a; b++)
+            CHECK_MSG(labels[a] != labels[b], "parts %d and %d share segment %d", a, b,
+                      labels[a]);
+    }
+}
+
+void ps_check_result_consistent(const ps_result *r) {
+    size_t seg_total = 0, sn_total = 0;
+    for (size_t i = 0; i < r->n_points; i++) {
+        REQUIRE(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
+        REQUIRE(r->point_supernode[i] >= 0 && r->point_supernode[i] < r->n_supernodes);
+        CHECK(r->supernodes[r->point_supernode[i]].segment == r->labels[i]);
+        CHECK(isfinite(r->centrality[i]));
+    }
+    for (int s = 0; s < r->n_segments; s++) {
+        seg_total += r->segments[s].size;
+        CHECK(r->segments[s].feature_size >= 0);
+        if (s > 0) CHECK(r->segments[s].size <= r->segments[s - 1].size);
+    }
+    for (int s = 0; s < r->n_supernodes; s++) sn_total += r->supernodes[s].size;
+    CHECK(seg_total == r->n_points);
+    CHECK(sn_total == r->n_points);
+    REQUIRE(r->n_tree_nodes >= 1);
+    CHECK(r->tree[0].parent == -1 && r->tree[0].n_supernodes == r->n_supernodes);
+    for (int t = 0; t < r->n_tree_nodes; t++) {
+        const ps_tree_node *node = &r->tree[t];
+        if (node->children[0] < 0) continue;
+        const ps_tree_node *a = &r->tree[node->children[0]], *b = &r->tree[node->children[1]];
+        CHECK(a->parent == t && b->parent == t);
+        CHECK(a->n_supernodes + b->n_supernodes == node->n_supernodes);
+    }
+}
