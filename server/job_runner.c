@@ -12,21 +12,6 @@ static int status_of(ps_status s) {
     return s == PS_ERR_INVALID ? 422 : 500;
 }
 
-static char *encode_result(const ps_pointset *points, const ps_request_params *params,
-                           const ps_result *r, size_t *len, const char **media) {
-    switch (params->output) {
-    case PS_OUTPUT_PLY:
-        *media = "application/ply";
-        return ps_encode_ply(points, r, len);
-    case PS_OUTPUT_LABELS:
-        *media = "text/plain; charset=utf-8";
-        return ps_encode_labels(r, len);
-    default:
-        *media = "application/json";
-        return ps_encode_json(points, r, params->include, len);
-    }
-}
-
 /* ps_segment with params' thread count resolved to the job's share. */
 static ps_status segment_on_share(const ps_input *in, const ps_request_params *params,
                                   const ps_control *ctl, ps_result **r, ps_error *err) {
@@ -54,7 +39,7 @@ void ps_job_run(const ps_pointset *points, const ps_request_params *params,
         snprintf(out->error, sizeof out->error, "%s", err.message);
         return;
     }
-    out->doc = encode_result(points, params, r, &out->doc_len, &out->media_type);
+    out->doc = ps_encode(points, r, params, &out->doc_len, &out->media_type);
     ps_result_free(r);
     out->state = out->doc ? PS_RUN_DONE : PS_RUN_FAILED;
     if (!out->doc) {

@@ -196,16 +196,6 @@ static int run_segment(const ps_pointset *ps, const ps_params *params, const cha
     return st == PS_ERR_INVALID ? EXIT_USAGE : EXIT_INTERNAL;
 }
 
-static char *encode(const ps_request_params *rp, const ps_pointset *ps, const ps_result *r,
-                    size_t *len) {
-    switch (rp->output) {
-    case PS_OUTPUT_LABELS: return ps_encode_labels(r, len);
-    case PS_OUTPUT_PLY: return ps_encode_ply(ps, r, len);
-    case PS_OUTPUT_JSON: break;
-    }
-    return ps_encode_json(ps, r, rp->include, len);
-}
-
 /* Writes bytes to path (NULL or "-" = stdout); 0 or an exit status. */
 static int write_output(const char *path, const char *bytes, size_t len) {
     if (path && strcmp(path, "-") == 0) path = NULL;
@@ -225,7 +215,7 @@ static int segment_and_write(const segment_args *a, const ps_pointset *ps, const
     int rc = request_params(a, ps, what, &rp);
     if (!rc) rc = run_segment(ps, &rp.core, what, &result);
     if (rc) return rc;
-    char *bytes = encode(&rp, ps, result, &len);
+    char *bytes = ps_encode(ps, result, &rp, &len, NULL);
     ps_result_free(result);
     if (!bytes) {
         fprintf(stderr, "pointseg: %s: out of memory encoding the result\n", what);

@@ -459,6 +459,40 @@ static void test_ply_decodes_back(void) {
     ps_pointset_free(&back);
 }
 
+/* ps_encode: each output format's bytes are its encoder's, with the media
+ * type the daemon sends. */
+static void test_encode_dispatch(void) {
+    ps_result r = small_result();
+    double pts[N * 3] = {0};
+    ps_pointset in = {.n = N, .dim = 3, .points = pts};
+    static const struct {
+        ps_output output;
+        const char *media_type;
+    } cases[] = {{PS_OUTPUT_JSON, "application/json"},
+                 {PS_OUTPUT_LABELS, "text/plain; charset=utf-8"},
+                 {PS_OUTPUT_PLY, "application/ply"}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        ps_request_params rp = {.output = cases[c].output, .include = PS_INCLUDE_CENTRALITY};
+        size_t len = 0, want_len = 0;
+        const char *media_type = NULL;
+        char *got = ps_encode(&in, &r, &rp, &len, &media_type);
+        char *want = cases[c].output == PS_OUTPUT_PLY      ? ps_encode_ply(&in, &r, &want_len)
+                     : cases[c].output == PS_OUTPUT_LABELS ? ps_encode_labels(&r, &want_len)
+                                                           : ps_encode_json(&in, &r, rp.include, &want_len);
+        REQUIRE(got && want);
+        CHECK(len == want_len && memcmp(got, want, len) == 0);
+        CHECK(media_type && strcmp(media_type, cases[c].media_type) == 0);
+        CHECK(strcmp(ps_encode_media_type(cases[c].output), cases[c].media_type) == 0);
+        free(got), free(want);
+    }
+    ps_request_params labels_only = {.output = PS_OUTPUT_LABELS};
+    size_t len = 0;
+    char *text = ps_encode(NULL, &r, &labels_only, &len, NULL);
+    REQUIRE(text != NULL);
+    CHECK(len == 12 && memcmp(text, "0\n0\n1\n1\n0\n1\n", 12) == 0);
+    free(text);
+}
+
 static void test_palette_distinct_and_cycling(void) {
     unsigned char a[3], b[3];
     int period = 0;
@@ -486,5 +520,5 @@ PS_TEST_MAIN(TEST(test_json_top_level), TEST(test_json_segments_and_supernodes),
              TEST(test_json_warnings), TEST(test_json_empty_result), TEST(test_json_large_labels), TEST(test_put_int),
              TEST(test_put_double_matches_printf), TEST(test_labels_text),
              TEST(test_ply_vertices_and_colours), TEST(test_ply_faces_and_2d),
-             TEST(test_ply_decodes_back),
+             TEST(test_ply_decodes_back), TEST(test_encode_dispatch),
              TEST(test_palette_distinct_and_cycling))
