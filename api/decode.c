@@ -106,9 +106,9 @@ int ps_decode(const char *bytes, size_t len, const ps_decode_limits *lim,
     switch (f) {
     case PS_FORMAT_PLY: return ps_decode_ply(bytes, len, lim, out, err);
     case PS_FORMAT_JSON: return ps_decode_json(bytes, len, lim, out, err);
-    case PS_FORMAT_OFF:
-    case PS_FORMAT_OBJ:
-    case PS_FORMAT_XYZ: return ps_decode_text(bytes, len, f, lim, out, err);
+    case PS_FORMAT_OFF: return ps_decode_off(bytes, len, lim, out, err);
+    case PS_FORMAT_OBJ: return ps_decode_obj(bytes, len, lim, out, err);
+    case PS_FORMAT_XYZ: return ps_decode_xyz(bytes, len, lim, out, err);
     case PS_FORMAT_UNKNOWN: break;
     }
     return ps_api_fail(err, 400, "unrecognized format (expected PLY, OFF, OBJ, XYZ/CSV or JSON)");

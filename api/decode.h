@@ -39,11 +39,16 @@ const char *ps_format_name(ps_format f);
 int ps_decode(const char *bytes, size_t len, const ps_decode_limits *lim,
               ps_pointset *out, ps_api_error *err);
 
-/* The format-specific entry points behind ps_decode (same contract). */
+/* The format-specific entry points behind ps_decode (same contract; OFF
+ * and OBJ give dim 3, errors name the line). */
 int ps_decode_ply(const char *bytes, size_t len, const ps_decode_limits *lim,
                   ps_pointset *out, ps_api_error *err);
-int ps_decode_text(const char *bytes, size_t len, ps_format fmt,
-                   const ps_decode_limits *lim, ps_pointset *out, ps_api_error *err);
+int ps_decode_off(const char *bytes, size_t len, const ps_decode_limits *lim,
+                  ps_pointset *out, ps_api_error *err);
+int ps_decode_obj(const char *bytes, size_t len, const ps_decode_limits *lim,
+                  ps_pointset *out, ps_api_error *err);
+int ps_decode_xyz(const char *bytes, size_t len, const ps_decode_limits *lim,
+                  ps_pointset *out, ps_api_error *err);
 int ps_decode_json(const char *bytes, size_t len, const ps_decode_limits *lim,
                    ps_pointset *out, ps_api_error *err);
 

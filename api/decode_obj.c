@@ -2,7 +2,7 @@
  * there is one per vertex), "f" polygons (v, v/vt, v/vt/vn, v//vn; negative
  * indices count back from the last vertex) fan-triangulated; every other
  * line ignored. */
-#include "decode_text.h"
+#include "decode.h"
 
 #include <stdlib.h>
 #include <string.h>

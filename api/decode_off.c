@@ -14,7 +14,7 @@
  * its line or start on the next; "ne" may be left out when nv and nf are on
  * one line, and is required when they are on different lines (else it
  * could not be told from the first vertex's x). */
-#include "decode_text.h"
+#include "decode.h"
 
 #include <stdlib.h>
 #include <string.h>

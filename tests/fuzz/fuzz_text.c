@@ -9,12 +9,14 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    static const ps_format formats[] = {PS_FORMAT_OFF, PS_FORMAT_OBJ, PS_FORMAT_XYZ};
+    typedef int (*decoder)(const char *, size_t, const ps_decode_limits *, ps_pointset *,
+                           ps_api_error *);
+    static const decoder decoders[] = {ps_decode_off, ps_decode_obj, ps_decode_xyz};
     ps_decode_limits lim = {1u << 20, 64};
     ps_pointset ps;
     ps_api_error err;
-    for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
-        if (ps_decode_text((const char *)data, size, formats[i], &lim, &ps, &err) == 0)
+    for (size_t i = 0; i < sizeof decoders / sizeof decoders[0]; i++)
+        if (decoders[i]((const char *)data, size, &lim, &ps, &err) == 0)
             ps_pointset_free(&ps);
     if (ps_decode((const char *)data, size, &lim, &ps, &err) == 0) ps_pointset_free(&ps);
     return 0;

@@ -71,7 +71,7 @@ static void test_cr_with_comments(void) {
     /* Without automatic detection, a comment may come before the keyword. */
     ps_api_error err;
     const char text[] = "# first\rOFF\r1 0 0\r1 2 3\r";
-    REQUIRE(ps_decode_text(text, sizeof text - 1, PS_FORMAT_OFF, NULL, &ps, &err) == 0);
+    REQUIRE(ps_decode_off(text, sizeof text - 1, NULL, &ps, &err) == 0);
     CHECK(ps.n == 1 && ps.points[0] == 1 && ps.points[1] == 2 && ps.points[2] == 3);
     ps_pointset_free(&ps);
 }

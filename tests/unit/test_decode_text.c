@@ -154,8 +154,8 @@ static void test_decode_checks(void) {
     CHECK(fails("# only a comment\n", NULL, 400, "unrecognized format"));
     ps_pointset ps;
     ps_api_error err;
-    CHECK(ps_decode_text("1 2", 3, PS_FORMAT_JSON, NULL, &ps, &err) == -1 &&
-          err.http_status == 400);
+    CHECK(ps_decode_off("1 2\n", 4, NULL, &ps, &err) == -1 && err.http_status == 422 &&
+          strstr(err.message, "OFF") != NULL);
 }
 
 static void test_not_nul_terminated(void) {

@@ -1,8 +1,8 @@
-/* decode_text.c: ps_decode_text (OFF, OBJ or XYZ/CSV by fmt) and the XYZ/CSV
- * decoder: one point per line, numbers separated by blanks, ',' or ';', the
- * same column count on every line (6 columns = x y z nx ny nz), '#'
- * comments and one non-numeric header line allowed. */
-#include "decode_text.h"
+/* decode_xyz.c: ps_decode_xyz (decode.h), the XYZ/CSV decoder: one point
+ * per line, numbers separated by blanks, ',' or ';', the same column count
+ * on every line (6 columns = x y z nx ny nz), '#' comments and one
+ * non-numeric header line allowed. */
+#include "decode.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -11,18 +11,6 @@
 #include "decode_util.h"
 
 static const char *const xyz_separators = ",;";
-
-int ps_decode_text(const char *bytes, size_t len, ps_format fmt,
-                   const ps_decode_limits *lim, ps_pointset *out, ps_api_error *err) {
-    switch (fmt) {
-    case PS_FORMAT_OFF: return ps_decode_off(bytes, len, lim, out, err);
-    case PS_FORMAT_OBJ: return ps_decode_obj(bytes, len, lim, out, err);
-    case PS_FORMAT_XYZ: return ps_decode_xyz(bytes, len, lim, out, err);
-    default: break;
-    }
-    memset(out, 0, sizeof *out);
-    return ps_api_fail(err, 400, "%s is not a text format", ps_format_name(fmt));
-}
 
 /* 1 when the line's first field is not a number (a column header). */
 static int is_header_line(const char *s, const char *e) {
