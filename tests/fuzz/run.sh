@@ -3,7 +3,9 @@
 # path, whole requests to the daemon, and the --redis URL parser) with
 # libFuzzer + ASan + UBSan and runs each on a copy of its seed
 # corpus.
-#   tests/fuzz/run.sh BUILD [short|long]   20 s per target (short) or 600 s
+#   tests/fuzz/run.sh BUILD [short|long]   20 s per target (short; FUZZ_SECONDS
+#                                          overrides it) or 600 s (long)
+# Targets build with the Makefile's warning flags (WARN).
 # Prints "PASS fuzz:<target>", "FAIL fuzz:<target>: <reason>" or
 # "SKIP fuzz:<target>: <reason>" per target; exits non-zero on any failure.
 # Crash inputs are kept in BUILD/fuzz/<target>-crash-*.
@@ -12,7 +14,7 @@ BUILD=${1:-build}
 MODE=${2:-short}
 TARGETS="ply json text multipart head redis_url"
 case "$MODE" in
-short) SECONDS_EACH=20 ;;
+short) SECONDS_EACH=${FUZZ_SECONDS:-20} ;;
 long) SECONDS_EACH=600 ;;
 *) echo "usage: $0 BUILD [short|long]" >&2; exit 2 ;;
 esac
@@ -32,6 +34,8 @@ DAEMON_LIBS="-lflann $(pkg-config --cflags --libs lapacke libmicrohttpd libcjson
 # redis_url: the URL parser and the connection code it lives with.
 REDIS_SOURCES="server/redis_link.c"
 REDIS_LIBS="$(pkg-config --cflags --libs hiredis) -pthread"
+# The project's warning flags, from the Makefile (the one list of them).
+WARN=$(sed -n 's/^WARN := //p' Makefile)
 OUT="$BUILD/fuzz"
 mkdir -p "$OUT"
 failed=0
@@ -44,7 +48,7 @@ for t in $TARGETS; do
     *) sources=$DECODER_SOURCES libs=$DECODER_LIBS ;;
     esac
     # shellcheck disable=SC2086
-    if ! clang -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -fsanitize=fuzzer,address,undefined \
+    if ! clang -std=c11 -D_POSIX_C_SOURCE=200809L $WARN -g -O1 -fsanitize=fuzzer,address,undefined \
         -fno-sanitize-recover=undefined -Icore -Iapi -Iserver -Itests/fuzz $sources "tests/fuzz/fuzz_$t.c" \
         $libs -o "$bin" >"$log" 2>&1; then
         echo "FAIL fuzz:$t: does not build (see $log)"
