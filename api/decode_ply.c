@@ -1,6 +1,6 @@
 /* decode_ply.c: PLY (ascii, binary little and big endian) to a ps_pointset:
- * vertex x y [z] and optional normals of any scalar type, faces
- * fan-triangulated, every other property and element skipped. */
+ * vertex x y [z], optional normals and red green blue colours of any scalar
+ * type, faces fan-triangulated, every other property and element skipped. */
 #include "decode.h"
 
 #include <math.h>
@@ -11,25 +11,40 @@
 #include "decode_scan.h"
 #include "decode_util.h"
 
-enum { MAX_FIELDS = 6 };
+enum { COORDS = 6, MAX_FIELDS = 9 }; /* x y z nx ny nz, then red green blue */
 
 typedef struct ply_reader {
     const char *base, *pos, *end;
     ps_ply_format format;
 } ply_reader;
 
-/* A vertex property that is kept: where its value goes (dst[i * dim]). */
+/* A vertex property that is kept: where vertex i's value goes, dst[i * dim]
+ * (coordinates, normals) or color[i * 3] (a colour channel, 0..255). */
 typedef struct ply_field {
     int property;     /* index within the vertex element */
     size_t offset;    /* byte offset within a fixed-size binary record */
     ps_ply_type type;
     double *dst;
+    unsigned char *color;
 } ply_field;
 
 typedef struct ply_vertex_plan {
-    int dim, has_normals, n_fields;
+    int dim, has_normals, has_colors, n_fields;
     ply_field fields[MAX_FIELDS];
 } ply_vertex_plan;
+
+/* A colour channel as a byte: integer types as they are, float types
+ * (0..1) scaled by 255; clamped, rounded. */
+static unsigned char color_byte(double v, ps_ply_type t) {
+    if (t == PS_PLY_FLOAT32 || t == PS_PLY_FLOAT64) v *= 255.0;
+    if (!(v > 0)) return 0;
+    return v >= 255 ? 255 : (unsigned char)(v + 0.5);
+}
+
+static void store(const ply_field *f, size_t dim, size_t i, double v) {
+    if (f->color) f->color[i * 3] = color_byte(v, f->type);
+    else f->dst[i * dim] = v;
+}
 
 static size_t offset_of(const ply_reader *r) { return (size_t)(r->pos - r->base); }
 
@@ -132,24 +147,28 @@ static int skip_element(const ps_ply_header *h, const ps_ply_element *e, ply_rea
 }
 
 static void add_field(ply_vertex_plan *plan, const ps_ply_header *h, const ps_ply_element *e,
-                      int property, double *dst) {
+                      int property, double *dst, unsigned char *color) {
     ply_field *f = &plan->fields[plan->n_fields++];
     f->property = property;
     f->type = ps_ply_property_of(h, e, property)->type;
     f->dst = dst;
+    f->color = color;
     f->offset = ps_ply_scalar_offset(h, e, property);
 }
 
-/* Finds x y [z] and nx ny [nz]; sets plan->dim and has_normals. */
+/* Finds x y [z], nx ny [nz] and red green blue; sets plan->dim,
+ * has_normals and has_colors. */
 static int plan_vertices(const ps_ply_header *h, const ps_ply_element *e,
                          ply_vertex_plan *plan, int idx[MAX_FIELDS], ps_api_error *err) {
-    static const char *const names[MAX_FIELDS] = {"x", "y", "z", "nx", "ny", "nz"};
+    static const char *const names[MAX_FIELDS] = {"x",  "y",  "z",   "nx",   "ny",
+                                                  "nz", "red", "green", "blue"};
     for (int k = 0; k < MAX_FIELDS; k++) idx[k] = ps_ply_find_scalar(h, e, names[k]);
     if (idx[0] < 0 || idx[1] < 0)
         return ps_api_fail(err, 422, "PLY vertex element has no scalar property %s",
                            idx[0] < 0 ? "x" : "y");
     plan->dim = idx[2] >= 0 ? 3 : 2;
     plan->has_normals = idx[3] >= 0 && idx[4] >= 0 && (plan->dim == 2 || idx[5] >= 0);
+    plan->has_colors = idx[COORDS] >= 0 && idx[COORDS + 1] >= 0 && idx[COORDS + 2] >= 0;
     plan->n_fields = 0;
     return 0;
 }
@@ -160,9 +179,10 @@ static int read_vertices_fixed(const ply_vertex_plan *plan, size_t count, size_t
     size_t dim = (size_t)plan->dim;
     for (size_t i = 0; i < count; i++) {
         const char *rec = r->pos + i * stride;
-        for (int k = 0; k < plan->n_fields; k++)
-            plan->fields[k].dst[i * dim] =
-                ps_ply_load_binary(rec + plan->fields[k].offset, plan->fields[k].type, swap);
+        for (int k = 0; k < plan->n_fields; k++) {
+            const ply_field *f = &plan->fields[k];
+            store(f, dim, i, ps_ply_load_binary(rec + f->offset, f->type, swap));
+        }
     }
     r->pos += count * stride;
     return 0;
@@ -180,7 +200,9 @@ static int read_vertex_record(const ps_ply_header *h, const ps_ply_element *e,
             if (skip_property(r, p, err)) return -1;
             continue;
         }
-        if (read_value(r, p->type, &f->dst[i * (size_t)plan->dim], err)) return -1;
+        double v;
+        if (read_value(r, p->type, &v, err)) return -1;
+        store(f, (size_t)plan->dim, i, v);
     }
     return 0;
 }
@@ -197,12 +219,15 @@ static int read_vertices(const ps_ply_header *h, const ps_ply_element *e, ply_re
     out->dim = plan.dim;
     out->points = malloc(count * dim * sizeof *out->points + 1);
     out->normals = plan.has_normals ? malloc(count * dim * sizeof *out->normals + 1) : NULL;
-    if (!out->points || (plan.has_normals && !out->normals))
+    out->colors = plan.has_colors ? malloc(count * 3 + 1) : NULL;
+    if (!out->points || (plan.has_normals && !out->normals) || (plan.has_colors && !out->colors))
         return ps_api_fail(err, 500, "out of memory");
     for (size_t k = 0; k < dim; k++) {
-        add_field(&plan, h, e, idx[k], out->points + k);
-        if (plan.has_normals) add_field(&plan, h, e, idx[3 + k], out->normals + k);
+        add_field(&plan, h, e, idx[k], out->points + k, NULL);
+        if (plan.has_normals) add_field(&plan, h, e, idx[3 + k], out->normals + k, NULL);
     }
+    for (int c = 0; plan.has_colors && c < 3; c++)
+        add_field(&plan, h, e, idx[COORDS + c], NULL, out->colors + c);
     if (r->format != PS_PLY_ASCII && !has_lists(h, e))
         return read_vertices_fixed(&plan, count, min_record_bytes(h, e), r);
     for (size_t i = 0; i < count; i++)

@@ -25,6 +25,7 @@ void ps_pointset_free(ps_pointset *ps) {
     if (!ps) return;
     free(ps->points);
     free(ps->normals);
+    free(ps->colors);
     free(ps->faces);
     for (size_t i = 0; i < ps->n_params; i++) {
         free(ps->params[i].name);

@@ -1,6 +1,6 @@
 /*
  * pointset.h: a decoded point set, what every decoder produces and the
- * encoders echo back: coordinates, optional normals and faces, the
+ * encoders echo back: coordinates, optional normals, colours and faces, the
  * parameters a request body carried, and warnings about what the decoder
  * tolerated (shown on the CLI's stderr and in the JSON document).
  */
@@ -24,6 +24,7 @@ typedef struct ps_pointset {
     int dim;               /* coordinates per point */
     double *points;        /* #P by dim */
     double *normals;       /* #P by dim, or NULL */
+    unsigned char *colors; /* #P by 3 red green blue 0..255 (PLY), or NULL */
     size_t n_faces;        /* #F */
     uint32_t *faces;       /* #F by 3 (polygons fan-triangulated), or NULL */
     size_t n_params;

@@ -6,7 +6,6 @@
  */
 #include "commands.h"
 #include "decode.h"
-#include "ply_colors.h"
 #include "png_write.h"
 #include "render_image.h"
 
@@ -98,11 +97,10 @@ static int parse_args(int argc, char **argv, render_args *a) {
     return 0;
 }
 
-/* The colours of ps from the PLY bytes, grey where there are none. */
-static unsigned char *vertex_colors(const char *bytes, size_t len, const ps_pointset *ps) {
+/* Grey for every point of ps (an input without colours). */
+static unsigned char *grey_colors(const ps_pointset *ps) {
     unsigned char *rgb = malloc(ps->n * 3 + 1);
-    if (!rgb) return NULL;
-    if (cli_ply_read_colors(bytes, len, ps->n, rgb) != 1) memset(rgb, GREY, ps->n * 3);
+    if (rgb) memset(rgb, GREY, ps->n * 3);
     return rgb;
 }
 
@@ -131,8 +129,10 @@ static int render_file(const render_args *a) {
         rc = err.http_status >= 500 ? EXIT_INTERNAL : EXIT_USAGE;
     } else if (ps.n == 0) {
         rc = usage_error(a->input, "no points to draw");
+    } else if (ps.colors) {
+        rc = draw(a, &ps, ps.colors);
     } else {
-        unsigned char *rgb = vertex_colors(bytes, len, &ps);
+        unsigned char *rgb = grey_colors(&ps);
         rc = rgb ? draw(a, &ps, rgb) : EXIT_INTERNAL;
         free(rgb);
     }

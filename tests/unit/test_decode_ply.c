@@ -1,7 +1,7 @@
 /* test_decode_ply.c: the PLY decoder: ascii and both binary byte orders,
  * every scalar type, skipped properties and elements, faces, and bad input
- * (truncated, lying or huge counts, NaN, bad indices, limits); the header
- * helpers shared with the CLI's colour reader. */
+ * (truncated, lying or huge counts, NaN, bad indices, limits); vertex
+ * colours; the header helpers. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -97,6 +97,57 @@ static void test_ascii_crlf_any_order(void) {
     CHECK(!memcmp(ps.faces, want, sizeof want));
     ps_pointset_free(&ps);
     CHECK(ps.points == NULL && ps.n == 0);
+}
+
+/* Vertex colours: uchar red green blue in any order kept as they are. */
+static void test_colors_ascii(void) {
+    static const char text[] = "ply\nformat ascii 1.0\nelement vertex 2\nproperty uchar blue\n"
+                               "property float x\nproperty float y\nproperty uchar red\n"
+                               "property float z\nproperty uchar green\nend_header\n"
+                               "3 0 0 1 0 2\n255 1 1 200 1 0\n";
+    static const unsigned char want[] = {1, 2, 3, 200, 0, 255};
+    ps_pointset ps;
+    ps_api_error err;
+    REQUIRE(ps_decode_ply(text, sizeof text - 1, NULL, &ps, &err) == 0);
+    REQUIRE(ps.n == 2 && ps.colors != NULL);
+    CHECK(memcmp(ps.colors, want, sizeof want) == 0);
+    CHECK(ps.points[3] == 1 && ps.points[5] == 1);
+    ps_pointset_free(&ps);
+    CHECK(ps.colors == NULL);
+}
+
+/* Float colours (0..1) are scaled to bytes, clamped and rounded, in both
+ * byte orders; without all three channels there are no colours. */
+static void test_colors_binary_float_and_partial(void) {
+    static const double channel[2][3] = {{0.0, 0.5, 1.0}, {-0.25, 2.0, 0.1}};
+    static const unsigned char want[] = {0, 128, 255, 0, 255, 26};
+    for (int big = 0; big <= 1; big++) {
+        bytes_out b = {.len = 0};
+        put_text(&b, "ply\n");
+        put_text(&b, big ? "format binary_big_endian 1.0\n" : "format binary_little_endian 1.0\n");
+        put_text(&b, "element vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                     "property float red\nproperty double green\nproperty float blue\n"
+                     "end_header\n");
+        for (int i = 0; i < 2; i++) {
+            for (int c = 0; c < 3; c++) put_value(&b, "float", i + c, big);
+            put_value(&b, "float", channel[i][0], big);
+            put_value(&b, "double", channel[i][1], big);
+            put_value(&b, "float", channel[i][2], big);
+        }
+        ps_pointset ps;
+        ps_api_error err;
+        REQUIRE(ps_decode_ply(b.data, b.len, NULL, &ps, &err) == 0);
+        REQUIRE(ps.colors != NULL);
+        CHECK_MSG(memcmp(ps.colors, want, sizeof want) == 0, "big %d", big);
+        ps_pointset_free(&ps);
+    }
+    static const char red_only[] = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                   "property float y\nproperty uchar red\nend_header\n0 0 9\n";
+    ps_pointset ps;
+    ps_api_error err;
+    REQUIRE(ps_decode_ply(red_only, sizeof red_only - 1, NULL, &ps, &err) == 0);
+    CHECK(ps.n == 1 && ps.dim == 2 && ps.colors == NULL);
+    ps_pointset_free(&ps);
 }
 
 static const char *const all_types[] = {"char", "uchar", "short", "ushort",
@@ -334,7 +385,7 @@ static void check_model(const char *name, size_t n, size_t n_faces, int normals)
 static void test_horse(void) { check_model("horse.ply", 48485, 96966, 1); }
 static void test_bunny(void) { check_model("bunny.ply", 35947, 69451, 0); }
 
-/* The header helpers the CLI's colour reader shares (decode_ply_header.h). */
+/* The header helpers (decode_ply_header.h). */
 static void test_shared_value_reader(void) {
     static const char text[] = "ply\nformat binary_big_endian 1.0\nelement vertex 1\n"
                                "property short a\nproperty float b\nproperty uchar c\n"
@@ -357,7 +408,8 @@ static void test_shared_value_reader(void) {
     CHECK(ps_ply_load_binary(big_minus_two, PS_PLY_INT8, swap) == -1);
 }
 
-PS_TEST_MAIN(TEST(test_ascii_crlf_any_order), TEST(test_binary_every_type_both_endians),
+PS_TEST_MAIN(TEST(test_ascii_crlf_any_order), TEST(test_colors_ascii),
+             TEST(test_colors_binary_float_and_partial), TEST(test_binary_every_type_both_endians),
              TEST(test_two_dimensional), TEST(test_missing_coordinate),
              TEST(test_huge_declared_count), TEST(test_truncated_and_lying),
              TEST(test_non_finite_and_bad_index), TEST(test_limits_and_garbage),
