@@ -20,8 +20,15 @@ PKGS := lapacke libmicrohttpd libcjson libcurl zlib hiredis
 OPT ?= -O2
 CFLAGS ?= $(OPT) -g
 WARN := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+# Each layer sees the headers of the layers below it and its own; api's
+# private headers (api/private/) only api and the tests (white-box) see.
+INC_core := -Icore
+INC_api := -Icore -Iapi -Iapi/private
+INC_server := -Icore -Iapi -Iserver
+INC_clients := -Icore -Iapi -Iclients/c
+INC_tests := -Icore -Iapi -Iapi/private -Iserver -Iclients/c -Itests/unit
+layer_includes = $(INC_$(firstword $(subst /, ,$(1))))
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -pthread $(WARN) $(CFLAGS) \
-             -Icore -Iapi -Iserver -Iclients/c -Itests/unit \
              $(shell pkg-config --cflags libcjson 2>/dev/null) -MMD -MP
 LDLIBS := -lflann $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lopenblas -lm -pthread
 
@@ -64,7 +71,7 @@ deps-test:
 
 $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(call layer_includes,$<) -c $< -o $@
 
 $(CORE_LIB): $(call obj,$(CORE_SRC))
 	@rm -f $@; ar rcs $@ $^

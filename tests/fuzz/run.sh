@@ -49,7 +49,7 @@ for t in $TARGETS; do
     esac
     # shellcheck disable=SC2086
     if ! clang -std=c11 -D_POSIX_C_SOURCE=200809L $WARN -g -O1 -fsanitize=fuzzer,address,undefined \
-        -fno-sanitize-recover=undefined -Icore -Iapi -Iserver -Itests/fuzz $sources "tests/fuzz/fuzz_$t.c" \
+        -fno-sanitize-recover=undefined -Icore -Iapi -Iapi/private -Iserver -Itests/fuzz $sources "tests/fuzz/fuzz_$t.c" \
         $libs -o "$bin" >"$log" 2>&1; then
         echo "FAIL fuzz:$t: does not build (see $log)"
         failed=1

@@ -1,6 +1,7 @@
 /*
  * number_text.h: fast number-to-text writers for the encoders' per-point
- * arrays (one snprintf or cJSON node per point is too slow for 1M points).
+ * arrays (internal to api/; one snprintf or cJSON node per point is too
+ * slow for 1M points).
  * Each writes at p, without a terminating NUL, and returns the end.
  */
 #ifndef PS_NUMBER_TEXT_H

@@ -1,9 +1,7 @@
 /*
  * decode_ply_header.h: the header of a PLY file (format, elements in file
  * order with their counts and properties, where the data starts) and the
- * reading of one binary value.  Internal to api/ (decode_ply.c), and shared
- * with the CLI's colour reader (clients/cli/ply_colors.c), which reads the
- * vertex colours that the point decoder skips.
+ * reading of one binary value.  Internal to api/ (decode_ply.c).
  */
 #ifndef PS_DECODE_PLY_HEADER_H
 #define PS_DECODE_PLY_HEADER_H
