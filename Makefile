@@ -1,8 +1,8 @@
 # pointseg: build, test and run.
 #
 #   make            build/pointseg (command-line tool) and build/pointsegd (daemon)
-#   make run        install missing packages, build, start the daemon (or, until
-#                   it exists, segment a sample)
+#   make run        install missing packages, build, start the daemon with
+#                   working defaults (no Redis needed)
 #   make test       install missing packages, build, run every test
 #   make web / test-browser              the web viewer / its Chromium test
 #   make bench-quality / bench-speed     print the benchmark figures

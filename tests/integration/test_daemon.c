@@ -759,11 +759,6 @@ static void test_port_in_use_refused(void) {
     CHECK_STOPS(d, 20);
 }
 
-static void test_zz_cleanup(void) {
-    free_sample(&small);
-    CHECK(1);
-}
-
 int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
@@ -775,8 +770,10 @@ int main(int argc, char **argv) {
         TEST(test_full_queue_and_cancel), TEST(test_job_progress_moves_within_phases),
         TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_sigterm_under_incoming_connections),
-        TEST(test_port_in_use_refused), TEST(test_zz_cleanup)};
+        TEST(test_port_in_use_refused)};
     signal(SIGPIPE, SIG_IGN);
     if (ps_client_global_init()) return 1;
-    return ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
+    int rc = ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
+    free_sample(&small);
+    return rc;
 }
