@@ -26,7 +26,7 @@ INC_core := -Icore
 INC_api := -Icore -Iapi -Iapi/private
 INC_server := -Icore -Iapi -Iserver
 INC_clients := -Icore -Iapi -Iclients/c
-INC_tests := -Icore -Iapi -Iapi/private -Iserver -Iclients/c -Itests/unit
+INC_tests := -Icore -Iapi -Iapi/private -Iserver -Iclients/c -Itests/support
 layer_includes = $(INC_$(firstword $(subst /, ,$(1))))
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -pthread $(WARN) $(CFLAGS) \
              $(shell pkg-config --cflags libcjson 2>/dev/null) -MMD -MP
@@ -42,7 +42,7 @@ API_SRC := $(wildcard api/*.c)
 SERVER_SRC := $(wildcard server/*.c)
 CLI_SRC := $(wildcard clients/cli/*.c)
 CCLIENT_SRC := $(wildcard clients/c/*.c)
-TESTLIB_SRC := $(filter-out tests/unit/test_%.c,$(wildcard tests/unit/*.c))
+TESTLIB_SRC := $(wildcard tests/support/*.c)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 INTEG_SRC := $(wildcard tests/integration/test_*.c)
 BENCH_SRC := $(wildcard tests/bench/*.c)

@@ -3,7 +3,7 @@
 #   tests/run.sh BUILD             unit tests (plain and BUILD/san), integration
 #                                  tests, short fuzz runs, extra suites
 #   tests/run.sh --unit-only BUILD unit tests of BUILD only
-# Each test prints PASS/FAIL/SKIP lines (tests/unit/testlib.h); a binary that
+# Each test prints PASS/FAIL/SKIP lines (tests/support/testlib.h); a binary that
 # dies without saying FAIL counts as one failure.  The last line is
 # "N passed, N failed, N skipped".
 set -u

@@ -1,7 +1,7 @@
 // shapes.js: the built-in synthetic examples, made in the page so the viewer
 // works without any data: a hand (flattened-ellipsoid palm, five capsule
 // fingers in a fan) and a dumbbell (two spheres joined by a thin tube), the
-// shapes of tests/unit/shapes.c.  Deterministic (seeded), roughly uniform on
+// shapes of tests/support/shapes.c.  Deterministic (seeded), roughly uniform on
 // the surface; points inside another primitive are dropped.
 // Each returns a Float32Array #P*3.
 

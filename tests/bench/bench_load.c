@@ -12,7 +12,7 @@
  *      in-process decode + ps_segment + encode with the daemon's parameters,
  *      giving the HTTP overhead in percent (target: under 10%);
  *   c) a soak of a fresh daemon: --soak N (default 20,000) mixed valid and
- *      invalid requests (tests/unit/load_soak.h) over 8 connections, every
+ *      invalid requests (tests/support/load_soak.h) over 8 connections, every
  *      status checked, VmRSS at the start, middle and end (the end must be
  *      within 20% of the middle).
  *
@@ -218,7 +218,7 @@ static void make_synthetic_bodies(body_set *set) {
         free(pts);
         if (text) add_body(set, shapes[s].name, text, len);
     }
-    set->source = "synthetic shapes (tests/unit/shapes.h) as XYZ text";
+    set->source = "synthetic shapes (tests/support/shapes.h) as XYZ text";
 }
 
 static void free_bodies(body_set *set) {

@@ -4,7 +4,7 @@
 # Writes two separated spheres (awk, golden-spiral points) as XYZ and a JSON
 # body, segments them in every output format, and checks help, version,
 # usage errors and bad input.  Prints "PASS cli:NAME" / "FAIL cli:NAME: why"
-# / "SKIP cli:NAME: why" like tests/unit/testlib.h; exits 1 on any failure.
+# / "SKIP cli:NAME: why" like tests/support/testlib.h; exits 1 on any failure.
 SUITE=cli
 . "$(dirname "$0")/lib.sh"
 N_PER_SPHERE=200

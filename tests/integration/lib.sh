@@ -3,7 +3,7 @@
 # Sets BUILD (the suite's first argument, default build), PS (BUILD/pointseg),
 # a scratch directory $tmp removed on exit and failures=0; pass NAME,
 # fail NAME WHY and skip NAME WHY print "PASS SUITE:NAME" and the like as
-# tests/unit/testlib.h does, fail counting in $failures.  Not executable:
+# tests/support/testlib.h does, fail counting in $failures.  Not executable:
 # tests/run.sh runs only the executable *.sh.
 set -u
 BUILD=${1:-build}
