@@ -35,6 +35,7 @@
 #include "patch_merge.h"
 #include "pipeline.h"
 #include "pointseg.h"
+#include "profile_split.h"
 #include "refine.h"
 #include "result.h"
 #include "supernodes.h"
@@ -268,6 +269,9 @@ static ps_status phase_supernodes(ps_pipeline *pl, ps_error *err) {
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
     if (st == PS_OK && pl->normals)
         st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
+    if (st == PS_OK && pl->normals && pl->in->dim == 3)
+        st = ps_supernodes_split_profile(&pl->graph, pl->points, pl->f, pl->threads, &pl->sn,
+                                             err);
     return st;
 }
 
