@@ -126,16 +126,6 @@ static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
 
 /* ---- near lists ------------------------------------------------------------ */
 
-/* members #P: the vertices of each cell, cell by cell; first #M+1. */
-static void cell_members(const ps_coarse_graph *cg, size_t n, size_t *first, uint32_t *members) {
-    memset(first, 0, (cg->n_cells + 1) * sizeof *first);
-    for (size_t v = 0; v < n; v++) first[cg->cell_of[v] + 1]++;
-    for (size_t c = 0; c < cg->n_cells; c++) first[c + 1] += first[c];
-    for (size_t v = 0; v < n; v++) members[first[cg->cell_of[v]]++] = (uint32_t)v;
-    for (size_t c = cg->n_cells; c > 0; c--) first[c] = first[c - 1];
-    first[0] = 0;
-}
-
 static void sort_cells(uint32_t *x, size_t n) {
     for (size_t i = 1; i < n; i++) {
         uint32_t v = x[i];
@@ -183,7 +173,7 @@ static ps_status build_near(const ps_graph *g, uint32_t *mark, ps_coarse_graph *
     uint32_t *members = malloc((g->n ? g->n : 1) * sizeof *members);
     ps_status st = first && members ? PS_OK : PS_ERR_NOMEM;
     if (st == PS_OK) {
-        cell_members(cg, g->n, first, members);
+        ps_group_by_label(cg->cell_of, g->n, cg->n_cells, first, members);
         st = near_lists(g, first, members, mark, cg);
     }
     free(first), free(members);

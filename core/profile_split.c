@@ -49,18 +49,6 @@ static void spacing_range(void *ctx, size_t begin, size_t end, int worker) {
     }
 }
 
-/* members and start: the points grouped by supernode. */
-static void group_members(profile_work *w) {
-    const ps_supernodes *sn = w->sn;
-    size_t n = w->g->n;
-    memset(w->start, 0, ((size_t)sn->m + 1) * sizeof *w->start);
-    for (size_t p = 0; p < n; p++) w->start[sn->supernode_of[p] + 1]++;
-    for (int s = 0; s < sn->m; s++) w->start[s + 1] += w->start[s];
-    for (size_t p = 0; p < n; p++) w->members[w->start[sn->supernode_of[p]]++] = (uint32_t)p;
-    for (int s = sn->m; s > 0; s--) w->start[s] = w->start[s - 1];
-    w->start[0] = 0;
-}
-
 static double median(const double *x, size_t n, double *scratch) {
     memcpy(scratch, x, n * sizeof *scratch);
     return ps_select_kth(scratch, n, n / 2);
@@ -196,7 +184,9 @@ ps_status ps_supernodes_split_profile(const ps_graph *g, const double *points, c
     int ok = work_alloc(&w, n);
     if (ok) {
         ps_parallel_for(ps_parallel_threads(threads), n, SPACING_CHUNK, spacing_range, &w);
-        group_members(&w);
+        /* a supernode id is never negative: it reads the same as a uint32_t */
+        ps_group_by_label((const uint32_t *)sn->supernode_of, n, (size_t)sn->m, w.start,
+                          w.members);
         for (size_t p = 0; p < n; p++) w.label[p] = sn->supernode_of[p];
     }
     for (int s = 0; ok && s < sn->m; s++)

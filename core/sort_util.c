@@ -42,6 +42,16 @@ void ps_order_by_u32(const uint32_t *key, size_t n, uint32_t *order, uint32_t *s
     radix_sort(order, n, key, scratch);
 }
 
+void ps_group_by_label(const uint32_t *label, size_t n, size_t groups, size_t *first,
+                       uint32_t *members) {
+    memset(first, 0, (groups + 1) * sizeof *first);
+    for (size_t i = 0; i < n; i++) first[label[i] + 1]++;
+    for (size_t g = 0; g < groups; g++) first[g + 1] += first[g];
+    for (size_t i = 0; i < n; i++) members[first[label[i]]++] = (uint32_t)i;
+    for (size_t g = groups; g > 0; g--) first[g] = first[g - 1];
+    first[0] = 0;
+}
+
 double ps_select_kth(double *x, size_t n, size_t k) {
     ptrdiff_t lo = 0, hi = (ptrdiff_t)n - 1, target = (ptrdiff_t)k;
     while (lo < hi) {

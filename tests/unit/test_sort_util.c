@@ -1,8 +1,9 @@
 /* test_sort_util.c: the shared qsort / bsearch comparison (sort_util.h),
  * including values whose difference overflows an int; the radix sort
  * against qsort on keys over the full range, with ties, and on keys that
- * share their high bytes; and the selection of the k-th smallest value
- * against a sort, with ties. */
+ * share their high bytes; the grouping of items by label, with an empty
+ * group; and the selection of the k-th smallest value against a sort, with
+ * ties. */
 #include "sort_util.h"
 #include "testlib.h"
 
@@ -101,5 +102,20 @@ static void test_order_by_key_stable(void) {
     free(keys), free(order), free(scratch);
 }
 
+/* Items grouped by label, each group in index order; group 2 is empty. */
+static void test_group_by_label(void) {
+    static const uint32_t label[8] = {3, 0, 3, 1, 0, 3, 1, 0};
+    static const uint32_t want_members[8] = {1, 4, 7, 3, 6, 0, 2, 5};
+    static const size_t want_first[5] = {0, 3, 5, 5, 8};
+    size_t first[5];
+    uint32_t members[8];
+    ps_group_by_label(label, 8, 4, first, members);
+    CHECK(memcmp(first, want_first, sizeof first) == 0);
+    CHECK(memcmp(members, want_members, sizeof members) == 0);
+    ps_group_by_label(label, 0, 4, first, members);
+    for (int g = 0; g <= 4; g++) CHECK(first[g] == 0);
+}
+
 PS_TEST_MAIN(TEST(test_compare_u32_orders_full_range), TEST(test_select_kth_matches_sort),
-             TEST(test_radix_sort_matches_qsort), TEST(test_order_by_key_stable))
+             TEST(test_radix_sort_matches_qsort), TEST(test_order_by_key_stable),
+             TEST(test_group_by_label))
