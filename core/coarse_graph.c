@@ -4,10 +4,10 @@
  *
  * Steps: the median edge length per component (quickselect), the greedy
  * cover (sequential: each seed depends on the cover so far; one
- * ps_dijkstra_ball within the radius per seed, which also gives every
- * vertex it reaches its distance to that seed, so the nearest seed's cell
- * is known when the cover ends), the near lists (cell members by counting
- * sort), the local distances (one ps_dijkstra_ball per seed over its near
+ * ps_dijkstra_ball within the radius per seed, lowering every vertex's
+ * distance to its nearest seed so far and reaching only the vertices it
+ * lowers, which then join the seed's cell: the nearest seed's cell is known
+ * when the cover ends), the near lists (cell members by counting sort), the local distances (one ps_dijkstra_ball per seed over its near
  * cells, in parallel; the run from c writes only the slots (p, c), so no
  * two workers share a slot) and the coarse graph read off the seeds' rows.
  */
@@ -94,9 +94,10 @@ static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
 }
 
 /* Greedy cover in vertex order: seed #M out (sized #P), cell_start out,
- * and cell_of: each vertex's nearest seed, read off the balls (a vertex's
- * nearest seed is within the radius, so that seed's ball reached it; ties
- * go to the lower cell).  nearest #P scratch, INFINITY on entry. */
+ * and cell_of: each vertex's nearest seed (a vertex's nearest seed is
+ * within the radius, so that seed's ball lowered it; ties go to the lower
+ * cell, as a ball lowers only strictly).  nearest #P: INFINITY on entry,
+ * each vertex's distance to its nearest seed on return. */
 static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
                        const ps_progress_span *span, double *nearest, ps_coarse_graph *cg) {
     size_t m = 0;
@@ -110,12 +111,10 @@ static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
                                     span->lo + (span->hi - span->lo) * (double)v / (double)o->g.n);
             }
             cg->seed[m] = (uint32_t)v;
-            ball_run(b, &o->g, (uint32_t)v, radius[k], NULL, 0);
-            for (size_t i = 0; i < b->n_reached; i++) {
-                uint32_t p = b->reached[i];
-                if (b->dist[p] < nearest[p]) nearest[p] = b->dist[p], cg->cell_of[p] = (uint32_t)m;
-            }
-            ball_clear(b);
+            ps_dijkstra_limits limits = {.radius = radius[k]};
+            size_t lowered = ps_dijkstra_ball(b->dijkstra, &o->g, (uint32_t)v, &limits, nearest,
+                                              b->reached);
+            for (size_t i = 0; i < lowered; i++) cg->cell_of[b->reached[i]] = (uint32_t)m;
             m++;
         }
     }

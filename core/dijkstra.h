@@ -65,7 +65,11 @@ typedef struct ps_dijkstra_limits {
  * each reached vertex and INFINITY elsewhere.  reached #P out: the reached
  * vertices in settling order (source first, distances nondecreasing).
  * Returns their count.  Setting dist[reached[i]] = INFINITY for i < count
- * readies dist for the next ball. */
+ * readies dist for the next ball.
+ * Or dist holds the distances from earlier sources (the minimum over
+ * earlier balls' results, INFINITY where none reached): the run then
+ * lowers dist to the minimum with source's ball and reaches only the
+ * vertices it lowers strictly, as ps_dijkstra_lower does. */
 size_t ps_dijkstra_ball(ps_dijkstra *w, const ps_graph *g, uint32_t source,
                         const ps_dijkstra_limits *limits, double *dist, uint32_t *reached);
 
