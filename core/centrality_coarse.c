@@ -4,7 +4,8 @@
  *
  * D is one block per component: a row per cell of the component, its
  * samples contiguous, the row length rounded up to LANES floats (padding
- * 0).  Coarse Dijkstras run in parallel, BLOCK samples per task: a task
+ * 0).  Coarse searches (Dial's, dial.h: the seeds are more than a cell
+ * radius apart) run in parallel, BLOCK samples per task: a task
  * gathers its columns in a worker buffer and writes them row by row.
  * The fine level loops over vertices (outer, parallel) and samples (inner,
  * LANES at a time, a loop gcc and clang vectorize at -O2 with SSE2); the
@@ -16,7 +17,7 @@
 
 #include "coarse_graph.h"
 #include "control.h"
-#include "dijkstra.h"
+#include "dial.h"
 #include "parallel.h"
 
 #include <math.h>
@@ -106,7 +107,7 @@ static ps_status table_layout(const ps_bfs_order *o, const ps_coarse_graph *cg, 
 }
 
 /* Farthest-point sampling of each component's cells; mind #M scratch. */
-static ps_status choose_samples(const ps_coarse_graph *cg, int n_components, ps_dijkstra *dij,
+static ps_status choose_samples(const ps_coarse_graph *cg, int n_components, ps_dial *dial,
                                 double *mind, const ps_control *ctl, table *t) {
     for (size_t c = 0; c < cg->n_cells; c++) mind[c] = INFINITY;
     size_t total = t->first[n_components];
@@ -115,7 +116,7 @@ static ps_status choose_samples(const ps_coarse_graph *cg, int n_components, ps_
         for (size_t i = t->first[k]; i < t->first[k + 1]; i++) {
             if (ps_control_cancelled(ctl)) return PS_ERR_CANCELLED;
             uint32_t c = i == t->first[k] ? (uint32_t)begin : farthest_cell(begin, end, mind);
-            ps_dijkstra_lower(dij, &cg->graph, c, mind);
+            ps_dial_lower(dial, c, mind);
             t->cells[i] = c;
             double done = (double)(i + 1) / (double)total;
             report(ctl, BUILD_SHARE + (SAMPLES_SHARE - BUILD_SHARE) * done);
@@ -127,7 +128,7 @@ static ps_status choose_samples(const ps_coarse_graph *cg, int n_components, ps_
 /* ---- coarse Dijkstras ------------------------------------------------------ */
 
 typedef struct coarse_worker {
-    ps_dijkstra *dij;
+    ps_dial *dial;
     double *dist;    /* #M */
     float *columns;  /* BLOCK by (largest component's cells) */
 } coarse_worker;
@@ -156,7 +157,7 @@ static void coarse_block(two_level *x, coarse_worker *w, size_t first, size_t en
     int k = range_of(t->first, x->o->n_components, first);
     size_t begin = cg->cell_start[k], cells = cg->cell_start[k + 1] - begin;
     for (size_t i = first; i < end; i++) {
-        ps_dijkstra_run(w->dij, &cg->graph, &t->cells[i], 1, w->dist, NULL);
+        ps_dial_run(w->dial, t->cells[i], w->dist);
         float *col = w->columns + (i - first) * cells;
         for (size_t c = 0; c < cells; c++) col[c] = (float)w->dist[begin + c];
     }
@@ -184,7 +185,7 @@ static size_t make_tasks(const table *t, int n_components, size_t *task_first) {
 
 static void coarse_workers_free(coarse_worker *w, int threads) {
     for (int i = 0; w && i < threads; i++) {
-        ps_dijkstra_free(w[i].dij);
+        ps_dial_free(w[i].dial);
         free(w[i].dist), free(w[i].columns);
     }
     free(w);
@@ -207,10 +208,10 @@ static ps_status coarse_distances(two_level *x, int threads) {
     x->task_first = malloc((x->t.first[count] + (size_t)count + 1) * sizeof *x->task_first);
     ps_status st = w && x->task_first ? PS_OK : PS_ERR_NOMEM;
     for (int i = 0; st == PS_OK && i < threads; i++) {
-        w[i].dij = ps_dijkstra_new(m);
+        w[i].dial = ps_dial_new(&cg->graph);
         w[i].dist = malloc(m * sizeof *w[i].dist);
         w[i].columns = malloc(BLOCK * widest * sizeof *w[i].columns);
-        if (!w[i].dij || !w[i].dist || !w[i].columns) st = PS_ERR_NOMEM;
+        if (!w[i].dial || !w[i].dist || !w[i].columns) st = PS_ERR_NOMEM;
     }
     if (st == PS_OK) {
         coarse_ctx c = {x, w};
@@ -336,11 +337,11 @@ static ps_status sample_and_solve(two_level *x, size_t samples, int threads) {
     const ps_coarse_graph *cg = x->cg;
     ps_status st = table_layout(x->o, cg, samples, &x->t);
     if (st != PS_OK) return st;
-    ps_dijkstra *dij = ps_dijkstra_new(cg->n_cells);
+    ps_dial *dial = ps_dial_new(&cg->graph);
     double *mind = malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mind);
-    st = dij && mind ? choose_samples(cg, x->o->n_components, dij, mind, x->ctl, &x->t)
+    st = dial && mind ? choose_samples(cg, x->o->n_components, dial, mind, x->ctl, &x->t)
                      : PS_ERR_NOMEM;
-    ps_dijkstra_free(dij);
+    ps_dial_free(dial);
     free(mind);
     if (st == PS_OK) st = coarse_distances(x, threads);
     if (st == PS_OK) st = fine_level(x, threads);

@@ -11,6 +11,7 @@
 #include "dijkstra.h"
 #include "knn_graph.h"
 #include "progress_seen.h"
+#include "random_graph.h"
 #include "shapes.h"
 #include "testlib.h"
 
@@ -18,36 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct rng {
-    unsigned long long s;
-} rng;
-
-static unsigned next_u(rng *r, unsigned bound) {
-    r->s ^= r->s << 13, r->s ^= r->s >> 7, r->s ^= r->s << 17;
-    return (unsigned)((r->s >> 20) % bound);
-}
-
-/* A random symmetric graph on n vertices with about `degree` edges per
- * vertex and integer weights 1..9 (vertex n-1 isolated). */
+/* A random graph with lengths 1..9 (vertex n-1 isolated). */
 static void random_graph(size_t n, int degree, unsigned long long seed, ps_graph *g) {
-    rng r = {seed};
-    double *w = calloc(n * n, sizeof *w);
-    for (size_t e = 0; w && e < n * (size_t)degree / 2; e++) {
-        size_t a = next_u(&r, (unsigned)n - 1), b = next_u(&r, (unsigned)n - 1);
-        if (a != b) w[a * n + b] = w[b * n + a] = 1 + next_u(&r, 9);
-    }
-    g->n = n;
-    g->offsets = malloc((n + 1) * sizeof *g->offsets);
-    g->neighbors = malloc(n * n * sizeof *g->neighbors);
-    g->weights = malloc(n * n * sizeof *g->weights);
-    size_t m = 0;
-    for (size_t p = 0; w && p < n; p++) {
-        g->offsets[p] = m;
-        for (size_t q = 0; q < n; q++)
-            if (w[p * n + q] > 0) g->neighbors[m] = (uint32_t)q, g->weights[m++] = w[p * n + q];
-    }
-    g->offsets[n] = m;
-    free(w);
+    test_random_graph(n, degree, 1, 9, 1, 1, seed, g);
 }
 
 static void bellman_ford(const ps_graph *g, uint32_t source, double *d) {
@@ -143,8 +117,8 @@ static void test_lower_is_min_of_runs(void) {
     size_t n = 400;
     double *pts = malloc(n * 3 * sizeof *pts);
     REQUIRE(pts);
-    rng r = {5};
-    for (size_t i = 0; i < 3 * n; i++) pts[i] = next_u(&r, 1000000) / 1e6;
+    test_rng r = {5};
+    for (size_t i = 0; i < 3 * n; i++) pts[i] = test_rng_below(&r, 1000000) / 1e6;
     ps_graph g;
     REQUIRE(ps_knn_graph_build(pts, n, 3, 6, 1, &g, NULL) == PS_OK);
     ps_dijkstra *w = ps_dijkstra_new(n);
@@ -193,8 +167,8 @@ static void with_source_vertex(const ps_graph *g, const double *pts, const uint3
 static void test_ball_from_sources_between_points(void) {
     size_t n = 2000;
     double *pts = malloc(n * 3 * sizeof *pts);
-    rng r = {9};
-    for (size_t i = 0; pts && i < 3 * n; i++) pts[i] = next_u(&r, 1000000) / 1e6;
+    test_rng r = {9};
+    for (size_t i = 0; pts && i < 3 * n; i++) pts[i] = test_rng_below(&r, 1000000) / 1e6;
     ps_graph g, geo = {0};
     REQUIRE(pts && ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
     const uint32_t sources[] = {5, 77, 1200, 640};
