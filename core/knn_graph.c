@@ -8,7 +8,8 @@
  * by (rounded distance, index): the equal distances of a regular grid stay
  * ties broken by index when a rotation moves them apart in the last bits
  * (for tie sets that fit in the extra candidates), and the thread count
- * never changes the graph.  Queries go in Morton order
+ * never changes the graph.  The index and the queries' order are built
+ * side by side; queries go in Morton order
  * (morton.h), blocks of them per worker, which keeps the tree walks in
  * cache for inputs in any order.  The directed lists are then
  * mirrored into CSR rows, sorted by neighbour index and freed of duplicates
@@ -118,28 +119,51 @@ ps_status ps_knn_query_rows(ps_knn_memo *memo, const double *points, const uint3
     return PS_OK;
 }
 
+/* The two set-ups of the queries, independent of each other, run side by
+ * side: item 0 the Morton order of the queries, item 1 the index. */
+typedef struct query_setup {
+    ps_knn_memo *memo;
+    const double *points;
+    size_t n;
+    uint32_t *order;  /* #P out */
+    ps_status order_status;
+} query_setup;
+
+static void set_up_item(void *ctx, size_t begin, size_t end, int worker) {
+    query_setup *q = ctx;
+    (void)worker;
+    for (size_t item = begin; item < end; item++) {
+        if (item == 0) {
+            q->order_status = ps_morton_order(q->points, q->n, q->memo->dim, q->order);
+            continue;
+        }
+        struct FLANNParameters fp = ps_kd_parameters();
+        float speedup = 0.0f;
+        q->memo->index = flann_build_index_double((double *)q->points, (int)q->n, q->memo->dim,
+                                                  &speedup, &fp);
+    }
+}
+
 /* memo->index on the points and memo->knn: each point's k nearest other
  * points, queried in Morton order; progress through span up to
  * QUERIES_SHARE. */
 static ps_status directed_knn(ps_knn_memo *memo, const double *points, size_t n, int threads,
                               const ps_progress_span *span, ps_error *err) {
-    struct FLANNParameters fp = ps_kd_parameters();
-    float speedup = 0.0f;
-    uint32_t *order = malloc(n * sizeof *order);
-    if (!order || ps_morton_order(points, n, memo->dim, order) != PS_OK) {
-        free(order);
-        return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query order");
-    }
-    memo->index = flann_build_index_double((double *)points, (int)n, memo->dim, &speedup, &fp);
-    ps_status st = memo->index ? PS_OK
-                               : ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
+    query_setup q = {.memo = memo, .points = points, .n = n, .order = malloc(n * sizeof *q.order)};
+    if (!q.order) return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query order");
+    ps_parallel_for(ps_parallel_threads(threads), 2, 1, set_up_item, &q);
+    ps_status st = PS_OK;
+    if (q.order_status != PS_OK)
+        st = ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for the query order");
+    else if (!memo->index)
+        st = ps_fail(err, PS_ERR_INTERNAL, "knn: FLANN index build failed");
     if (st == PS_OK) {
         ps_progress_span queries = {span->ctl, span->phase, ps_progress_span_at(span, INDEX_SHARE),
                                     ps_progress_span_at(span, QUERIES_SHARE)};
         ps_control_progress(span->ctl, span->phase, queries.lo);
-        st = ps_knn_query_rows(memo, points, order, n, threads, &queries, err);
+        st = ps_knn_query_rows(memo, points, q.order, n, threads, &queries, err);
     }
-    free(order);
+    free(q.order);
     return st;
 }
 
