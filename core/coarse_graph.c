@@ -2,7 +2,7 @@
  * coarse_graph.c: cells, local distances and the coarse graph of
  * coarse_graph.h.
  *
- * Steps: the median edge length per component (quickselect), the greedy
+ * Steps: the median edge length per component (select_parallel.h), the greedy
  * cover (sequential: each seed depends on the cover so far; one
  * ps_dijkstra_ball within the radius per seed, lowering every vertex's
  * distance to its nearest seed so far and reaching only the vertices it
@@ -16,6 +16,7 @@
 #include "control.h"
 #include "dijkstra.h"
 #include "parallel.h"
+#include "select_parallel.h"
 #include "sort_util.h"
 
 #include <math.h>
@@ -78,19 +79,22 @@ double ps_cell_radius_growth(size_t size) {
 /* radius #components: PS_CELL_RADIUS_EDGES x median edge length (0 when
  * the component has no edge), grown for a component over
  * PS_CELL_SCALE_POINTS points. */
-static ps_status cell_radii(const ps_bfs_order *o, double *radius) {
+static ps_status cell_radii(const ps_bfs_order *o, int threads, double *radius) {
     const ps_graph *g = &o->g;
-    double *copy = malloc((g->offsets[g->n] ? g->offsets[g->n] : 1) * sizeof *copy);
-    if (!copy) return PS_ERR_NOMEM;
-    for (int k = 0; k < o->n_components; k++) {
-        size_t first = g->offsets[o->start[k]], end = g->offsets[o->start[k + 1]];
-        size_t count = end - first;
-        memcpy(copy, g->weights + first, count * sizeof *copy);
+    double *scratch = malloc((g->offsets[g->n] ? g->offsets[g->n] : 1) * sizeof *scratch);
+    if (!scratch) return PS_ERR_NOMEM;
+    ps_status st = PS_OK;
+    for (int k = 0; k < o->n_components && st == PS_OK; k++) {
+        size_t first = g->offsets[o->start[k]], count = g->offsets[o->start[k + 1]] - first;
         double growth = ps_cell_radius_growth(o->start[k + 1] - o->start[k]);
-        radius[k] = count ? growth * PS_CELL_RADIUS_EDGES * ps_select_kth(copy, count, count / 2) : 0.0;
+        double median = count ? ps_select_kth_parallel(g->weights + first, count, count / 2,
+                                                       threads, scratch)
+                              : 0.0;
+        if (isnan(median)) st = PS_ERR_NOMEM;
+        radius[k] = growth * PS_CELL_RADIUS_EDGES * median;
     }
-    free(copy);
-    return PS_OK;
+    free(scratch);
+    return st;
 }
 
 /* Greedy cover in vertex order: seed #M out (sized #P), cell_start out,
@@ -268,11 +272,12 @@ static ps_status alloc_cells(const ps_bfs_order *o, ps_coarse_graph *cg) {
     return cg->seed && cg->cell_of && cg->cell_start && cg->local_offsets ? PS_OK : PS_ERR_NOMEM;
 }
 
-/* Cells and near lists, sequential; balls[0] serves the cover. */
-static ps_status build_cells(const ps_bfs_order *o, ball *b, const ps_progress_span *span,
-                             ps_coarse_graph *cg) {
+/* Cell radii (in parallel), cells and near lists (sequential); balls[0]
+ * serves the cover. */
+static ps_status build_cells(const ps_bfs_order *o, int threads, ball *b,
+                             const ps_progress_span *span, ps_coarse_graph *cg) {
     double *radius = malloc(((size_t)o->n_components + 1) * sizeof *radius);
-    ps_status st = radius ? cell_radii(o, radius) : PS_ERR_NOMEM;
+    ps_status st = radius ? cell_radii(o, threads, radius) : PS_ERR_NOMEM;
     double *nearest = st == PS_OK ? malloc((o->g.n ? o->g.n : 1) * sizeof *nearest) : NULL;
     ps_progress_span cover_span = {span->ctl, span->phase, ps_progress_span_at(span, RADII_SHARE),
                                    ps_progress_span_at(span, COVER_SHARE)};
@@ -300,7 +305,7 @@ static ps_status build_levels(const ps_bfs_order *o, int threads, const ps_progr
                               ball *balls, ps_coarse_graph *cg) {
     ps_status st = alloc_cells(o, cg);
     if (st == PS_OK) st = ball_init(&balls[0], o->g.n, 0);
-    if (st == PS_OK) st = build_cells(o, &balls[0], span, cg);
+    if (st == PS_OK) st = build_cells(o, threads, &balls[0], span, cg);
     if (st != PS_OK) return st;
     ball_free(&balls[0]);
     ps_progress_span local = {span->ctl, span->phase, ps_progress_span_at(span, CELLS_SHARE),
