@@ -131,7 +131,8 @@ ps_status ps_convex_merge(const ps_merge_input *in, int *group_of_point,
     if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* convex everywhere */
     ps_segment_graph sg;
     ps_segment_graph_input sgi = {
-        .graph = in->graph, .f = in->f, .group = group_of_point, .n_groups = in->n_groups};
+        .graph = in->graph, .f = in->f, .group = group_of_point, .n_groups = in->n_groups,
+        .threads = in->threads};
     ps_status st = ps_segment_graph_build(&sg, &sgi, err);
     if (st != PS_OK) return st;
     samples s = {0};

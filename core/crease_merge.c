@@ -120,7 +120,8 @@ ps_status ps_crease_merge(const ps_merge_input *in, int *group_of_point,
     ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .points = in->points,
                                   .normals = in->normals, .group = group_of_point,
                                   .n_groups = in->n_groups,
-                                  .mark = creased_edge, .context = &test};
+                                  .mark = creased_edge, .context = &test,
+                                  .threads = in->threads};
     ps_status st = ps_segment_graph_build(&sg, &sgi, err);
     for (long i; st == PS_OK && (i = weakest_boundary(&sg, PS_CREASE_MERGE_FRACTION)) >= 0;)
         if (!merge_pair(&sg, (size_t)i, merges, n_merges))

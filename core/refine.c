@@ -146,7 +146,8 @@ static ps_status refine_with(segments *s, const ps_graph *g, const double *f,
     ps_status st = thresholds(g, f, component, seg_of_point, feature_threshold, n_tree,
                               s->threshold, err);
     if (st == PS_OK) protect_cores(s->threshold, supernode_of, is_minimum, seg_of_point, g->n);
-    ps_segment_graph_input sgi = {.graph = g, .f = f, .group = seg_of_point, .n_groups = n_tree};
+    ps_segment_graph_input sgi = {.graph = g, .f = f, .group = seg_of_point, .n_groups = n_tree,
+                                  .threads = 1};
     if (st == PS_OK) st = ps_segment_graph_build(&s->graph, &sgi, err);
     if (st == PS_OK) st = merge_all(s, merges, n_merges, err);
     if (st == PS_OK) final_groups(s, tree, n_tree, group_of_leaf);

@@ -328,7 +328,7 @@ static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
 static ps_merge_input merge_input(const ps_pipeline *pl, const double *normals) {
     return (ps_merge_input){.graph = &pl->graph, .points = pl->points, .normals = normals,
                             .f = pl->f, .mean_angular = pl->creases.mean,
-                            .n_groups = pl->n_tree};
+                            .n_groups = pl->n_tree, .threads = pl->threads};
 }
 
 /* The merges after the boundary cut (method auto, 3-D), in order. */

@@ -4,9 +4,13 @@
  */
 #include "segment_graph.h"
 
+#include "parallel.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define GATHER_CHUNKS 64 /* fixed runs of points whose boundary edges are gathered side by side */
 
 /* The mean squared distance of n points from their centroid, from the sum
  * of the points and of their squared norms (<= 0 when rounding leaves
@@ -74,31 +78,64 @@ static ps_boundary edge_record(const ps_segment_graph_input *in, size_t p, size_
     return r;
 }
 
-/* Room for one more record in sg->list (*capacity records allocated);
- * 0 when out of memory. */
-static int reserve_record(ps_segment_graph *sg, size_t *capacity) {
-    if (sg->count < *capacity) return 1;
-    size_t grown = *capacity ? 2 * *capacity : 1024;
-    ps_boundary *list = realloc(sg->list, grown * sizeof *list);
-    if (!list) return 0;
-    sg->list = list, *capacity = grown;
-    return 1;
+/* The records of a run of points, in edge order. */
+typedef struct record_list {
+    ps_boundary *list;
+    size_t count, capacity;
+    int failed;  /* out of memory */
+} record_list;
+
+static void record_push(record_list *r, ps_boundary b) {
+    if (r->failed) return;
+    if (r->count == r->capacity) {
+        size_t grown = r->capacity ? 2 * r->capacity : 256;
+        ps_boundary *list = realloc(r->list, grown * sizeof *list);
+        if (!list) {
+            r->failed = 1;
+            return;
+        }
+        r->list = list, r->capacity = grown;
+    }
+    r->list[r->count++] = b;
 }
 
-/* One record per edge p < q joining two segments, in one pass over the
- * arcs. */
+typedef struct gather_job {
+    const ps_segment_graph_input *in;
+    record_list *chunks;  /* #GATHER_CHUNKS */
+} gather_job;
+
+/* Chunk c's points: [n c / GATHER_CHUNKS, n (c + 1) / GATHER_CHUNKS). */
+static void gather_chunks(void *ctx, size_t begin, size_t end, int worker) {
+    gather_job *j = ctx;
+    const ps_graph *g = j->in->graph;
+    const int *group = j->in->group;
+    (void)worker;
+    for (size_t c = begin; c < end; c++)
+        for (size_t p = g->n * c / GATHER_CHUNKS; p < g->n * (c + 1) / GATHER_CHUNKS; p++)
+            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+                size_t q = g->neighbors[e];
+                int a = group[p], b = group[q];
+                if (q > p && a != b) record_push(&j->chunks[c], edge_record(j->in, p, q, a, b));
+            }
+}
+
+/* One record per edge p < q joining two segments: the chunks gather
+ * theirs side by side, then join in chunk order (the edge order of one
+ * pass over the arcs, whatever the thread count). */
 static int gather_boundaries(ps_segment_graph *sg, const ps_segment_graph_input *in) {
-    const ps_graph *g = in->graph;
-    const int *group = in->group;
-    size_t capacity = 0;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            size_t q = g->neighbors[e];
-            int a = group[p], b = group[q];
-            if (q <= p || a == b) continue;
-            if (!reserve_record(sg, &capacity)) return 0;
-            sg->list[sg->count++] = edge_record(in, p, q, a, b);
-        }
+    record_list chunks[GATHER_CHUNKS] = {{0}};
+    gather_job j = {in, chunks};
+    ps_parallel_for(ps_parallel_threads(in->threads), GATHER_CHUNKS, 1, gather_chunks, &j);
+    size_t total = 0;
+    int failed = 0;
+    for (size_t c = 0; c < GATHER_CHUNKS; c++) total += chunks[c].count, failed |= chunks[c].failed;
+    sg->list = failed ? NULL : malloc((total ? total : 1) * sizeof *sg->list);
+    for (size_t c = 0; sg->list && c < GATHER_CHUNKS; c++) {
+        memcpy(sg->list + sg->count, chunks[c].list, chunks[c].count * sizeof *sg->list);
+        sg->count += chunks[c].count;
+    }
+    for (size_t c = 0; c < GATHER_CHUNKS; c++) free(chunks[c].list);
+    if (!sg->list) return 0;
     coalesce(sg);
     return 1;
 }

@@ -61,8 +61,11 @@ typedef struct ps_segment_graph_input {
     const double *normals;    /* #P by 3 outward unit normals, or NULL: no bulges */
     const int *group;         /* #P segment ids in [0, n_groups) */
     int n_groups;
-    ps_boundary_mark_fn mark; /* may be NULL: nothing marked */
+    ps_boundary_mark_fn mark; /* may be NULL: nothing marked; called from several
+                                 threads at once */
     void *context;            /* passed to mark */
+    int threads;              /* gathering the boundaries (ps_parallel_threads: 0 = all
+                                 cores); the graph is the same for any count */
 } ps_segment_graph_input;
 
 /* What each merge after the boundary cut reads (crease_merge.h,
@@ -74,6 +77,7 @@ typedef struct ps_merge_input {
     const double *f;         /* #P centrality, for the merges' feature sizes */
     double mean_angular;     /* mean angular term over all edges (ps_crease_points.mean) */
     int n_groups;            /* segment ids are in [0, n_groups) */
+    int threads;             /* ps_parallel_threads; the merges are the same for any count */
 } ps_merge_input;
 
 /* What each merge does with its input: group_of_point #P in/out, each
