@@ -245,8 +245,36 @@ static int face_index_property(const ps_ply_header *h, const ps_ply_element *e) 
     return -1;
 }
 
+static int integer_type(ps_ply_type t) { return t != PS_PLY_FLOAT32 && t != PS_PLY_FLOAT64; }
+
+/* The common face, read in one go: in a binary file whose index lists have
+ * integer counts and indices, a triangle with its corners in range goes
+ * straight to tris.  1 when read, 0 when the face is anything else (r
+ * unmoved: read_polygon's general path reads it, with its checks and
+ * messages), -1 when out of memory. */
+static int read_triangle(ply_reader *r, const ps_ply_property *p, uint64_t n_vertices,
+                         ps_tris *tris, ps_api_error *err) {
+    size_t count_size = ps_ply_type_size(p->count_type), size = ps_ply_type_size(p->type);
+    int swap = ps_ply_needs_swap(r->format);
+    if ((size_t)(r->end - r->pos) < count_size + 3 * size ||
+        ps_ply_load_binary(r->pos, p->count_type, swap) != 3)
+        return 0;
+    double v[3];
+    for (int j = 0; j < 3; j++) {
+        v[j] = ps_ply_load_binary(r->pos + count_size + (size_t)j * size, p->type, swap);
+        if (!(v[j] >= 0 && v[j] < (double)n_vertices && v[j] <= UINT32_MAX)) return 0;
+    }
+    if (ps_tris_push(tris, (uint32_t)v[0], (uint32_t)v[1], (uint32_t)v[2], err)) return -1;
+    r->pos += count_size + 3 * size;
+    return 1;
+}
+
 static int read_polygon(ply_reader *r, const ps_ply_property *p, uint64_t face,
                         uint64_t n_vertices, ps_tris *tris, ps_api_error *err) {
+    if (r->format != PS_PLY_ASCII && integer_type(p->count_type) && integer_type(p->type)) {
+        int read = read_triangle(r, p, n_vertices, tris, err);
+        if (read != 0) return read < 0 ? -1 : 0;
+    }
     uint32_t count;
     ps_fan fan = {0};
     int binary = r->format != PS_PLY_ASCII, swap = ps_ply_needs_swap(r->format);

@@ -319,6 +319,30 @@ static void test_non_finite_and_bad_index(void) {
     CHECK(decode_fails(b.data, b.len, NULL, 422, "face 1 refers to vertex -"));
 }
 
+/* Binary faces of every size beside triangles: a quad and a pentagon are
+ * fanned, a triangle after them read whole, a two-corner face adds nothing. */
+static void test_binary_polygons(void) {
+    bytes_out b;
+    b.len = 0;
+    put_text(&b, "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\n"
+                 "property float y\nelement face 4\nproperty list uchar int vertex_indices\n"
+                 "end_header\n");
+    for (int i = 0; i < 5; i++) put_value(&b, "float", i, 0), put_value(&b, "float", i * i, 0);
+    static const int corners[] = {4, 0, 1, 2, 3, 5, 4, 3, 2, 1, 0, 3, 1, 2, 4, 2, 0, 4};
+    for (size_t k = 0; k < sizeof corners / sizeof *corners;) {
+        int count = corners[k++];
+        put_value(&b, "uchar", count, 0);
+        for (int j = 0; j < count; j++) put_value(&b, "int", corners[k++], 0);
+    }
+    ps_pointset ps;
+    ps_api_error err;
+    REQUIRE(ps_decode_ply(b.data, b.len, NULL, &ps, &err) == 0);
+    static const uint32_t want[] = {0, 1, 2, 0, 2, 3, 4, 3, 2, 4, 2, 1, 4, 1, 0, 1, 2, 4};
+    REQUIRE(ps.n_faces == 6);
+    CHECK(memcmp(ps.faces, want, sizeof want) == 0);
+    ps_pointset_free(&ps);
+}
+
 static void test_limits_and_garbage(void) {
     bytes_out b;
     build_binary(&b, 0, "float", "float", "int", 0);
@@ -413,5 +437,5 @@ PS_TEST_MAIN(TEST(test_ascii_crlf_any_order), TEST(test_colors_ascii),
              TEST(test_two_dimensional), TEST(test_missing_coordinate),
              TEST(test_huge_declared_count), TEST(test_truncated_and_lying),
              TEST(test_non_finite_and_bad_index), TEST(test_limits_and_garbage),
-             TEST(test_header_line_without_keyword),
+             TEST(test_header_line_without_keyword), TEST(test_binary_polygons),
              TEST(test_horse), TEST(test_bunny), TEST(test_shared_value_reader))
