@@ -1,11 +1,13 @@
 /*
  * convex_merge.c: adjacent segments whose union is convex merge
- * (convex_merge.h), over the adjacency of segment_graph.h and a sample of
- * each segment's points.
+ * (convex_merge.h), over the adjacency of segment_graph.h with the crease
+ * merge's creased boundary edges marked, and a sample of each segment's
+ * points.
  */
 #include "convex_merge.h"
 
 #include "crease.h"
+#include "crease_merge.h"
 #include "segment_graph.h"
 
 #include <math.h>
@@ -87,14 +89,22 @@ static double convexity(const ps_merge_input *in, const samples *s, int a, int b
     return (double)pass / ((double)ca * (double)cb);
 }
 
-/* The record of the most convex pair at or over the threshold, or -1. */
+/* The convexity at which record i's pair merges: lower when part of its
+ * boundary is not creased. */
+static double threshold_of(const ps_boundary *r) {
+    double creased = r->edges ? (double)r->marked / (double)r->edges : 1;
+    return creased <= PS_CONVEX_MERGE_OPEN_CREASED ? PS_CONVEX_MERGE_OPEN
+                                                   : PS_CONVEX_MERGE_FRACTION;
+}
+
+/* The record of the most convex pair at or over its threshold, or -1. */
 static long most_convex(const ps_merge_input *in, const ps_segment_graph *sg,
                         const samples *s) {
     long best = -1;
-    double best_convexity = PS_CONVEX_MERGE_FRACTION;
+    double best_convexity = 0;
     for (size_t i = 0; i < sg->count; i++) {
         double c = convexity(in, s, sg->list[i].a, sg->list[i].b);
-        if (c > best_convexity || (c == best_convexity && best < 0))
+        if (c >= threshold_of(&sg->list[i]) && (best < 0 || c > best_convexity))
             best = (long)i, best_convexity = c;
     }
     return best;
@@ -130,9 +140,11 @@ ps_status ps_convex_merge(const ps_merge_input *in, int *group_of_point,
                           ps_error *err) {
     if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* convex everywhere */
     ps_segment_graph sg;
-    ps_segment_graph_input sgi = {
-        .graph = in->graph, .f = in->f, .group = group_of_point, .n_groups = in->n_groups,
-        .threads = in->threads};
+    ps_crease_test test = ps_crease_test_of(in);
+    ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .group = group_of_point,
+                                  .n_groups = in->n_groups,
+                                  .mark = ps_crease_marked_edge, .context = &test,
+                                  .threads = in->threads};
     ps_status st = ps_segment_graph_build(&sg, &sgi, err);
     if (st != PS_OK) return st;
     samples s = {0};

@@ -17,12 +17,19 @@
  * points: evenly spaced through its points in index order at the start;
  * a merged segment's sample is taken from the two samples in proportion to
  * the segments' sizes.  A pair's convexity is the fraction of the sample
- * pairs (p, q) that pass.  While some adjacent pair has a convexity of at
- * least PS_CONVEX_MERGE_FRACTION, the pair with the highest (ties: the
- * first in (a, b) order) merges, the smaller segment into the larger (ties:
- * the higher id into the lower).  Rotation and scale invariant;
- * deterministic; no threads; O(points) to set up, then O(pairs x samples^2)
- * per merge.  A flat surface (crease.h, PS_CREASE_FLAT) is convex
+ * pairs (p, q) that pass.  A pair is judged on two kinds of evidence
+ * together: a boundary creased nearly all along (more than
+ * PS_CONVEX_MERGE_OPEN_CREASED of its edges, by the crease merge's test)
+ * needs a convexity of PS_CONVEX_MERGE_FRACTION to merge; a boundary that
+ * crosses smooth surface for part of its length only
+ * PS_CONVEX_MERGE_OPEN (a fuselage cut into nose, middle and tail around
+ * the wing roots, a bird's body cut behind its wings: nearly convex
+ * across the cut, but creased just over the crease merge's half).  While
+ * some adjacent pair reaches its threshold, the most convex of them (ties:
+ * the first in (a, b) order) merges, the smaller segment into the larger
+ * (ties: the higher id into the lower); the creased edges add up.
+ * Rotation and scale invariant; deterministic; no threads; O(points) to
+ * set up, then O(pairs x samples^2) per merge.  A flat surface (crease.h, PS_CREASE_FLAT) is convex
  * everywhere and is left alone.
  */
 #ifndef PS_CONVEX_MERGE_H
@@ -35,6 +42,12 @@
 /* Convexity at which a pair merges.  Chosen on the 228 development models
  * (docs/method.md). */
 #define PS_CONVEX_MERGE_FRACTION 0.95
+/* ... and the lower convexity at which a pair merges when at most
+ * PS_CONVEX_MERGE_OPEN_CREASED of its boundary is creased (the crease
+ * merge's test, crease_merge.h).  Chosen on the 228 development models
+ * (docs/method.md). */
+#define PS_CONVEX_MERGE_OPEN 0.85
+#define PS_CONVEX_MERGE_OPEN_CREASED 0.85
 
 /* A ps_merge_fn (segment_graph.h). */
 ps_merge_fn ps_convex_merge;

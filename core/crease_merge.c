@@ -43,15 +43,13 @@ static double strength_within(const ps_merge_input *in, const int *group, size_t
     return best;
 }
 
-typedef struct crease_test {
-    const ps_merge_input *in;
-    double crease; /* the angular term that makes a crease */
-} crease_test;
+ps_crease_test ps_crease_test_of(const ps_merge_input *in) {
+    return (ps_crease_test){in, PS_CREASE_MERGE_STRENGTH * in->mean_angular};
+}
 
-/* Whether the boundary edge p-q is creased (see crease_merge.h); a
- * ps_boundary_mark_fn. */
-static int creased_edge(void *context, const int *group, size_t p, size_t q) {
-    const crease_test *test = context;
+/* Whether the boundary edge p-q is creased (see crease_merge.h). */
+int ps_crease_marked_edge(void *context, const int *group, size_t p, size_t q) {
+    const ps_crease_test *test = context;
     const ps_merge_input *in = test->in;
     double across[3], length2 = 0;
     for (int i = 0; i < 3; i++) {
@@ -115,12 +113,12 @@ ps_status ps_crease_merge(const ps_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
     if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* no creases: no evidence */
-    crease_test test = {in, PS_CREASE_MERGE_STRENGTH * in->mean_angular};
+    ps_crease_test test = ps_crease_test_of(in);
     ps_segment_graph sg;
     ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .points = in->points,
                                   .normals = in->normals, .group = group_of_point,
                                   .n_groups = in->n_groups,
-                                  .mark = creased_edge, .context = &test,
+                                  .mark = ps_crease_marked_edge, .context = &test,
                                   .threads = in->threads};
     ps_status st = ps_segment_graph_build(&sg, &sgi, err);
     for (long i; st == PS_OK && (i = weakest_boundary(&sg, PS_CREASE_MERGE_FRACTION)) >= 0;)

@@ -60,6 +60,17 @@
 /* A smaller segment whose bulge is below minus this is a cavity. */
 #define PS_CREASE_MERGE_CAVITY 0.35
 
+/* The test of a boundary edge above, for the other merges that weigh
+ * creases (convex_merge.h): a ps_boundary_mark_fn, ps_crease_marked_edge,
+ * with a ps_crease_test as its context. */
+typedef struct ps_crease_test {
+    const ps_merge_input *in;
+    double crease; /* the angular term that makes a crease */
+} ps_crease_test;
+
+ps_crease_test ps_crease_test_of(const ps_merge_input *in);
+int ps_crease_marked_edge(void *context, const int *group, size_t p, size_t q);
+
 /* A ps_merge_fn (segment_graph.h). */
 ps_merge_fn ps_crease_merge;
 
