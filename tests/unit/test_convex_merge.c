@@ -4,9 +4,11 @@
  * arm stands above the sphere's tangent planes.  The sphere cut in two
  * halves is two convex pieces of a convex part, and they merge back,
  * recorded as one merge with the leaf renamed; the same on a rotated and
- * scaled copy.  A flat input is left alone.
+ * scaled copy.  A flat input is left alone.  Two overlapping spheres cut
+ * at their waist merge by the threshold their boundary's creases ask.
  */
 #include "convex_merge.h"
+#include "knn_graph.h"
 #include "star_fixture.h"
 #include "testlib.h"
 
@@ -128,5 +130,80 @@ static void test_flat_input_left_alone(void) {
     ps_star_free(&s);
 }
 
+/* Two unit spheres with centres 2d apart on the z axis, the points of
+ * each outside the other (a peanut with a concave waist), their outward
+ * normals, a kNN graph; group: the side of z = 0. */
+typedef struct peanut {
+    size_t n;
+    double *points, *normals;
+    int *group;
+    ps_graph graph;
+} peanut;
+
+static int peanut_build(double d, peanut *pn) {
+    enum { RINGS = 60, PER_RING = 120 };
+    size_t cap = 2 * RINGS * PER_RING;
+    pn->points = malloc(3 * cap * sizeof *pn->points);
+    pn->normals = malloc(3 * cap * sizeof *pn->normals);
+    pn->group = malloc(cap * sizeof *pn->group);
+    if (!pn->points || !pn->normals || !pn->group) return 0;
+    pn->n = 0;
+    for (int side = 0; side < 2; side++) {
+        double cz = side ? d : -d;
+        for (int i = 0; i < RINGS; i++) {
+            double theta = 3.14159265358979323846 * (i + 0.5) / RINGS;
+            for (int j = 0; j < PER_RING; j++) {
+                double phi = 2 * 3.14159265358979323846 * (j + 0.5 * (i % 2)) / PER_RING;
+                double n[3] = {sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta)};
+                double x[3] = {n[0], n[1], cz + n[2]};
+                double oz = side ? -d : d; /* inside the other sphere: left out */
+                if (x[0] * x[0] + x[1] * x[1] + (x[2] - oz) * (x[2] - oz) < 1) continue;
+                memcpy(pn->points + 3 * pn->n, x, sizeof x);
+                memcpy(pn->normals + 3 * pn->n, n, sizeof n);
+                pn->group[pn->n++] = x[2] > 0;
+            }
+        }
+    }
+    ps_error err = {0};
+    return ps_knn_graph_build(pn->points, pn->n, 3, 7, 1, &pn->graph, &err) == PS_OK;
+}
+
+static void peanut_free(peanut *pn) {
+    free(pn->points), free(pn->normals), free(pn->group);
+    ps_graph_free(&pn->graph);
+}
+
+static int peanut_merges(const peanut *pn, double mean_angular) {
+    double *f = calloc(pn->n, sizeof *f);
+    int *group = malloc(pn->n * sizeof *group), leaf[2] = {0, 1}, n_merges = 0;
+    ps_merge *merges = NULL;
+    memcpy(group, pn->group, pn->n * sizeof *group);
+    ps_merge_input in = {.graph = &pn->graph, .points = pn->points, .normals = pn->normals,
+                         .f = f, .mean_angular = mean_angular, .n_groups = 2};
+    ps_error err = {0};
+    ps_status st = ps_convex_merge(&in, group, leaf, &merges, &n_merges, &err);
+    free(f), free(group), free(merges);
+    return st == PS_OK ? n_merges : -1;
+}
+
+/* The two thresholds (convex_merge.h): a waist with a convexity of about
+ * 0.9 merges when it is no crease (a large crease scale in the input) and
+ * stays when it is one (a tiny scale marks every boundary edge); a barely
+ * concave waist (about 0.98) merges either way, a deep one (about 0.6)
+ * neither way. */
+static void test_partly_smooth_boundary(void) {
+    static const struct {
+        double d;
+        int smooth, creased; /* merges expected */
+    } cases[] = {{0.3, 1, 1}, {0.55, 1, 0}, {0.9, 0, 0}};
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        peanut pn;
+        REQUIRE(peanut_build(cases[i].d, &pn));
+        CHECK_MSG(peanut_merges(&pn, 1e3) == cases[i].smooth, "d %.2f, smooth", cases[i].d);
+        CHECK_MSG(peanut_merges(&pn, 1e-5) == cases[i].creased, "d %.2f, creased", cases[i].d);
+        peanut_free(&pn);
+    }
+}
+
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_convex_pieces_merge_back),
-             TEST(test_flat_input_left_alone))
+             TEST(test_flat_input_left_alone), TEST(test_partly_smooth_boundary))
