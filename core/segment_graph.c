@@ -131,6 +131,7 @@ static int gather_boundaries(ps_segment_graph *sg, const ps_segment_graph_input 
     for (size_t c = 0; c < GATHER_CHUNKS; c++) total += chunks[c].count, failed |= chunks[c].failed;
     sg->list = failed ? NULL : malloc((total ? total : 1) * sizeof *sg->list);
     for (size_t c = 0; sg->list && c < GATHER_CHUNKS; c++) {
+        if (chunks[c].count == 0) continue; /* its list may be NULL */
         memcpy(sg->list + sg->count, chunks[c].list, chunks[c].count * sizeof *sg->list);
         sg->count += chunks[c].count;
     }
