@@ -6,7 +6,8 @@
  * and the supernodes reassigned at the end.  A pair's boundary, band and
  * flow network are in boundary_cut_band.c, the keep-largest-piece search
  * in boundary_cut_pieces.c, the state they share in boundary_cut_context.h
- * (private to these three files).
+ * (private to these three files).  Pairs with no segment in common run side
+ * by side (keyed_tasks.h), each worker with its own scratch arrays.
  *
  * Per pair (A, B) the work follows the band, not the segments:
  *   - the shared boundary comes from the pair's boundary points found once
@@ -39,7 +40,9 @@
 #include "control.h"
 #include "crease.h"
 #include "dijkstra.h"
+#include "keyed_tasks.h"
 #include "maxflow.h"
+#include "parallel.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -70,28 +73,23 @@ double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e) {
 
 /* Segment of p becomes g, keeping the per-segment counts. */
 void ps_bc_set_group(cut_context *cx, uint32_t p, int g) {
-    int old = cx->group[p];
+    int old = ps_bc_group(cx, p);
     if (old == g) return;
     cx->size[old]--;
     cx->size[g]++;
     cx->sinks_in[old] -= cx->is_sink[p];
     cx->sinks_in[g] += cx->is_sink[p];
-    cx->group[p] = g;
+    __atomic_store_n(&cx->group[p], g, __ATOMIC_RELAXED);
 }
 
 static int log_move(move_log *log, uint32_t p, int g) {
-    if (log->count == log->capacity) {
-        size_t capacity = log->capacity ? 2 * log->capacity : 1024;
-        uint32_t *point = realloc(log->point, capacity * sizeof *point);
-        if (point) log->point = point;
-        size_t *next = realloc(log->next, capacity * sizeof *next);
-        if (next) log->next = next;
-        if (!point || !next) return -1;
-        log->capacity = capacity;
+    if (log->count[g] == log->capacity[g]) {
+        size_t capacity = log->capacity[g] ? 2 * log->capacity[g] : 64;
+        uint32_t *point = realloc(log->point[g], capacity * sizeof *point);
+        if (!point) return -1;
+        log->point[g] = point, log->capacity[g] = capacity;
     }
-    log->point[log->count] = p;
-    log->next[log->count] = log->head[g];
-    log->head[g] = log->count++;
+    log->point[g][log->count[g]++] = p;
     return 0;
 }
 
@@ -110,8 +108,8 @@ static int finish_pair(cut_context *cx, size_t nb, size_t n_reached) {
     int failed = 0;
     for (size_t i = 0; i < nb; i++) {
         uint32_t p = cx->band[i];
-        if (cx->group[p] != cx->old_group[i] && !failed)
-            failed = log_move(&cx->moves, p, cx->group[p]) != 0;
+        int now = ps_bc_group(cx, p);
+        if (now != cx->old_group[i] && !failed) failed = log_move(cx->moves, p, now) != 0;
         cx->band_of[p] = NOT_IN_BAND;
     }
     for (size_t i = 0; i < n_reached; i++) cx->dist[cx->reached[i]] = INFINITY;
@@ -134,15 +132,6 @@ static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     if (finish_pair(cx, nb, n_reached) != 0 && st == PS_OK)
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     return st;
-}
-
-/* Progress after done of count pairs; PS_ERR_CANCELLED when cancelled. */
-static ps_status report_pair(const ps_progress_span *span, size_t done, size_t count,
-                             ps_error *err) {
-    if (ps_control_cancelled(span->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
-    ps_control_progress(span->ctl, span->phase,
-                        ps_progress_span_at(span, (double)done / (double)count));
-    return PS_OK;
 }
 
 static int by_size_then_ids(const void *x, const void *y) {
@@ -226,24 +215,16 @@ static void reassign_supernodes(cut_context *cx, int *supernode_of) {
         if (!settled[p]) cx->group[p] = cx->group[sinks[supernode_of[p]]];
 }
 
-static void context_free(cut_context *cx) {
-    free(cx->size);
-    free(cx->sinks_in);
-    free(cx->capacity);
-    free(cx->is_sink);
+/* The worker's own arrays of cx. */
+static void scratch_free(cut_context *cx) {
     free(cx->sources);
     ps_dijkstra_free(cx->dijkstra);
     free(cx->region_mark);
     free(cx->radius_of);
-    free(cx->witness);
     free(cx->seen);
     free(cx->visited);
     free(cx->dist);
     free(cx->reached);
-    free(cx->initial);
-    free(cx->moves.point);
-    free(cx->moves.next);
-    free(cx->moves.head);
     free(cx->band_of);
     free(cx->band);
     free(cx->old_group);
@@ -261,6 +242,24 @@ static void context_free(cut_context *cx) {
     free(cx->queue);
 }
 
+static void moves_free(move_log *log, size_t groups) {
+    for (size_t g = 0; log && log->point && g < groups; g++) free(log->point[g]);
+    if (log) free(log->point), free(log->count), free(log->capacity);
+    free(log);
+}
+
+/* The shared arrays, then the worker's own of the first context. */
+static void context_free(cut_context *cx) {
+    free(cx->size);
+    free(cx->sinks_in);
+    free(cx->capacity);
+    free(cx->is_sink);
+    free(cx->witness);
+    free(cx->initial);
+    moves_free(cx->moves, cx->in->n_groups > 0 ? (size_t)cx->in->n_groups : 1);
+    scratch_free(cx);
+}
+
 /* p becomes a witness of its segment where it is lower or higher along an
  * axis than the witness so far. */
 static void consider_witness(cut_context *cx, uint32_t p) {
@@ -275,7 +274,7 @@ static void consider_witness(cut_context *cx, uint32_t p) {
 }
 
 /* Per-point, per-segment and per-arc state from the input segments. */
-static void context_fill(cut_context *cx) {
+static void shared_fill(cut_context *cx) {
     const ps_boundary_cut_input *in = cx->in;
     size_t n = in->graph->n;
     for (int s = 0; s < in->n_supernodes; s++) cx->is_sink[in->sinks[s]] = 1;
@@ -283,31 +282,44 @@ static void context_fill(cut_context *cx) {
     for (uint32_t p = 0; p < n; p++) {
         cx->size[cx->group[p]]++;
         cx->sinks_in[cx->group[p]] += cx->is_sink[p];
-        cx->band_of[p] = NOT_IN_BAND;
-        cx->dist[p] = INFINITY;
         consider_witness(cx, p);
     }
-    for (int g = 0; g < in->n_groups; g++) cx->moves.head[g] = NO_MOVE;
 }
 
-static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *group) {
-    size_t n = in->graph->n, arcs = in->graph->offsets[n] + 1, net_arcs = arcs + 4 * n;
+static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *group) {
+    size_t n = in->graph->n, arcs = in->graph->offsets[n] + 1;
     size_t groups = in->n_groups > 0 ? (size_t)in->n_groups : 1;
     *cx = (cut_context){.in = in, .group = group};
     cx->size = calloc(groups, sizeof *cx->size);
     cx->sinks_in = calloc(groups, sizeof *cx->sinks_in);
     cx->capacity = calloc(arcs, sizeof *cx->capacity);
     cx->is_sink = calloc(n, sizeof *cx->is_sink);
+    cx->witness = malloc(groups * WITNESSES * sizeof *cx->witness);
+    cx->moves = calloc(1, sizeof *cx->moves);
+    if (cx->moves) {
+        cx->moves->point = calloc(groups, sizeof *cx->moves->point);
+        cx->moves->count = calloc(groups, sizeof *cx->moves->count);
+        cx->moves->capacity = calloc(groups, sizeof *cx->moves->capacity);
+    }
+    if (!cx->size || !cx->sinks_in || !cx->capacity || !cx->is_sink || !cx->witness ||
+        !cx->moves || !cx->moves->point || !cx->moves->count || !cx->moves->capacity)
+        return -1;
+    shared_fill(cx);
+    return initial_boundaries(cx);
+}
+
+/* The worker's own arrays of cx, whose shared fields are set. */
+static int scratch_init(cut_context *cx) {
+    size_t n = cx->in->graph->n, net_arcs = cx->in->graph->offsets[n] + 1 + 4 * n;
+    size_t groups = cx->in->n_groups > 0 ? (size_t)cx->in->n_groups : 1;
     cx->sources = malloc(n * sizeof *cx->sources);
     cx->dijkstra = ps_dijkstra_new(n);
     cx->region_mark = calloc(groups, sizeof *cx->region_mark);
     cx->radius_of = malloc(groups * sizeof *cx->radius_of);
-    cx->witness = malloc(groups * WITNESSES * sizeof *cx->witness);
     cx->seen = calloc(n, sizeof *cx->seen);
     cx->visited = calloc(n, sizeof *cx->visited);
     cx->dist = malloc(n * sizeof *cx->dist);
     cx->reached = malloc(n * sizeof *cx->reached);
-    cx->moves.head = malloc(groups * sizeof *cx->moves.head);
     cx->band_of = malloc(n * sizeof *cx->band_of);
     cx->band = malloc(n * sizeof *cx->band);
     cx->old_group = malloc(n * sizeof *cx->old_group);
@@ -323,15 +335,95 @@ static int context_init(cut_context *cx, const ps_boundary_cut_input *in, int *g
     cx->piece_size = malloc(n * sizeof *cx->piece_size);
     cx->anchored = malloc(n * sizeof *cx->anchored);
     cx->queue = malloc(n * sizeof *cx->queue);
-    if (!cx->size || !cx->sinks_in || !cx->capacity || !cx->is_sink || !cx->sources ||
-        !cx->dijkstra || !cx->region_mark || !cx->radius_of || !cx->witness || !cx->seen || !cx->visited ||
-        !cx->dist || !cx->reached || !cx->moves.head || !cx->band_of || !cx->band ||
+    if (!cx->sources || !cx->dijkstra || !cx->region_mark || !cx->radius_of || !cx->seen ||
+        !cx->visited || !cx->dist || !cx->reached || !cx->band_of || !cx->band ||
         !cx->old_group || !cx->tie_source || !cx->tie_sink || !cx->net_offsets ||
         !cx->net_heads || !cx->net_capacity || !cx->side || !cx->flow_space || !cx->piece ||
         !cx->piece_start || !cx->piece_size || !cx->anchored || !cx->queue)
         return -1;
-    context_fill(cx);
-    return initial_boundaries(cx);
+    for (size_t p = 0; p < n; p++) cx->band_of[p] = NOT_IN_BAND, cx->dist[p] = INFINITY;
+    return 0;
+}
+
+/* Worker contexts 1..workers-1: the shared fields of the first, arrays of
+ * their own; NULL when out of memory. */
+static cut_context *more_workers(const cut_context *first, int workers) {
+    cut_context *w = calloc((size_t)workers, sizeof *w);
+    if (!w) return NULL;
+    for (int i = 0; i < workers; i++) {
+        cut_context *cx = &w[i];
+        *cx = (cut_context){.in = first->in, .group = first->group, .size = first->size,
+                            .sinks_in = first->sinks_in, .capacity = first->capacity,
+                            .is_sink = first->is_sink, .mean_edge = first->mean_edge,
+                            .angle_scale = first->angle_scale, .creased = first->creased,
+                            .moves = first->moves, .witness = first->witness,
+                            .initial = first->initial, .n_initial = first->n_initial};
+        if (i > 0 && scratch_init(cx) != 0) {
+            for (int j = 1; j <= i; j++) scratch_free(&w[j]);
+            free(w);
+            return NULL;
+        }
+    }
+    return w;
+}
+
+/* How many pairs may run side by side: one per thread, at most
+ * PS_BOUNDARY_CUT_WORKERS, and one alone above PS_BOUNDARY_CUT_SIDE_BY_SIDE
+ * points (each worker has its own per-point scratch). */
+static int worker_count(const ps_boundary_cut_input *in) {
+    int threads = ps_parallel_threads(in->threads);
+    if (in->graph->n > PS_BOUNDARY_CUT_SIDE_BY_SIDE) return 1;
+    return threads < PS_BOUNDARY_CUT_WORKERS ? threads : PS_BOUNDARY_CUT_WORKERS;
+}
+
+typedef struct cut_run {
+    cut_context *workers;     /* #workers; the first is the driver's */
+    const pair *pairs;
+    size_t n_pairs;
+    ps_error *errors;         /* #workers */
+} cut_run;
+
+static ps_status cut_task(void *ctx, size_t i, int worker) {
+    cut_run *r = ctx;
+    cut_context *cx = &r->workers[worker];
+    const ps_progress_span *span = cx->in->span;
+    if (span && ps_control_cancelled(span->ctl))
+        return ps_fail(&r->errors[worker], PS_ERR_CANCELLED, "cancelled");
+    return cut_pair(cx, r->pairs[i].a, r->pairs[i].b, &r->errors[worker]);
+}
+
+static void cut_report(void *ctx, size_t done) {
+    const cut_run *r = ctx;
+    const ps_progress_span *span = r->workers[0].in->span;
+    if (span)
+        ps_control_progress(span->ctl, span->phase,
+                            ps_progress_span_at(span, (double)done / (double)r->n_pairs));
+}
+
+/* Every pair, side by side where they share no segment (keyed_tasks.h:
+ * the result is that of one worker taking them in order). */
+static ps_status cut_pairs(cut_context *first, const pair *pairs, size_t n_pairs, ps_error *err) {
+    int workers = worker_count(first->in);
+    cut_context *w = more_workers(first, workers);
+    ps_error *errors = calloc((size_t)workers, sizeof *errors);
+    int *keys = malloc(2 * (n_pairs ? n_pairs : 1) * sizeof *keys);
+    ps_status st = PS_OK;
+    if (!w || !errors || !keys) st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
+    if (st == PS_OK) {
+        w[0] = *first;
+        for (size_t i = 0; i < n_pairs; i++) keys[i] = pairs[i].a, keys[n_pairs + i] = pairs[i].b;
+        cut_run r = {w, pairs, n_pairs, errors};
+        ps_keyed_tasks tasks = {.count = n_pairs, .key_a = keys, .key_b = keys + n_pairs,
+                                .n_keys = first->in->n_groups, .run = cut_task,
+                                .report = cut_report, .ctx = &r};
+        int failed = -1;
+        st = ps_keyed_tasks_run(&tasks, workers, &failed);
+        if (st != PS_OK && failed >= 0 && err) *err = errors[failed];
+        else if (st != PS_OK) ps_fail(err, st, "out of memory (boundary cut)");
+    }
+    for (int i = 1; w && i < workers; i++) scratch_free(&w[i]);
+    free(w), free(errors), free(keys);
+    return st;
 }
 
 ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supernode_of,
@@ -341,13 +433,11 @@ ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supe
     size_t n_pairs = 0;
     pair *pairs = NULL;
     ps_status st = PS_OK;
-    if (context_init(&cx, in, group) != 0 || !(pairs = adjacent_pairs(&cx, &n_pairs)))
+    if (shared_init(&cx, in, group) != 0 || scratch_init(&cx) != 0 ||
+        !(pairs = adjacent_pairs(&cx, &n_pairs)))
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     if (st == PS_OK) edge_scales(&cx);
-    for (size_t i = 0; st == PS_OK && i < n_pairs; i++) {
-        st = cut_pair(&cx, pairs[i].a, pairs[i].b, err);
-        if (st == PS_OK && in->span) st = report_pair(in->span, i + 1, n_pairs, err);
-    }
+    if (st == PS_OK) st = cut_pairs(&cx, pairs, n_pairs, err);
     if (st == PS_OK) reassign_supernodes(&cx, supernode_of);
     free(pairs);
     context_free(&cx);

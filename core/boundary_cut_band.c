@@ -22,10 +22,10 @@ static void consider(cut_context *cx, uint32_t p, int a, int b) {
     const ps_graph *g = cx->in->graph;
     if (cx->seen[p] == cx->stamp) return;
     cx->seen[p] = cx->stamp;
-    if (!in_pair(cx->group[p], a, b)) return;
-    int other = cx->group[p] == a ? b : a;
+    if (!in_pair(ps_bc_group(cx, p), a, b)) return;
+    int other = ps_bc_group(cx, p) == a ? b : a;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-        if (cx->group[g->neighbors[e]] == other) {
+        if (ps_bc_group(cx, g->neighbors[e]) == other) {
             cx->sources[cx->n_sources++] = p;
             return;
         }
@@ -55,8 +55,8 @@ size_t ps_bc_boundary_points(cut_context *cx, int a, int b) {
         consider(cx, cx->initial[i].point, a, b);
     int ends[2] = {a, b};
     for (int k = 0; k < 2; k++)
-        for (size_t m = cx->moves.head[ends[k]]; m != NO_MOVE; m = cx->moves.next[m]) {
-            uint32_t p = cx->moves.point[m];
+        for (size_t m = cx->moves->count[ends[k]]; m-- > 0;) {
+            uint32_t p = cx->moves->point[ends[k]][m];
             consider(cx, p, a, b);
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
                 consider(cx, g->neighbors[e], a, b);
@@ -71,7 +71,7 @@ static int far_beyond(const cut_context *cx, int s, double reach) {
     const double *x = cx->in->points;
     for (int k = 0; k < WITNESSES; k++) {
         uint32_t w = cx->witness[(size_t)s * WITNESSES + (size_t)k];
-        if (w == NO_WITNESS || cx->group[w] != s) continue;
+        if (w == NO_WITNESS || ps_bc_group(cx, w) != s) continue;
         size_t i = 0;
         while (i < cx->n_sources &&
                ps_distance3(x + 3 * (size_t)w, x + 3 * (size_t)cx->sources[i]) >= reach)
@@ -106,7 +106,7 @@ double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, d
     size_t reached_a = 0;
     for (size_t i = 0; i < n_reached; i++) {
         uint32_t p = cx->reached[i];
-        if (cx->group[p] == a) extent_a = fmax(extent_a, cx->dist[p]), reached_a++;
+        if (ps_bc_group(cx, p) == a) extent_a = fmax(extent_a, cx->dist[p]), reached_a++;
         else extent_b = fmax(extent_b, cx->dist[p]);
     }
     if (reached_a < cx->size[a] || cx->radius_of[a] < reach) extent_a = fmax(extent_a, reach);
@@ -125,9 +125,9 @@ static double tie_band_point(cut_context *cx, size_t i, int a, int b) {
     cx->tie_source[i] = cx->tie_sink[i] = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->neighbors[e];
-        if (!in_pair(cx->group[q], a, b)) continue;
+        if (!in_pair(ps_bc_group(cx, q), a, b)) continue;
         if (cx->band_of[q] != NOT_IN_BAND) inside += ps_bc_capacity(cx, p, e);
-        else if (cx->group[q] == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
+        else if (ps_bc_group(cx, q) == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
         else cx->tie_sink[i] += ps_bc_capacity(cx, p, e);
     }
     return cx->tie_source[i] + cx->tie_sink[i] + inside;
@@ -143,7 +143,7 @@ size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, i
     ps_sort_u32(cx->band, nb, cx->queue); /* the queue is free until the pieces */
     for (size_t i = 0; i < nb; i++) {
         cx->band_of[cx->band[i]] = (uint32_t)i;
-        cx->old_group[i] = cx->group[cx->band[i]];
+        cx->old_group[i] = ps_bc_group(cx, cx->band[i]);
     }
     double infinite = 1;
     for (size_t i = 0; i < nb; i++) infinite += tie_band_point(cx, i, a, b);

@@ -8,6 +8,11 @@
  * It holds the state one ps_boundary_cut call shares between those files
  * (every scratch array sized once, for #P points, #E graph arcs and
  * #groups segments) and the functions one of them calls in another.
+ * Pairs that share no segment may run side by side (boundary_cut.c), one
+ * cut_context per worker: the fields marked "shared" point at the same
+ * arrays in every worker's context, and a pair writes in them only what
+ * belongs to its own two segments (their points, their counts, the arcs
+ * out of their points); the rest is the worker's own scratch.
  */
 #ifndef PS_BOUNDARY_CUT_CONTEXT_H
 #define PS_BOUNDARY_CUT_CONTEXT_H
@@ -20,7 +25,6 @@
 #include <stdint.h>
 
 #define NOT_IN_BAND UINT32_MAX
-#define NO_MOVE SIZE_MAX
 #define NO_WITNESS UINT32_MAX
 #define WITNESSES 6 /* per segment: its lowest and highest point along x, y and z */
 
@@ -30,25 +34,27 @@ typedef struct boundary_entry {
     uint32_t point;
 } boundary_entry;
 
-/* Points moved into each segment by the cuts so far: one list per segment,
- * linked through next, newest first. */
+/* Points moved into each segment by the cuts so far, one list per segment,
+ * oldest first: only the pairs of a segment, which run one after the
+ * other, append to its list or read it. */
 typedef struct move_log {
-    uint32_t *point;  /* #count */
-    size_t *next;     /* #count the segment's previous entry, or NO_MOVE */
-    size_t *head;     /* #groups newest entry of each segment, or NO_MOVE */
-    size_t count, capacity;
+    uint32_t **point;   /* #groups lists */
+    size_t *count;      /* #groups */
+    size_t *capacity;   /* #groups */
 } move_log;
 
 typedef struct cut_context {
     const ps_boundary_cut_input *in;
-    int *group;                /* #P in/out */
-    size_t *size;              /* #groups points of each segment, kept current */
-    size_t *sinks_in;          /* #groups sink points of each segment, kept current */
-    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed */
-    unsigned char *is_sink;    /* #P */
+    int *group;                /* #P in/out, shared (read with ps_bc_group) */
+    size_t *size;              /* #groups points of each segment, kept current; shared */
+    size_t *sinks_in;          /* #groups sink points of each segment, kept current; shared */
+    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed; shared */
+    unsigned char *is_sink;    /* #P, shared */
     double mean_edge;          /* mean Euclidean kNN edge length L */
     double angle_scale;        /* A0 of the capacities */
     int creased;               /* 0 on a flat shape: capacities are lengths alone */
+    move_log *moves;           /* shared */
+    /* the worker's own from here on, but witness and initial (shared, read only) */
     uint32_t *sources;         /* #P the pair's boundary points, the ball's sources */
     size_t n_sources;
     ps_dijkstra *dijkstra;     /* for #P vertices */
@@ -56,14 +62,13 @@ typedef struct cut_context {
     uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
     double *radius_of;         /* #groups how far the ball may go into each segment */
     uint32_t *witness;         /* #groups by WITNESSES extreme points of each segment at
-                                  the start (NO_WITNESS: none), see far_beyond */
+                                  the start (NO_WITNESS: none), see far_beyond; shared */
     uint32_t *seen;            /* #P stamp of the boundary candidates checked */
     uint32_t *visited;         /* #P stamp of the points a piece search reached */
     double *dist;              /* #P INFINITY outside a pair's ball */
     uint32_t *reached;         /* #P */
-    boundary_entry *initial;   /* #I initial boundary points, sorted by (a, b, point) */
+    boundary_entry *initial;   /* #I initial boundary points, sorted by (a, b, point); shared */
     size_t n_initial;
-    move_log moves;
     uint32_t *band_of;         /* #P band index of each point, or NOT_IN_BAND */
     uint32_t *band;            /* #P band points, increasing */
     int *old_group;            /* #P group of each band point before the cut */
@@ -81,6 +86,14 @@ typedef struct cut_context {
     uint32_t *queue;           /* #P: the breadth-first queues (pieces, supernodes), and
                                   the scratch of the band's sort before them */
 } cut_context;
+
+/* Segment of p.  A point outside a running pair's segments may be moving
+ * between the segments of another pair at that moment; it reads as some
+ * other segment either way, and relaxed atomic loads and stores (here and
+ * in ps_bc_set_group) keep such concurrent reads well defined. */
+static inline int ps_bc_group(const cut_context *cx, uint32_t p) {
+    return __atomic_load_n(&cx->group[p], __ATOMIC_RELAXED);
+}
 
 /* boundary_cut.c */
 

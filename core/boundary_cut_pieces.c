@@ -17,7 +17,7 @@ static int band_pieces(cut_context *cx, size_t nb, int x) {
     int n_pieces = 0;
     for (size_t i = 0; i < nb; i++) cx->piece[i] = -1;
     for (uint32_t start = 0; start < nb; start++) {
-        if (cx->piece[start] >= 0 || cx->group[cx->band[start]] != x) continue;
+        if (cx->piece[start] >= 0 || ps_bc_group(cx, cx->band[start]) != x) continue;
         size_t head = 0, tail = 0;
         cx->piece[start] = n_pieces;
         cx->anchored[n_pieces] = 0;
@@ -26,7 +26,7 @@ static int band_pieces(cut_context *cx, size_t nb, int x) {
             uint32_t p = cx->band[cx->queue[head++]];
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
                 uint32_t q = g->neighbors[e], u = cx->band_of[q];
-                if (cx->group[q] != x) continue;
+                if (ps_bc_group(cx, q) != x) continue;
                 if (u == NOT_IN_BAND) cx->anchored[n_pieces] = 1;
                 else if (cx->piece[u] < 0) cx->piece[u] = n_pieces, cx->queue[tail++] = u;
             }
@@ -53,7 +53,7 @@ static int comes_first(cut_context *cx, uint32_t start, int x, size_t cap,
         if (p < lowest) lowest = p;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (cx->group[q] != x || cx->visited[q] == cx->stamp) continue;
+            if (ps_bc_group(cx, q) != x || cx->visited[q] == cx->stamp) continue;
             cx->visited[q] = cx->stamp;
             cx->queue[tail++] = q;
             if (tail > cap) return 1;
@@ -81,7 +81,7 @@ static int anchored_piece_first(cut_context *cx, size_t nb, int x, int best, siz
     }
     if (cx->size[x] - loose - explored < cap) return 0;
     for (uint32_t p = 0; p < cx->in->graph->n; p++)
-        if (cx->group[p] == x && cx->visited[p] != cx->stamp &&
+        if (ps_bc_group(cx, p) == x && cx->visited[p] != cx->stamp &&
             comes_first(cx, p, x, cap, loose_start, &explored))
             return 1;
     return 0;

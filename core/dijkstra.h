@@ -49,7 +49,10 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source,
  * with mark[label[v]] == stamp (label #P, e.g. the cell of each vertex;
  * mark #L, e.g. a stamp on the cells the run may enter).  radius_of, when
  * not NULL (with label), #L: v's bound is radius_of[label[v]] instead of
- * radius.  points, when not NULL, #P by 3: an edge's length is then
+ * radius.  Labels are read with relaxed atomic loads, so another thread
+ * may relabel vertices outside the region during a run (the boundary
+ * cut's pairs side by side), as long as no vertex enters or leaves it.
+ * points, when not NULL, #P by 3: an edge's length is then
  * ps_distance3 of its ends, and g->weights is not read (it may be NULL). */
 typedef struct ps_dijkstra_limits {
     double radius;

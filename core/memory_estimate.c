@@ -7,14 +7,18 @@
  * two-level centrality's table of cell-to-sample distances (a float per
  * sample for every cell of about CELL_POINTS points; the cell count stops
  * growing at PS_CELL_SCALE_POINTS, coarse_graph.h), over a fixed base; an
- * input split in draws has per-point constants of its own.
+ * input split in draws has per-point constants of its own; a pipeline small
+ * enough for the boundary cut's pairs side by side adds its further
+ * workers' scratch.
  */
 #include "pointseg.h"
 
+#include "boundary_cut.h"
 #include "centrality.h"
 #include "coarse_graph.h"
 #include "ensemble.h"
 #include "normals_smooth.h"
+#include "parallel.h"
 #include "surface_fill.h"
 
 /* Fitted 2026-11-24 to the peaks of the horse sampled at 300,000 to 10M
@@ -35,11 +39,24 @@
  * 1.15 times the largest of each. */
 #define DRAWS_BYTES_PER_POINT 102
 #define DRAWS_BYTES_PER_NEIGHBOUR 19
+/* Each further worker of the boundary cut (boundary_cut.h), up to
+ * PS_BOUNDARY_CUT_SIDE_BY_SIDE points a pipeline, holds per-point scratch
+ * of its own; what it touches is its distances and band marks for every
+ * point (12 bytes) and the rest only over the largest band. */
+#define CUT_WORKER_BYTES_PER_POINT 40
+
+/* The boundary cut's further workers on a pipeline of n points. */
+static size_t cut_workers_bytes(size_t n, const ps_params *params) {
+    int threads = ps_parallel_threads(params->threads);
+    int extra = (threads < PS_BOUNDARY_CUT_WORKERS ? threads : PS_BOUNDARY_CUT_WORKERS) - 1;
+    if (extra <= 0 || n > PS_BOUNDARY_CUT_SIDE_BY_SIDE) return 0;
+    return (size_t)extra * n * CUT_WORKER_BYTES_PER_POINT;
+}
 
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
     /* a mesh may be filled up to the reference sampling */
     if (ps_surface_fill_wanted(params, dim, n)) n = PS_DENSITY_REFERENCE_POINTS;
-    int draws = ps_ensemble_draws(params, n) > 1;
+    int n_draws = ps_ensemble_draws(params, n), draws = n_draws > 1;
     size_t per_point = (draws ? DRAWS_BYTES_PER_POINT : BYTES_PER_POINT) +
                        (draws ? DRAWS_BYTES_PER_NEIGHBOUR : BYTES_PER_NEIGHBOUR) * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
@@ -52,5 +69,5 @@ size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
         size_t cells = (n < PS_CELL_SCALE_POINTS ? n : PS_CELL_SCALE_POINTS) / CELL_POINTS;
         table = cells * samples * sizeof(float);
     }
-    return BASE_BYTES + n * per_point + table;
+    return BASE_BYTES + n * per_point + table + cut_workers_bytes(n / (size_t)n_draws, params);
 }

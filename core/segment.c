@@ -319,6 +319,7 @@ static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
         .n_supernodes = pl->sn.m,
         .sinks = pl->sn.sinks,
         .span = &span,
+        .threads = pl->threads,
     };
     return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
 }

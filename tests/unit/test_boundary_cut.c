@@ -10,7 +10,8 @@
  * and scattered points), sinks keep their segments and every point the cut
  * moves lies within the band's cap of a boundary it started next to.  With
  * a progress span it answers the same, reports rising progress pair by
- * pair up to the span's end, and stops when cancelled.
+ * pair up to the span's end, and stops when cancelled.  Pairs run side by
+ * side give the same answer on 1, 2 and 3 threads.
  */
 #include "boundary_cut.h"
 #include "progress_seen.h"
@@ -285,6 +286,40 @@ static void test_messy_segments_move_only_near_boundaries(void) {
     star_free(&s);
 }
 
+/* From the messy segments (many pairs, some side by side): the same
+ * segments and supernodes on 1, 2 and 3 threads. */
+static void test_same_for_any_thread_count(void) {
+    star s;
+    REQUIRE(star_build(&s));
+    size_t n = s.shape.n;
+    int *start = malloc(n * sizeof *start), *group[3], *supernodes[3];
+    uint32_t sinks[N_MESSY];
+    REQUIRE(start);
+    messy_groups(&s, start);
+    for (int t = 0; t < 3; t++) {
+        group[t] = malloc(n * sizeof *group[t]);
+        supernodes[t] = malloc(n * sizeof *supernodes[t]);
+        REQUIRE(group[t] && supernodes[t]);
+        int m = messy_supernodes(&s, start, supernodes[t], sinks);
+        ps_boundary_cut_input in = {.graph = &s.shape.graph, .points = s.shape.points,
+                                    .normals = s.shape.normals, .scales = scales_of(&s.shape),
+                                    .n_groups = N_MESSY, .n_supernodes = m, .sinks = sinks,
+                                    .threads = t + 1};
+        ps_error err = {0};
+        memcpy(group[t], start, n * sizeof *group[t]);
+        REQUIRE(ps_boundary_cut(&in, group[t], supernodes[t], &err) == PS_OK);
+    }
+    for (int t = 1; t < 3; t++) {
+        CHECK_MSG(memcmp(group[t], group[0], n * sizeof *group[0]) == 0, "%d threads", t + 1);
+        CHECK(memcmp(supernodes[t], supernodes[0], n * sizeof *supernodes[0]) == 0);
+    }
+    CHECK(memcmp(group[0], start, n * sizeof *start) != 0);
+    for (int t = 0; t < 3; t++) free(group[t]), free(supernodes[t]);
+    free(start);
+    star_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_star_boundaries_move_to_creases), TEST(test_true_parts_stay),
              TEST(test_progress_and_cancel),
-             TEST(test_deterministic), TEST(test_messy_segments_move_only_near_boundaries))
+             TEST(test_deterministic), TEST(test_messy_segments_move_only_near_boundaries),
+             TEST(test_same_for_any_thread_count))
