@@ -345,20 +345,14 @@ static int scratch_init(cut_context *cx) {
     return 0;
 }
 
-/* Worker contexts 1..workers-1: the shared fields of the first, arrays of
- * their own; NULL when out of memory. */
+/* The worker contexts: the first as it is, then copies of it with scratch
+ * arrays of their own; NULL when out of memory. */
 static cut_context *more_workers(const cut_context *first, int workers) {
     cut_context *w = calloc((size_t)workers, sizeof *w);
     if (!w) return NULL;
     for (int i = 0; i < workers; i++) {
-        cut_context *cx = &w[i];
-        *cx = (cut_context){.in = first->in, .group = first->group, .size = first->size,
-                            .sinks_in = first->sinks_in, .capacity = first->capacity,
-                            .is_sink = first->is_sink, .mean_edge = first->mean_edge,
-                            .angle_scale = first->angle_scale, .creased = first->creased,
-                            .moves = first->moves, .witness = first->witness,
-                            .initial = first->initial, .n_initial = first->n_initial};
-        if (i > 0 && scratch_init(cx) != 0) {
+        w[i] = *first; /* scratch_init then replaces every scratch field */
+        if (i > 0 && scratch_init(&w[i]) != 0) {
             for (int j = 1; j <= i; j++) scratch_free(&w[j]);
             free(w);
             return NULL;
@@ -410,7 +404,6 @@ static ps_status cut_pairs(cut_context *first, const pair *pairs, size_t n_pairs
     ps_status st = PS_OK;
     if (!w || !errors || !keys) st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     if (st == PS_OK) {
-        w[0] = *first;
         for (size_t i = 0; i < n_pairs; i++) keys[i] = pairs[i].a, keys[n_pairs + i] = pairs[i].b;
         cut_run r = {w, pairs, n_pairs, errors};
         ps_keyed_tasks tasks = {.count = n_pairs, .key_a = keys, .key_b = keys + n_pairs,

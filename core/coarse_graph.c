@@ -2,13 +2,14 @@
  * coarse_graph.c: cells, local distances and the coarse graph of
  * coarse_graph.h.
  *
- * Steps: the median edge length per component (select_parallel.h), the greedy
- * cover (sequential: each seed depends on the cover so far; one
+ * Steps: the median edge length per component (select_parallel.h), the
+ * greedy cover (sequential: each seed depends on the cover so far; one
  * ps_dijkstra_ball within the radius per seed, lowering every vertex's
  * distance to its nearest seed so far and reaching only the vertices it
  * lowers, which then join the seed's cell: the nearest seed's cell is known
- * when the cover ends), the near lists (cell members by counting sort), the local distances (one ps_dijkstra_ball per seed over its near
- * cells, in parallel; the run from c writes only the slots (p, c), so no
+ * when the cover ends), the near lists (cell members by counting sort), the
+ * local distances (one ps_dijkstra_ball per seed over its near cells, in
+ * parallel; the run from c writes only the slots (p, c), so no
  * two workers share a slot) and the coarse graph read off the seeds' rows.
  */
 #include "coarse_graph.h"
@@ -30,7 +31,7 @@
 #define COVER_SHARE 0.45  /* ... after the cover and the cells ... */
 #define CELLS_SHARE 0.5   /* ... after the near lists; local distances follow */
 
-/* ---- a bounded Dijkstra (one thread's workspace) ------------------------ */
+/* ---- a Dijkstra over marked cells (one thread's local distances) --------- */
 
 typedef struct ball {
     ps_dijkstra *dijkstra;
@@ -58,11 +59,12 @@ static ps_status ball_init(ball *b, size_t n, size_t n_cells) {
     return PS_OK;
 }
 
-/* Dijkstra from source over the vertices within radius; with cell_of, only
- * over vertices whose cell is marked with stamp.  b->reached lists them. */
-static void ball_run(ball *b, const ps_graph *g, uint32_t source, double radius,
-                     const uint32_t *cell_of, uint32_t stamp) {
-    ps_dijkstra_limits limits = {.radius = radius, .label = cell_of, .mark = b->mark, .stamp = stamp};
+/* Dijkstra from source over the vertices whose cell is marked with stamp.
+ * b->reached lists them. */
+static void ball_run(ball *b, const ps_graph *g, uint32_t source, const uint32_t *cell_of,
+                     uint32_t stamp) {
+    ps_dijkstra_limits limits = {.radius = INFINITY, .label = cell_of, .mark = b->mark,
+                                 .stamp = stamp};
     b->n_reached = ps_dijkstra_ball(b->dijkstra, g, source, &limits, b->dist, b->reached);
 }
 
@@ -102,8 +104,9 @@ static ps_status cell_radii(const ps_bfs_order *o, int threads, double *radius) 
  * within the radius, so that seed's ball lowered it; ties go to the lower
  * cell, as a ball lowers only strictly).  nearest #P: INFINITY on entry,
  * each vertex's distance to its nearest seed on return. */
-static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
-                       const ps_progress_span *span, double *nearest, ps_coarse_graph *cg) {
+static ps_status cover(const ps_bfs_order *o, const double *radius, ps_dijkstra *dij,
+                       uint32_t *reached, const ps_progress_span *span, double *nearest,
+                       ps_coarse_graph *cg) {
     size_t m = 0;
     for (int k = 0; k < o->n_components; k++) {
         cg->cell_start[k] = m;
@@ -116,9 +119,8 @@ static ps_status cover(const ps_bfs_order *o, const double *radius, ball *b,
             }
             cg->seed[m] = (uint32_t)v;
             ps_dijkstra_limits limits = {.radius = radius[k]};
-            size_t lowered = ps_dijkstra_ball(b->dijkstra, &o->g, (uint32_t)v, &limits, nearest,
-                                              b->reached);
-            for (size_t i = 0; i < lowered; i++) cg->cell_of[b->reached[i]] = (uint32_t)m;
+            size_t lowered = ps_dijkstra_ball(dij, &o->g, (uint32_t)v, &limits, nearest, reached);
+            for (size_t i = 0; i < lowered; i++) cg->cell_of[reached[i]] = (uint32_t)m;
             m++;
         }
     }
@@ -204,7 +206,7 @@ typedef struct local_ctx {
 
 static void local_from_seed(const ps_graph *g, ps_coarse_graph *cg, ball *b, uint32_t c) {
     for (size_t i = cg->near_offsets[c]; i < cg->near_offsets[c + 1]; i++) b->mark[cg->near[i]] = c;
-    ball_run(b, g, cg->seed[c], INFINITY, cg->cell_of, c);
+    ball_run(b, g, cg->seed[c], cg->cell_of, c);
     for (size_t i = 0; i < b->n_reached; i++) {
         uint32_t p = b->reached[i];
         size_t j = near_index(cg, cg->cell_of[p], c);
@@ -272,22 +274,25 @@ static ps_status alloc_cells(const ps_bfs_order *o, ps_coarse_graph *cg) {
     return cg->seed && cg->cell_of && cg->cell_start && cg->local_offsets ? PS_OK : PS_ERR_NOMEM;
 }
 
-/* Cell radii (in parallel), cells and near lists (sequential); balls[0]
- * serves the cover. */
-static ps_status build_cells(const ps_bfs_order *o, int threads, ball *b,
-                             const ps_progress_span *span, ps_coarse_graph *cg) {
+/* Cell radii (in parallel), cells and near lists (sequential). */
+static ps_status build_cells(const ps_bfs_order *o, int threads, const ps_progress_span *span,
+                             ps_coarse_graph *cg) {
+    size_t alloc_n = o->g.n ? o->g.n : 1;
     double *radius = malloc(((size_t)o->n_components + 1) * sizeof *radius);
     ps_status st = radius ? cell_radii(o, threads, radius) : PS_ERR_NOMEM;
-    double *nearest = st == PS_OK ? malloc((o->g.n ? o->g.n : 1) * sizeof *nearest) : NULL;
+    double *nearest = malloc(alloc_n * sizeof *nearest);
+    uint32_t *reached = malloc(alloc_n * sizeof *reached);
+    ps_dijkstra *dij = ps_dijkstra_new(o->g.n);
     ps_progress_span cover_span = {span->ctl, span->phase, ps_progress_span_at(span, RADII_SHARE),
                                    ps_progress_span_at(span, COVER_SHARE)};
     ps_control_progress(span->ctl, span->phase, cover_span.lo);
-    if (st == PS_OK && !nearest) st = PS_ERR_NOMEM;
+    if (st == PS_OK && (!nearest || !reached || !dij)) st = PS_ERR_NOMEM;
     if (st == PS_OK) {
         for (size_t v = 0; v < o->g.n; v++) nearest[v] = INFINITY;
-        st = cover(o, radius, b, &cover_span, nearest, cg);
+        st = cover(o, radius, dij, reached, &cover_span, nearest, cg);
     }
-    free(radius), free(nearest);
+    free(radius), free(nearest), free(reached);
+    ps_dijkstra_free(dij);
     if (st != PS_OK) return st;
     cg->near_offsets = malloc((cg->n_cells + 1) * sizeof *cg->near_offsets);
     uint32_t *mark = malloc((cg->n_cells ? cg->n_cells : 1) * sizeof *mark);
@@ -304,10 +309,8 @@ static ps_status build_cells(const ps_bfs_order *o, int threads, ball *b,
 static ps_status build_levels(const ps_bfs_order *o, int threads, const ps_progress_span *span,
                               ball *balls, ps_coarse_graph *cg) {
     ps_status st = alloc_cells(o, cg);
-    if (st == PS_OK) st = ball_init(&balls[0], o->g.n, 0);
-    if (st == PS_OK) st = build_cells(o, threads, &balls[0], span, cg);
+    if (st == PS_OK) st = build_cells(o, threads, span, cg);
     if (st != PS_OK) return st;
-    ball_free(&balls[0]);
     ps_progress_span local = {span->ctl, span->phase, ps_progress_span_at(span, CELLS_SHARE),
                               span->hi};
     ps_control_progress(span->ctl, span->phase, local.lo);
