@@ -1,8 +1,9 @@
 /*
  * outliers.c: stray points found by a median local outlier factor on the
  * kNN graph, and their removal from the distinct points (outliers.h).
- * O(E) for the medians (quickselect on each row, points in parallel), O(P)
- * for the remapping.
+ * O(E) for the medians (ranks counted in a short row, quickselect for a
+ * hub's long one; points in parallel) and for the test against the
+ * neighbours' median (a count, no selection), O(P) for the remapping.
  */
 #include "outliers.h"
 
@@ -22,28 +23,48 @@ typedef struct outlier_job {
     uint32_t *keep_for;     /* #U out */
 } outlier_job;
 
+/* Rows up to this long take their median by counting ranks. */
+#define SHORT_ROW 32
+
+/* The median (the element of rank n / 2) of the n > 0 values x: in a
+ * short row the value with at most n / 2 values below it and more than
+ * n / 2 at or below it, else by quickselect through row (#n scratch). */
+static double median_of(const double *x, size_t n, double *row) {
+    size_t k = n / 2;
+    for (size_t i = 0; n <= SHORT_ROW && i < n; i++) {
+        size_t below = 0, at_most = 0;
+        for (size_t j = 0; j < n; j++) below += x[j] < x[i], at_most += x[j] <= x[i];
+        if (below <= k && k < at_most) return x[i];
+    }
+    memcpy(row, x, n * sizeof *row);
+    return ps_select_kth(row, n, k);
+}
+
 /* scale: each point's median edge length (0 without edges). */
 static void median_edges(void *ctx, size_t begin, size_t end, int worker) {
     const outlier_job *j = ctx;
     const ps_graph *g = j->g;
     for (size_t p = begin; p < end; p++) {
         size_t n = g->offsets[p + 1] - g->offsets[p];
-        memcpy(j->row[worker], g->weights + g->offsets[p], n * sizeof *j->row[worker]);
-        j->scale[p] = n ? ps_select_kth(j->row[worker], n, n / 2) : 0;
+        j->scale[p] = n ? median_of(g->weights + g->offsets[p], n, j->row[worker]) : 0;
     }
 }
 
-/* outlier: 1 when the point's scale is over PS_OUTLIER_RATIO times the
- * median of its neighbours' scales. */
+/* outlier: 1 when the point's scale s is over PS_OUTLIER_RATIO times the
+ * median m of its n neighbours' scales.  As x -> PS_OUTLIER_RATIO x rounds
+ * monotonically, s > PS_OUTLIER_RATIO m exactly when more than n / 2 of
+ * the neighbours' scales v have PS_OUTLIER_RATIO v < s: a count, with no
+ * selection. */
 static void mark_outliers(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
     const outlier_job *j = ctx;
     const ps_graph *g = j->g;
-    double *row = j->row[worker];
     for (size_t p = begin; p < end; p++) {
-        size_t n = 0;
+        size_t n = g->offsets[p + 1] - g->offsets[p], below = 0;
+        double s = j->scale[p];
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            row[n++] = j->scale[g->neighbors[e]];
-        j->outlier[p] = n > 0 && j->scale[p] > PS_OUTLIER_RATIO * ps_select_kth(row, n, n / 2);
+            below += PS_OUTLIER_RATIO * j->scale[g->neighbors[e]] < s;
+        j->outlier[p] = below > n / 2;
     }
 }
 
