@@ -34,7 +34,7 @@ static size_t block_end(size_t n, size_t b) {
     return (b + 1) * CREASE_BLOCK < n ? (b + 1) * CREASE_BLOCK : n;
 }
 
-static double arc_angular(const crease_pass *c, size_t p, size_t e, double eta) {
+static inline double arc_angular(const crease_pass *c, size_t p, size_t e, double eta) {
     size_t q = c->g->neighbors[e];
     return ps_crease_angular(c->points + 3 * p, c->normals + 3 * p, c->points + 3 * q,
                              c->normals + 3 * q, eta);
