@@ -134,18 +134,17 @@ static int part_of_point(const tree *t, int leaf, double h) {
 
 ps_status ps_merge_tree_parts(const ps_graph *g, const double *f, const int *component,
                               int n_components, double persistence, const ps_flow *up,
-                              int *part_of, int *n_parts, ps_error *err) {
+                              const ps_saddle *s, size_t count, int *part_of, int *n_parts,
+                              ps_error *err) {
     for (size_t p = 0; p < g->n; p++) part_of[p] = -1;
     *n_parts = 0;
     if (persistence <= 0 || up->n_sinks < 2) return PS_OK;
     int m = up->n_sinks;
-    size_t count = 0;
     tree t;
     int alloc_failed = tree_alloc(&t, m);
-    ps_saddle *s = ps_flow_border_saddles(g, f, up, &count);
     int *group = malloc((size_t)m * sizeof *group), *node_of = malloc((size_t)m * sizeof *node_of);
     double *threshold = ps_component_thresholds(f, component, g->n, n_components, persistence);
-    int ok = !alloc_failed && s && group && node_of && threshold;
+    int ok = !alloc_failed && group && node_of && threshold;
     if (ok) {
         tree_sweep(&t, s, count, f, component, up, group, node_of);
         *n_parts = tree_parts(&t, threshold);
@@ -155,6 +154,6 @@ ps_status ps_merge_tree_parts(const ps_graph *g, const double *f, const int *com
         for (size_t p = 0; p < g->n; p++) part_of[p] = part_of_point(&t, up->sink_of[p], f[p]);
     }
     tree_free(&t);
-    free(s), free(group), free(node_of), free(threshold);
+    free(group), free(node_of), free(threshold);
     return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "merge tree: out of memory");
 }

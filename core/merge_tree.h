@@ -17,7 +17,7 @@
 #ifndef PS_MERGE_TREE_H
 #define PS_MERGE_TREE_H
 
-#include "flow.h"
+#include "persistence.h"
 
 /* A node is a part when it lives longer than this times the persistence
  * threshold (a fraction of f's range in its component). */
@@ -29,13 +29,14 @@
 #define PS_PART_REACH 1.0
 
 /* g, f #P, component #P (n_components of them), up the simplified ascent
- * flow (#S basins), persistence the fraction of f's range below which
- * peaks merged (0: no parts).  part_of #P out: the part each point belongs
- * to, in [0, *n_parts), or -1 (its basin above the basin's highest saddle,
- * or the central region below).  Deterministic: saddles in
- * ps_flow_border_saddles's order. */
+ * flow (#S basins), s (#count) its border saddles in
+ * ps_flow_border_saddles's order (persistence.h), persistence the fraction
+ * of f's range below which peaks merged (0: no parts).  part_of #P out:
+ * the part each point belongs to, in [0, *n_parts), or -1 (its basin above
+ * the basin's highest saddle, or the central region below). */
 ps_status ps_merge_tree_parts(const ps_graph *g, const double *f, const int *component,
                               int n_components, double persistence, const ps_flow *up,
-                              int *part_of, int *n_parts, ps_error *err);
+                              const ps_saddle *s, size_t count, int *part_of, int *n_parts,
+                              ps_error *err);
 
 #endif

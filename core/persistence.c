@@ -2,7 +2,9 @@
  * persistence.c: persistence-based merging of flow basins (persistence.h).
  * Border edges are sorted by saddle height, then a union-find over the
  * basins, each set represented by its highest peak, merges the lower peak
- * whenever its persistence is under the component's threshold.
+ * whenever its persistence is under the component's threshold.  The
+ * border edges of the merged basins are those of the list whose ends
+ * still lie apart, in the same order: no pass over the graph again.
  */
 #include "persistence.h"
 
@@ -17,24 +19,40 @@ static int by_height_desc(const void *a, const void *b) {
     return (x->q > y->q) - (x->q < y->q);
 }
 
+/* s (#*capacity) grown to hold one more than *count; 0 when out of memory. */
+static int saddles_room(ps_saddle **s, size_t count, size_t *capacity) {
+    if (count < *capacity) return 1;
+    size_t more = *capacity ? 2 * *capacity : 1024;
+    ps_saddle *grown = realloc(*s, more * sizeof *grown);
+    if (!grown) return 0;
+    *s = grown, *capacity = more;
+    return 1;
+}
+
 ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_flow *flow,
                                   size_t *count) {
-    size_t n_border = 0;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            n_border += g->neighbors[e] > p && flow->sink_of[g->neighbors[e]] != flow->sink_of[p];
-    ps_saddle *s = malloc((n_border ? n_border : 1) * sizeof *s);
-    if (!s) return NULL;
-    size_t k = 0;
-    for (size_t p = 0; p < g->n; p++)
+    size_t k = 0, capacity = 0;
+    ps_saddle *s = NULL;
+    for (size_t p = 0; p < g->n; p++) {
+        int a = flow->sink_of[p];
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (q <= p || flow->sink_of[q] == flow->sink_of[p]) continue;
+            if (q <= p || flow->sink_of[q] == a) continue;
+            if (!saddles_room(&s, k, &capacity)) return free(s), NULL;
             s[k++] = (ps_saddle){f[p] < f[q] ? f[p] : f[q], (uint32_t)p, q};
         }
-    qsort(s, n_border, sizeof *s, by_height_desc);
-    *count = n_border;
+    }
+    if (!s) s = malloc(sizeof *s);
+    if (s) qsort(s, k, sizeof *s, by_height_desc);
+    *count = k;
     return s;
+}
+
+void ps_saddles_keep_borders(const ps_flow *flow, ps_saddle *s, size_t *count) {
+    size_t kept = 0;
+    for (size_t i = 0; i < *count; i++)
+        if (flow->sink_of[s[i].p] != flow->sink_of[s[i].q]) s[kept++] = s[i];
+    *count = kept;
 }
 
 /* Is sink a's peak below sink b's?  Ties: the higher vertex id is lower. */
@@ -71,27 +89,38 @@ void ps_flow_merge(ps_flow *flow, int *parent, int *new_id, size_t n) {
     flow->n_sinks = kept;
 }
 
+ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *component,
+                                 int n_components, double fraction, size_t min_size,
+                                 ps_saddle *s, size_t *count, ps_flow *flow, ps_error *err) {
+    if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
+    double *threshold = ps_component_thresholds(f, component, g->n, n_components, fraction);
+    int m = flow->n_sinks;
+    int *parent = malloc((size_t)m * sizeof *parent), *new_id = malloc((size_t)m * sizeof *new_id);
+    size_t *size = calloc((size_t)m, sizeof *size);
+    int ok = threshold && parent && new_id && size;
+    if (ok) {
+        for (int k = 0; k < m; k++) parent[k] = k;
+        for (size_t p = 0; p < g->n; p++) size[flow->sink_of[p]]++;
+        merge_sweep(s, *count, f, component, threshold, flow, parent, size, min_size);
+        ps_flow_merge(flow, parent, new_id, g->n);
+        ps_saddles_keep_borders(flow, s, count);
+    }
+    free(threshold);
+    free(parent);
+    free(new_id);
+    free(size);
+    return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
+}
+
 ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *component,
                            int n_components, double fraction, size_t min_size,
                            ps_flow *flow, ps_error *err) {
     if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     size_t count = 0;
     ps_saddle *s = ps_flow_border_saddles(g, f, flow, &count);
-    double *threshold = ps_component_thresholds(f, component, g->n, n_components, fraction);
-    int m = flow->n_sinks;
-    int *parent = malloc((size_t)m * sizeof *parent), *new_id = malloc((size_t)m * sizeof *new_id);
-    size_t *size = calloc((size_t)m, sizeof *size);
-    int ok = s && threshold && parent && new_id && size;
-    if (ok) {
-        for (int k = 0; k < m; k++) parent[k] = k;
-        for (size_t p = 0; p < g->n; p++) size[flow->sink_of[p]]++;
-        merge_sweep(s, count, f, component, threshold, flow, parent, size, min_size);
-        ps_flow_merge(flow, parent, new_id, g->n);
-    }
+    ps_status st = s ? ps_flow_simplify_along(g, f, component, n_components, fraction, min_size,
+                                              s, &count, flow, err)
+                     : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
     free(s);
-    free(threshold);
-    free(parent);
-    free(new_id);
-    free(size);
-    return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
+    return st;
 }

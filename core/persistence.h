@@ -40,6 +40,18 @@ typedef struct ps_saddle {
 ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_flow *flow,
                                   size_t *count);
 
+/* Keeps, in order, the saddles of s (#*count) whose ends lie in different
+ * basins of flow: after basins merge (ps_flow_merge), the border saddles
+ * of the merged flow from those of the flow before. */
+void ps_saddles_keep_borders(const ps_flow *flow, ps_saddle *s, size_t *count);
+
+/* ps_flow_simplify on flow's border saddles s (#*count, as
+ * ps_flow_border_saddles gives them), which become the simplified flow's
+ * (*count updated; untouched when nothing merges). */
+ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *component,
+                                 int n_components, double fraction, size_t min_size,
+                                 ps_saddle *s, size_t *count, ps_flow *flow, ps_error *err);
+
 /* Merges the basins as the union-find forest parent (#S) says: each tree
  * becomes its root's basin; surviving sinks keep increasing order and
  * sink_of (#n) is remapped.  new_id #S scratch. */

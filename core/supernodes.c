@@ -27,39 +27,51 @@ static void report(const ps_progress_span *span, double share) {
     if (span) ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, share));
 }
 
-static ps_status simplified_flow(const ps_graph *g, const double *f, const int *component,
-                                 int n_components, double persistence, int direction,
-                                 ps_flow *flow, ps_error *err) {
-    double *signed_f = NULL;
-    if (direction < 0) {
-        signed_f = malloc(g->n * sizeof *signed_f);
-        if (!signed_f) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
-        for (size_t p = 0; p < g->n; p++) signed_f[p] = -f[p];
-    }
-    const double *h = signed_f ? signed_f : f;
-    ps_status st = ps_flow_build(g, h, +1, flow, err);
+/* The descent flow, simplified. */
+static ps_status simplified_descent(const ps_graph *g, const double *f, const int *component,
+                                    int n_components, double persistence, ps_flow *flow,
+                                    ps_error *err) {
+    double *minus_f = malloc((g->n ? g->n : 1) * sizeof *minus_f);
+    if (!minus_f) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    for (size_t p = 0; p < g->n; p++) minus_f[p] = -f[p];
+    ps_status st = ps_flow_build(g, minus_f, +1, flow, err);
     if (st == PS_OK)
-        st = ps_flow_simplify(g, h, component, n_components, persistence,
+        st = ps_flow_simplify(g, minus_f, component, n_components, persistence,
                               PS_PERSISTENCE_MIN_BASIN, flow, err);
-    free(signed_f);
+    free(minus_f);
     return st;
 }
 
+/* The ascent flow, simplified, and its border saddles (*s, #*count, the
+ * caller frees) when they are wanted. */
+static ps_status simplified_ascent(const ps_graph *g, const double *f, const int *component,
+                                   int n_components, double persistence, int want_saddles,
+                                   ps_flow *flow, ps_saddle **s, size_t *count, ps_error *err) {
+    ps_status st = ps_flow_build(g, f, +1, flow, err);
+    if (st != PS_OK) return st;
+    if (!want_saddles)
+        return ps_flow_simplify(g, f, component, n_components, persistence,
+                                PS_PERSISTENCE_MIN_BASIN, flow, err);
+    *s = ps_flow_border_saddles(g, f, flow, count);
+    if (!*s) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    return ps_flow_simplify_along(g, f, component, n_components, persistence,
+                                  PS_PERSISTENCE_MIN_BASIN, *s, count, flow, err);
+}
+
 /* level #S out: each basin's highest saddle, min(f(p), f(q)) over edges to
- * other basins; -INFINITY-like (-1e300) for a basin that meets none.
- * across, if not NULL, #S out: the basin on the other side (-1 if none). */
-static void highest_saddles(const ps_graph *g, const double *f, const ps_flow *up,
-                            double *level, int *across) {
-    for (int s = 0; s < up->n_sinks; s++) {
-        level[s] = -1e300;
-        if (across) across[s] = -1;
+ * other basins (s, #count: up's border saddles); -INFINITY-like (-1e300)
+ * for a basin that meets none.  across, if not NULL, #S out: the basin on
+ * the other side (-1 if none; the lowest of several at the same height). */
+static void highest_saddles(const ps_saddle *s, size_t count, const ps_flow *up, double *level,
+                            int *across) {
+    for (int b = 0; b < up->n_sinks; b++) {
+        level[b] = -1e300;
+        if (across) across[b] = -1;
     }
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            uint32_t q = g->neighbors[e];
-            int a = up->sink_of[p], b = up->sink_of[q];
-            if (a == b) continue;
-            double h = f[p] < f[q] ? f[p] : f[q];
+    for (size_t i = 0; i < count; i++)
+        for (int side = 0; side < 2; side++) {
+            int a = up->sink_of[side ? s[i].q : s[i].p], b = up->sink_of[side ? s[i].p : s[i].q];
+            double h = s[i].height;
             if (h > level[a] || (h == level[a] && across && b < across[a])) {
                 level[a] = h;
                 if (across) across[a] = b;
@@ -68,11 +80,13 @@ static void highest_saddles(const ps_graph *g, const double *f, const ps_flow *u
 }
 
 /* One round: every basin with fewer than min_size points above its highest
- * saddle joins the basin across that saddle.  Returns how many joined. */
+ * saddle joins the basin across that saddle; up's border saddles (#*count)
+ * follow.  Returns how many joined. */
 static int merge_round(const ps_graph *g, const double *f, ps_flow *up, size_t min_size,
-                       double *level, int *across, int *parent, int *scratch) {
+                       ps_saddle *saddles, size_t *count, double *level, int *across, int *parent,
+                       int *scratch) {
     int m = up->n_sinks, merged = 0;
-    highest_saddles(g, f, up, level, across);
+    highest_saddles(saddles, *count, up, level, across);
     for (int s = 0; s < m; s++) parent[s] = s, scratch[s] = 0;
     for (size_t p = 0; p < g->n; p++) scratch[up->sink_of[p]] += f[p] >= level[up->sink_of[p]];
     for (int s = 0; s < m; s++) {
@@ -80,7 +94,10 @@ static int merge_round(const ps_graph *g, const double *f, ps_flow *up, size_t m
         int a = ps_union_find_root(parent, s), b = ps_union_find_root(parent, across[s]);
         if (a != b) parent[a] = b, merged++;
     }
-    if (merged) ps_flow_merge(up, parent, scratch, g->n);
+    if (merged) {
+        ps_flow_merge(up, parent, scratch, g->n);
+        ps_saddles_keep_borders(up, saddles, count);
+    }
     return merged;
 }
 
@@ -88,7 +105,8 @@ static int merge_round(const ps_graph *g, const double *f, ps_flow *up, size_t m
  * bump beside a crease) would set its neighbour's saddle level, and so cut
  * a limb too high: such basins join their neighbour, until none is left. */
 static ps_status merge_shallow_tops(const ps_graph *g, const double *f, ps_flow *up,
-                                    size_t min_size, ps_error *err) {
+                                    size_t min_size, ps_saddle *saddles, size_t *count,
+                                    ps_error *err) {
     int m = up->n_sinks;
     double *level = malloc((size_t)(m ? m : 1) * sizeof *level);
     int *across = malloc((size_t)(m ? m : 1) * sizeof *across);
@@ -98,7 +116,7 @@ static ps_status merge_shallow_tops(const ps_graph *g, const double *f, ps_flow 
                        ? PS_OK
                        : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     while (st == PS_OK && up->n_sinks > 1 &&
-           merge_round(g, f, up, min_size, level, across, parent, scratch) > 0) {
+           merge_round(g, f, up, min_size, saddles, count, level, across, parent, scratch) > 0) {
     }
     free(level), free(across), free(parent), free(scratch);
     return st;
@@ -165,10 +183,11 @@ static void absorb_tiny(const ps_graph *g, ps_supernodes *out, size_t min_size) 
 
 /* Supernodes: the basins (above their highest saddles, with use_minima),
  * then the merge tree's parts, then the minima.  part_of #P: -1 or a part
- * in [0, n_parts). */
+ * in [0, n_parts); saddles (#count): up's border saddles (with down). */
 static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
-                         const ps_flow *down, const int *part_of, int n_parts, size_t min_size,
-                         ps_supernodes *out, ps_error *err) {
+                         const ps_flow *down, const ps_saddle *saddles, size_t count,
+                         const int *part_of, int n_parts, size_t min_size, ps_supernodes *out,
+                         ps_error *err) {
     int n_up = up->n_sinks + n_parts, n_down = down ? down->n_sinks : 0;
     ps_status st = allocate(out, g->n, n_up + n_down, err);
     double *level = down ? malloc((size_t)up->n_sinks * sizeof *level) : NULL;
@@ -177,7 +196,7 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
         if (st == PS_OK) ps_supernodes_free(out);
         return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     }
-    if (down) highest_saddles(g, f, up, level, NULL);
+    if (down) highest_saddles(saddles, count, up, level, NULL);
     for (int s = 0; s < n_down; s++) out->is_minimum[n_up + s] = 1;
     for (size_t p = 0; p < g->n; p++) {
         int a = up->sink_of[p];
@@ -194,8 +213,9 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
 }
 
 /* The two flows of build_once, one per item of a parallel loop: the
- * ascent flow with its shallow tops merged (item 0) and, with minima, the
- * descent flow (item 1).  Each item has its own status and error. */
+ * ascent flow with its shallow tops merged and, with minima, its border
+ * saddles (item 0) and, with minima, the descent flow (item 1).  Each item
+ * has its own status and error. */
 typedef struct flows_task {
     const ps_graph *g;
     const double *f;
@@ -204,6 +224,8 @@ typedef struct flows_task {
     double persistence;
     int use_minima;
     ps_flow flow[2];  /* up, down */
+    ps_saddle *saddles; /* #n_saddles up's border saddles (with minima) */
+    size_t n_saddles;
     ps_status status[2];
     ps_error error[2];
 } flows_task;
@@ -213,10 +235,17 @@ static void flow_items(void *context, size_t begin, size_t end, int worker) {
     flows_task *t = context;
     for (size_t i = begin; i < end; i++) {
         ps_error *err = &t->error[i];
-        ps_status st = simplified_flow(t->g, t->f, t->component, t->n_components,
-                                       t->persistence, i == 0 ? +1 : -1, &t->flow[i], err);
-        if (st == PS_OK && i == 0 && t->use_minima && t->persistence > 0)
-            st = merge_shallow_tops(t->g, t->f, &t->flow[0], PS_PERSISTENCE_MIN_BASIN, err);
+        ps_status st;
+        if (i == 1) {
+            st = simplified_descent(t->g, t->f, t->component, t->n_components, t->persistence,
+                                    &t->flow[1], err);
+        } else {
+            st = simplified_ascent(t->g, t->f, t->component, t->n_components, t->persistence,
+                                   t->use_minima, &t->flow[0], &t->saddles, &t->n_saddles, err);
+            if (st == PS_OK && t->use_minima && t->persistence > 0)
+                st = merge_shallow_tops(t->g, t->f, &t->flow[0], PS_PERSISTENCE_MIN_BASIN,
+                                        t->saddles, &t->n_saddles, err);
+        }
         t->status[i] = st;
     }
 }
@@ -247,14 +276,16 @@ static ps_status build_once(const ps_graph *g, const double *f, const int *compo
     int n_parts = 0;
     if (st == PS_OK && use_minima)
         st = part_of ? ps_merge_tree_parts(g, f, component, n_components, persistence, up,
-                                           part_of, &n_parts, err)
+                                           t.saddles, t.n_saddles, part_of, &n_parts, err)
                      : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     report(span, PARTS_DONE);
     size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;
     if (st == PS_OK)
-        st = combine(g, f, up, use_minima ? down : NULL, part_of, n_parts, min_size, out, err);
+        st = combine(g, f, up, use_minima ? down : NULL, t.saddles, t.n_saddles, part_of, n_parts,
+                     min_size, out, err);
     report(span, COMBINED);
     free(part_of);
+    free(t.saddles);
     ps_flow_free(up);
     ps_flow_free(down);
     return st;

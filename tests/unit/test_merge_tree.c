@@ -8,6 +8,8 @@
 #include "merge_tree.h"
 #include "testlib.h"
 
+#include <stdlib.h>
+
 #define LEG 10  /* leg length: f runs 1..LEG along each leg */
 
 typedef struct animal {
@@ -45,8 +47,13 @@ static void animal_make(animal *a, int stem, int ear) {
 static int parts_of(animal *a, int *part_of) {
     int zero[PS_HAND_GRAPH_MAX_V] = {0}, n_parts = -1;
     ps_flow up;
+    size_t count = 0;
     if (ps_flow_build(&a->h.g, a->f, +1, &up, NULL) != PS_OK) return -1;
-    ps_status st = ps_merge_tree_parts(&a->h.g, a->f, zero, 1, 0.1, &up, part_of, &n_parts, NULL);
+    ps_saddle *s = ps_flow_border_saddles(&a->h.g, a->f, &up, &count);
+    ps_status st = s ? ps_merge_tree_parts(&a->h.g, a->f, zero, 1, 0.1, &up, s, count, part_of,
+                                           &n_parts, NULL)
+                     : PS_ERR_NOMEM;
+    free(s);
     ps_flow_free(&up);
     return st == PS_OK ? n_parts : -1;
 }
@@ -93,7 +100,8 @@ static void test_no_persistence_no_parts(void) {
     animal_make(&a, 8, 2);
     ps_flow up;
     REQUIRE(ps_flow_build(&a.h.g, a.f, +1, &up, NULL) == PS_OK);
-    CHECK(ps_merge_tree_parts(&a.h.g, a.f, zero, 1, 0, &up, part_of, &n_parts, NULL) == PS_OK);
+    CHECK(ps_merge_tree_parts(&a.h.g, a.f, zero, 1, 0, &up, NULL, 0, part_of, &n_parts, NULL) ==
+          PS_OK);
     CHECK(n_parts == 0 && part_of[a.stem_top] == -1);
     ps_flow_free(&up);
 }
