@@ -19,6 +19,7 @@ typedef struct crease_pass {
     double *weights;          /* the weights pass: g's weights, rewritten */
     const double *points, *normals;
     double L, A;              /* the weights pass: the metric's means */
+    double *spacing;          /* the sums pass: #P mean edge length of each point, or NULL */
     ps_crease_points *cp;     /* the strengths pass */
     double *sums;             /* #blocks by SUMS */
 } crease_pass;
@@ -41,21 +42,26 @@ static inline double arc_angular(const crease_pass *c, size_t p, size_t e, doubl
 }
 
 /* Each block's sums of edge lengths, of the metric's angular terms and of
- * the concave ones (the same while PS_CREASE_ETA_CONVEX is 0); a
- * ps_range_fn over blocks. */
+ * the concave ones (the same while PS_CREASE_ETA_CONVEX is 0), and each
+ * point's spacing when asked; a ps_range_fn over blocks. */
 static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
     (void)worker;
     crease_pass *c = ctx;
     const ps_graph *g = c->g;
     for (size_t b = begin; b < end; b++) {
         double len = 0, ang = 0, concave = 0;
-        for (size_t p = b * CREASE_BLOCK, end_p = block_end(g->n, b); p < end_p; p++)
+        for (size_t p = b * CREASE_BLOCK, end_p = block_end(g->n, b); p < end_p; p++) {
+            double row = 0;
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
                 double a0 = arc_angular(c, p, e, 0.0);
                 len += g->weights[e];
+                row += g->weights[e];
                 ang += PS_CREASE_ETA_CONVEX == 0 ? a0 : arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
                 concave += a0;
             }
+            size_t degree = g->offsets[p + 1] - g->offsets[p];
+            if (c->spacing) c->spacing[p] = degree ? row / (double)degree : 0.0;
+        }
         c->sums[SUMS * b] = len, c->sums[SUMS * b + 1] = ang, c->sums[SUMS * b + 2] = concave;
     }
 }
@@ -109,11 +115,15 @@ static int over_blocks(crease_pass *c, int threads, ps_range_fn fn, double out[S
     return 0;
 }
 
-/* The sums pass: c's metric means L and A, and the scales. */
+/* The sums pass: c's metric means L and A, the scales, and the spacings
+ * when asked. */
 static ps_status measure(crease_pass *c, int threads, ps_edge_scales *scales, ps_error *err) {
     double edges = (double)c->g->offsets[c->g->n], sums[SUMS];
     *scales = (ps_edge_scales){0, 0};
-    if (edges == 0) return PS_OK;
+    if (edges == 0) {
+        for (size_t p = 0; c->spacing && p < c->g->n; p++) c->spacing[p] = 0.0;
+        return PS_OK;
+    }
     if (over_blocks(c, threads, sum_blocks, sums) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease metric)");
     c->L = sums[0] / edges, c->A = sums[1] / edges;
@@ -128,8 +138,9 @@ ps_status ps_crease_scales(const ps_graph *g, const double *points, const double
 }
 
 ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
-                            int threads, ps_edge_scales *scales, ps_error *err) {
-    crease_pass c = {.g = g, .weights = g->weights, .points = points, .normals = normals};
+                            int threads, ps_edge_scales *scales, double *spacing, ps_error *err) {
+    crease_pass c = {.g = g, .weights = g->weights, .points = points, .normals = normals,
+                     .spacing = spacing};
     ps_edge_scales measured;
     ps_status st = measure(&c, threads, &measured, err);
     if (scales) *scales = measured;

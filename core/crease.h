@@ -54,9 +54,11 @@ ps_status ps_crease_scales(const ps_graph *g, const double *points, const double
 /* points #P by 3, normals #P by 3 (outward, unit).  Rewrites g->weights,
  * on threads (ps_parallel_threads) threads; the same for any count.
  * scales out (may be NULL): g's scales as ps_crease_scales gives them, from
- * the same pass. */
+ * the same pass.  spacing #P out (may be NULL): each point's mean edge
+ * length before the rewrite (0 without edges), from the same pass. */
 ps_status ps_crease_weights(ps_graph *g, const double *points, const double *normals,
-                            int threads, ps_edge_scales *scales, ps_error *err);
+                            int threads, ps_edge_scales *scales, double *spacing,
+                            ps_error *err);
 
 /* An edge is concave when (n_q - n_p) . (q - p) < 0 by more than this
  * fraction of |n_q - n_p| |q - p|: where the two are nearly perpendicular

@@ -36,6 +36,8 @@ typedef struct ps_pipeline {
     ps_crease_points creases; /* with normals: crease strengths of the #U points
                                  at the crease scale, and their mean */
     ps_edge_scales edge_scales; /* with normals: the graph's edges over them */
+    double *spacing;       /* with normals: #U mean Euclidean kNN edge length of each
+                              point (the profile split's) */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;

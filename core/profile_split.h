@@ -35,13 +35,15 @@
 #define PS_PROFILE_MIN_SHARE 0.05    /* each piece at least this share of the supernode */
 #define PS_PROFILE_TRIES 4           /* levels tried per supernode at most */
 
-/* g the kNN graph, points #P by 3, f #P the centrality, threads
- * (ps_parallel_threads) for the spacings; the result does not depend on
- * it.  sn is replaced by its refinement (ps_supernodes_relabel): every new
+/* g the kNN graph, points #P by 3, f #P the centrality, spacing #P each
+ * point's mean kNN edge length (Euclidean), or NULL to compute them here on
+ * threads (ps_parallel_threads) threads; the result does not depend on
+ * the count.  sn is replaced by its refinement (ps_supernodes_relabel): every new
  * supernode lies inside one old one and keeps its is_minimum; minima's
  * supernodes are not cut.  O(P + E + S), plus O(B^2) per supernode of B
  * bands (B is at most its f range over the band width). */
 ps_status ps_supernodes_split_profile(const ps_graph *g, const double *points, const double *f,
-                                      int threads, ps_supernodes *sn, ps_error *err);
+                                      const double *spacing, int threads, ps_supernodes *sn,
+                                      ps_error *err);
 
 #endif

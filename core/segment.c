@@ -140,13 +140,15 @@ static ps_status crease_scale(ps_pipeline *pl, ps_error *err) {
 /* Normals (given, or PCA) of the distinct points, brought to the scale of
  * the reference sampling (normals_smooth.h) and kept for the boundary cut
  * and the patch merge; the crease scale's normals and strengths, kept for
- * the crease split and merge; then the crease metric, on the normals. */
+ * the crease split and merge; then the crease metric, on the normals, and
+ * the points' spacings (kept for the profile split) from the same pass. */
 static ps_status crease_metric(ps_pipeline *pl, ps_error *err) {
     size_t u = pl->dedup.n_unique;
     double *given = NULL;
     pl->normals = malloc(u * 3 * sizeof *pl->normals);
     pl->creases.strength = malloc(u * sizeof *pl->creases.strength);
-    if (!pl->normals || !pl->creases.strength)
+    pl->spacing = malloc(u * sizeof *pl->spacing);
+    if (!pl->normals || !pl->creases.strength || !pl->spacing)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
     if (pl->in->normals) {
         given = malloc(u * 3 * sizeof *given);
@@ -169,7 +171,7 @@ static ps_status crease_metric(ps_pipeline *pl, ps_error *err) {
     if (st == PS_OK) {
         ps_control_progress(pl->ctl, PS_PHASE_KNN, KNN_STRENGTHS_DONE);
         st = ps_crease_weights(&pl->graph, pl->points, pl->normals, pl->threads,
-                               &pl->edge_scales, err);
+                               &pl->edge_scales, pl->spacing, err);
     }
     free(given);
     return st;
@@ -270,8 +272,8 @@ static ps_status phase_supernodes(ps_pipeline *pl, ps_error *err) {
     if (st == PS_OK && pl->normals)
         st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     if (st == PS_OK && pl->normals && pl->in->dim == 3)
-        st = ps_supernodes_split_profile(&pl->graph, pl->points, pl->f, pl->threads, &pl->sn,
-                                             err);
+        st = ps_supernodes_split_profile(&pl->graph, pl->points, pl->f, pl->spacing, pl->threads,
+                                         &pl->sn, err);
     return st;
 }
 
@@ -384,8 +386,9 @@ void ps_pipeline_shed(ps_pipeline *pl) {
     if (pl->crease_normals != pl->normals) free(pl->crease_normals);
     free(pl->normals);
     free(pl->creases.strength);
+    free(pl->spacing);
     pl->component = NULL;
-    pl->crease_normals = pl->normals = pl->creases.strength = NULL;
+    pl->crease_normals = pl->normals = pl->creases.strength = pl->spacing = NULL;
 }
 
 void ps_pipeline_free(ps_pipeline *pl) {

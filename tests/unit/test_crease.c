@@ -23,7 +23,7 @@ static void test_valley_ridge_flat(void) {
     uint32_t nbr[6] = {1, 0, 3, 2, 5, 4};
     double w[6] = {1, 1, 1, 1, 1, 1};
     ps_graph g = {6, off, nbr, w};
-    REQUIRE(ps_crease_weights(&g, pts, nrm, 1, NULL, NULL) == PS_OK);
+    REQUIRE(ps_crease_weights(&g, pts, nrm, 1, NULL, NULL, NULL) == PS_OK);
     CHECK(w[0] == w[1] && w[2] == w[3] && w[4] == w[5]);
     CHECK_MSG(w[0] > 1.5 * w[2], "valley %g, ridge %g", w[0], w[2]);
     CHECK_NEAR(w[2], w[4], 1e-12); /* convex edges weigh no more than flat */
@@ -38,7 +38,8 @@ static void test_star_crease_edges_grow(void) {
     ps_graph *g = &s.graph;
     double ratio[2];
     for (int pass = 0; pass < 2; pass++) {
-        if (pass == 1) REQUIRE(ps_crease_weights(g, s.points, s.normals, 0, NULL, NULL) == PS_OK);
+        if (pass == 1)
+            REQUIRE(ps_crease_weights(g, s.points, s.normals, 0, NULL, NULL, NULL) == PS_OK);
         double cross = 0, rest = 0;
         size_t n_cross = 0, n_rest = 0;
         for (size_t p = 0; p < s.n; p++)
@@ -55,34 +56,43 @@ static void test_star_crease_edges_grow(void) {
     ps_star_free(&s);
 }
 
-/* Weights and strengths are bit-identical on 1 and 3 threads, on a star
- * dense enough for several of crease.c's blocks of 4,096 points. */
+/* Weights, strengths and spacings are bit-identical on 1 and 3 threads, on
+ * a star dense enough for several of crease.c's blocks of 4,096 points; a
+ * spacing is the mean Euclidean length of the point's edges. */
 static void test_same_for_any_threads(void) {
     ps_star s;
     REQUIRE(ps_star_build_dense(&s, 250));
     REQUIRE(s.n > 2 * 4096);
     size_t arcs = s.graph.offsets[s.n];
-    double *base = malloc(arcs * sizeof *base), *weights[2], *strength[2], mean[2];
+    double *base = malloc(arcs * sizeof *base), *weights[2], *strength[2], *spacing[2], mean[2];
     REQUIRE(base != NULL);
     memcpy(base, s.graph.weights, arcs * sizeof *base);
     int threads[2] = {1, 3};
     for (int t = 0; t < 2; t++) {
         weights[t] = malloc(arcs * sizeof *weights[t]);
         strength[t] = malloc(s.n * sizeof *strength[t]);
-        REQUIRE(weights[t] && strength[t]);
+        spacing[t] = malloc(s.n * sizeof *spacing[t]);
+        REQUIRE(weights[t] && strength[t] && spacing[t]);
         memcpy(s.graph.weights, base, arcs * sizeof *base);
         ps_crease_points cp = {strength[t], 0};
         REQUIRE(ps_crease_strengths(&s.graph, s.points, s.normals, threads[t], &cp, NULL) ==
                 PS_OK);
-        REQUIRE(ps_crease_weights(&s.graph, s.points, s.normals, threads[t], NULL, NULL) == PS_OK);
+        REQUIRE(ps_crease_weights(&s.graph, s.points, s.normals, threads[t], NULL, spacing[t],
+                                  NULL) == PS_OK);
         memcpy(weights[t], s.graph.weights, arcs * sizeof *base);
         mean[t] = cp.mean;
     }
     CHECK(mean[0] > 0 && mean[0] == mean[1]);
     CHECK(memcmp(weights[0], weights[1], arcs * sizeof *base) == 0);
     CHECK(memcmp(strength[0], strength[1], s.n * sizeof *strength[0]) == 0);
+    CHECK(memcmp(spacing[0], spacing[1], s.n * sizeof *spacing[0]) == 0);
     CHECK(memcmp(weights[0], base, arcs * sizeof *base) != 0);
-    for (int t = 0; t < 2; t++) free(weights[t]), free(strength[t]);
+    for (size_t p = 0; p < s.n; p += 97) {
+        double sum = 0;
+        for (size_t e = s.graph.offsets[p]; e < s.graph.offsets[p + 1]; e++) sum += base[e];
+        CHECK(spacing[0][p] == sum / (double)(s.graph.offsets[p + 1] - s.graph.offsets[p]));
+    }
+    for (int t = 0; t < 2; t++) free(weights[t]), free(strength[t]), free(spacing[t]);
     free(base);
     ps_star_free(&s);
 }

@@ -94,7 +94,7 @@ static ps_status split(const cloud *c, double scale, int is_minimum, ps_supernod
     if (st == PS_OK) st = ps_knn_graph_build(points, c->n, 3, 7, 1, &g, &err);
     if (st == PS_OK && !one_supernode(c, is_minimum, sn, f)) st = PS_ERR_NOMEM;
     for (size_t p = 0; st == PS_OK && p < c->n; p++) f[p] *= scale;
-    if (st == PS_OK) st = ps_supernodes_split_profile(&g, points, f, 2, sn, &err);
+    if (st == PS_OK) st = ps_supernodes_split_profile(&g, points, f, NULL, 2, sn, &err);
     ps_graph_free(&g);
     free(points), free(f);
     return st;
