@@ -37,7 +37,7 @@ typedef struct ps_pipeline {
                                  at the crease scale, and their mean */
     ps_edge_scales edge_scales; /* with normals: the graph's edges over them */
     double *spacing;       /* with normals: #U mean Euclidean kNN edge length of each
-                              point (the profile split's) */
+                              point (the profile split's; freed after it) */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;
