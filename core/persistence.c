@@ -12,11 +12,48 @@
 #include "union_find.h"
 #include <stdlib.h>
 
-static int by_height_desc(const void *a, const void *b) {
-    const ps_saddle *x = a, *y = b;
-    if (x->height != y->height) return x->height > y->height ? -1 : 1;
-    if (x->p != y->p) return x->p < y->p ? -1 : 1;
-    return (x->q > y->q) - (x->q < y->q);
+#define INSERTION_RUN 16 /* saddles per run sorted by insertion before the merges */
+
+/* The sweep's order: height from high to low, then p, then q (a total
+ * order: an edge is listed once). */
+static int saddle_before(const ps_saddle *x, const ps_saddle *y) {
+    if (x->height != y->height) return x->height > y->height;
+    return x->p != y->p ? x->p < y->p : x->q < y->q;
+}
+
+static void insertion_sort(ps_saddle *s, size_t n) {
+    for (size_t i = 1; i < n; i++) {
+        ps_saddle x = s[i];
+        size_t j = i;
+        for (; j > 0 && saddle_before(&x, &s[j - 1]); j--) s[j] = s[j - 1];
+        s[j] = x;
+    }
+}
+
+/* Sorted runs from[lo, mid) and from[mid, hi) merged into to[lo, hi). */
+static void merge_runs(const ps_saddle *from, ps_saddle *to, size_t lo, size_t mid, size_t hi) {
+    size_t i = lo, j = mid, k = lo;
+    while (i < mid && j < hi) to[k++] = saddle_before(&from[j], &from[i]) ? from[j++] : from[i++];
+    while (i < mid) to[k++] = from[i++];
+    while (j < hi) to[k++] = from[j++];
+}
+
+/* s (#n) in the sweep's order: a bottom-up merge sort through tmp (#n);
+ * returns the array that holds the result (s or tmp). */
+static ps_saddle *sort_saddles(ps_saddle *s, size_t n, ps_saddle *tmp) {
+    for (size_t lo = 0; lo < n; lo += INSERTION_RUN)
+        insertion_sort(s + lo, n - lo < INSERTION_RUN ? n - lo : INSERTION_RUN);
+    ps_saddle *from = s, *to = tmp;
+    for (size_t width = INSERTION_RUN; width < n; width *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * width) {
+            size_t mid = lo + width < n ? lo + width : n;
+            size_t hi = lo + 2 * width < n ? lo + 2 * width : n;
+            merge_runs(from, to, lo, mid, hi);
+        }
+        ps_saddle *t = from;
+        from = to, to = t;
+    }
+    return from;
 }
 
 /* s (#*capacity) grown to hold one more than *count; 0 when out of memory. */
@@ -42,10 +79,12 @@ ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_f
             s[k++] = (ps_saddle){f[p] < f[q] ? f[p] : f[q], (uint32_t)p, q};
         }
     }
-    if (!s) s = malloc(sizeof *s);
-    if (s) qsort(s, k, sizeof *s, by_height_desc);
+    ps_saddle *tmp = malloc((k ? k : 1) * sizeof *tmp);
+    if (!tmp) return free(s), NULL;
+    ps_saddle *sorted = k ? sort_saddles(s, k, tmp) : tmp;
+    free(sorted == s ? tmp : s);
     *count = k;
-    return s;
+    return sorted;
 }
 
 void ps_saddles_keep_borders(const ps_flow *flow, ps_saddle *s, size_t *count) {

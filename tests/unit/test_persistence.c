@@ -1,11 +1,13 @@
 /* test_persistence.c: persistence merging of flow basins: a ripple merges
  * into its neighbour, a prominent peak survives, fraction 0 keeps all, and
- * components are judged by their own range. */
+ * components are judged by their own range; border saddles come sorted,
+ * ties included, and follow merges. */
 #include "flow.h"
 #include "hand_graph.h"
 #include "persistence.h"
 #include "testlib.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 /* f on 9 vertices: big peak at 1 (10), ripple at 4 (5.5) over saddle 3 (5),
@@ -76,5 +78,41 @@ static void test_tiny_basin_merges(void) {
     ps_flow_free(&fl);
 }
 
+/* Every vertex its own basin on 64 vertices joined to the next and the one
+ * after (125 edges, heights with many ties): every edge is a border
+ * saddle, listed once, from high to low, ties by p then q; once vertices
+ * 0 to 31 share a basin, the edges among them leave the list. */
+static void test_border_saddles_sorted(void) {
+    enum { N = 64 };
+    int edges[2 * N][2], n_edges = 0;
+    for (int v = 0; v + 1 < N; v++) {
+        edges[n_edges][0] = v, edges[n_edges++][1] = v + 1;
+        if (v + 2 < N) edges[n_edges][0] = v, edges[n_edges++][1] = v + 2;
+    }
+    ps_hand_graph h;
+    ps_hand_graph_edges(&h, N, (const int(*)[2])edges, n_edges, 1.0);
+    double f[N];
+    int sink_of[N];
+    uint32_t sinks[N];
+    for (int v = 0; v < N; v++) f[v] = (v * 7) % 5, sink_of[v] = v, sinks[v] = (uint32_t)v;
+    ps_flow fl = {N, sinks, sink_of};
+    size_t count = 0;
+    ps_saddle *s = ps_flow_border_saddles(&h.g, f, &fl, &count);
+    REQUIRE(s != NULL);
+    CHECK(count == (size_t)n_edges);
+    for (size_t i = 0; i < count; i++) {
+        CHECK(s[i].p < s[i].q && s[i].height == fmin(f[s[i].p], f[s[i].q]));
+        if (i == 0) continue;
+        const ps_saddle *a = &s[i - 1], *b = &s[i];
+        CHECK(a->height > b->height ||
+              (a->height == b->height && (a->p < b->p || (a->p == b->p && a->q < b->q))));
+    }
+    for (int v = 0; v < N / 2; v++) sink_of[v] = 0;
+    ps_saddles_keep_borders(&fl, s, &count);
+    CHECK(count == (size_t)n_edges - (N / 2 - 1) - (N / 2 - 2));
+    for (size_t i = 0; i < count; i++) CHECK(s[i].q >= N / 2);
+    free(s);
+}
+
 PS_TEST_MAIN(TEST(test_ripple_merges), TEST(test_threshold_per_component),
-             TEST(test_tiny_basin_merges))
+             TEST(test_tiny_basin_merges), TEST(test_border_saddles_sorted))
