@@ -76,11 +76,14 @@ static inline double ps_crease_angular(const double *p, const double *np, const 
     double dq[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
     double opening = dn[0] * dq[0] + dn[1] * dq[1] + dn[2] * dq[2];
     const double tolerance2 = PS_CREASE_CONCAVE_TOLERANCE * PS_CREASE_CONCAVE_TOLERANCE;
-    int concave = opening < 0 && /* the norms only where the sign says concave */
-                  opening * opening > tolerance2 *
-                                          (dn[0] * dn[0] + dn[1] * dn[1] + dn[2] * dn[2]) *
-                                          (dq[0] * dq[0] + dq[1] * dq[1] + dq[2] * dq[2]);
-    return (concave ? 1.0 : eta_convex) * (1 - cosine);
+    /* Both tests always, and eta picked by index: no branch on the sign,
+     * which is a coin toss where smoothed normals are nearly parallel. */
+    int concave = (opening < 0) &
+                  (opening * opening > tolerance2 *
+                                           (dn[0] * dn[0] + dn[1] * dn[1] + dn[2] * dn[2]) *
+                                           (dq[0] * dq[0] + dq[1] * dq[1] + dq[2] * dq[2]));
+    const double eta[2] = {eta_convex, 1.0};
+    return eta[concave] * (1 - cosine);
 }
 
 /* How strongly each point lies on a concave crease: strength[p] is p's
