@@ -145,7 +145,7 @@ ps_status ps_convex_merge(const ps_merge_input *in, int *group_of_point,
                                   .n_groups = in->n_groups,
                                   .mark = ps_crease_marked_edge, .context = &test,
                                   .threads = in->threads};
-    ps_status st = ps_segment_graph_build(&sg, &sgi, err);
+    ps_status st = ps_segment_graph_build_along(&sg, &sgi, in->boundary, err);
     if (st != PS_OK) return st;
     samples s = {0};
     st = samples_init(&s, &sg, group_of_point, in->graph->n, err);

@@ -120,7 +120,7 @@ ps_status ps_crease_merge(const ps_merge_input *in, int *group_of_point,
                                   .n_groups = in->n_groups,
                                   .mark = ps_crease_marked_edge, .context = &test,
                                   .threads = in->threads};
-    ps_status st = ps_segment_graph_build(&sg, &sgi, err);
+    ps_status st = ps_segment_graph_build_along(&sg, &sgi, in->boundary, err);
     for (long i; st == PS_OK && (i = weakest_boundary(&sg, PS_CREASE_MERGE_FRACTION)) >= 0;)
         if (!merge_pair(&sg, (size_t)i, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (crease merge)");

@@ -83,7 +83,7 @@ ps_status ps_patch_merge(const ps_merge_input *in, int *group_of_point,
     ps_segment_graph_input sgi = {
         .graph = in->graph, .f = in->f, .group = group_of_point, .n_groups = in->n_groups,
         .threads = in->threads};
-    ps_status st = ps_segment_graph_build(&sg, &sgi, err);
+    ps_status st = ps_segment_graph_build_along(&sg, &sgi, in->boundary, err);
     size_t m = (size_t)(in->n_groups > 0 ? in->n_groups : 1);
     double *sum = st == PS_OK ? normal_sums(in, group_of_point) : NULL;
     int *widest = malloc(m * sizeof *widest);

@@ -329,17 +329,23 @@ static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
 }
 
 /* The merges' input over the given normals (the crease merge and the
- * convex merge read the crease scale's, the patch merge the raw ones). */
-static ps_merge_input merge_input(const ps_pipeline *pl, const double *normals) {
+ * convex merge read the crease scale's, the patch merge the raw ones),
+ * with the boundary edges they pass on. */
+static ps_merge_input merge_input(const ps_pipeline *pl, const double *normals,
+                                  ps_edge_list *boundary) {
     return (ps_merge_input){.graph = &pl->graph, .points = pl->points, .normals = normals,
                             .f = pl->f, .mean_angular = pl->creases.mean,
-                            .n_groups = pl->n_tree, .threads = pl->threads};
+                            .n_groups = pl->n_tree, .threads = pl->threads,
+                            .boundary = boundary};
 }
 
-/* The merges after the boundary cut (method auto, 3-D), in order. */
+/* The merges after the boundary cut (method auto, 3-D), in order; each
+ * looks for boundaries only among the edges the one before found (merges
+ * only join segments). */
 static ps_status merge_segments(ps_pipeline *pl, ps_error *err) {
-    ps_merge_input crease = merge_input(pl, pl->crease_normals);
-    ps_merge_input raw = merge_input(pl, pl->normals);
+    ps_edge_list boundary = {0};
+    ps_merge_input crease = merge_input(pl, pl->crease_normals, &boundary);
+    ps_merge_input raw = merge_input(pl, pl->normals, &boundary);
     ps_status st = ps_crease_merge(&crease, pl->group_of_point, pl->group_of_leaf, &pl->merges,
                                    &pl->n_merges, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CREASE_MERGE_DONE);
@@ -349,6 +355,7 @@ static ps_status merge_segments(ps_pipeline *pl, ps_error *err) {
     if (st == PS_OK)
         st = ps_patch_merge(&raw, pl->group_of_point, pl->group_of_leaf, &pl->merges,
                             &pl->n_merges, err);
+    free(boundary.ends);
     return st;
 }
 

@@ -78,25 +78,26 @@ static ps_boundary edge_record(const ps_segment_graph_input *in, size_t p, size_
     return r;
 }
 
-/* The records of a run of points, in edge order. */
+/* The records of a run of points (or of candidate edges), in edge order,
+ * and their edges' ends when the caller wants them. */
 typedef struct record_list {
     ps_boundary *list;
+    uint32_t *ends;  /* #count by 2, or NULL when not wanted */
     size_t count, capacity;
     int failed;  /* out of memory */
 } record_list;
 
-static void record_push(record_list *r, ps_boundary b) {
-    if (r->failed) return;
-    if (r->count == r->capacity) {
-        size_t grown = r->capacity ? 2 * r->capacity : 256;
-        ps_boundary *list = realloc(r->list, grown * sizeof *list);
-        if (!list) {
-            r->failed = 1;
-            return;
-        }
-        r->list = list, r->capacity = grown;
-    }
-    r->list[r->count++] = b;
+/* Room for one more record (and its ends when wanted); 0 when out of memory. */
+static int record_room(record_list *r, int want_ends) {
+    if (r->count < r->capacity) return 1;
+    size_t grown = r->capacity ? 2 * r->capacity : 256;
+    ps_boundary *list = realloc(r->list, grown * sizeof *list);
+    if (list) r->list = list;
+    uint32_t *ends = want_ends ? realloc(r->ends, 2 * grown * sizeof *ends) : NULL;
+    if (ends) r->ends = ends;
+    if (!list || (want_ends && !ends)) return 0;
+    r->capacity = grown;
+    return 1;
 }
 
 typedef struct gather_job {
@@ -104,24 +105,62 @@ typedef struct gather_job {
     record_list *chunks;  /* #GATHER_CHUNKS */
 } gather_job;
 
-/* Chunk c's points: [n c / GATHER_CHUNKS, n (c + 1) / GATHER_CHUNKS). */
+/* The record of edge p < q, joining segments a != b, in chunk c. */
+static void gather_edge(const gather_job *j, size_t c, size_t p, size_t q, int a, int b) {
+    record_list *r = &j->chunks[c];
+    if (r->failed) return;
+    if (!record_room(r, j->in->found != NULL)) {
+        r->failed = 1;
+        return;
+    }
+    if (r->ends) r->ends[2 * r->count] = (uint32_t)p, r->ends[2 * r->count + 1] = (uint32_t)q;
+    r->list[r->count++] = edge_record(j->in, p, q, a, b);
+}
+
+/* Chunk c: the points [n c / GATHER_CHUNKS, n (c + 1) / GATHER_CHUNKS), or
+ * that share of the candidate edges. */
 static void gather_chunks(void *ctx, size_t begin, size_t end, int worker) {
-    gather_job *j = ctx;
+    const gather_job *j = ctx;
     const ps_graph *g = j->in->graph;
+    const ps_edge_list *cand = j->in->candidates;
     const int *group = j->in->group;
     (void)worker;
-    for (size_t c = begin; c < end; c++)
+    for (size_t c = begin; c < end; c++) {
+        if (cand) {
+            for (size_t i = cand->count * c / GATHER_CHUNKS;
+                 i < cand->count * (c + 1) / GATHER_CHUNKS; i++) {
+                size_t p = cand->ends[2 * i], q = cand->ends[2 * i + 1];
+                if (group[p] != group[q]) gather_edge(j, c, p, q, group[p], group[q]);
+            }
+            continue;
+        }
         for (size_t p = g->n * c / GATHER_CHUNKS; p < g->n * (c + 1) / GATHER_CHUNKS; p++)
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
                 size_t q = g->neighbors[e];
-                int a = group[p], b = group[q];
-                if (q > p && a != b) record_push(&j->chunks[c], edge_record(j->in, p, q, a, b));
+                if (q > p && group[p] != group[q]) gather_edge(j, c, p, q, group[p], group[q]);
             }
+    }
+}
+
+/* The chunks' edge ends joined in chunk order into in->found; 0 when out
+ * of memory. */
+static int join_ends(const record_list *chunks, size_t total, ps_edge_list *found) {
+    found->ends = malloc(2 * (total ? total : 1) * sizeof *found->ends);
+    found->count = 0;
+    if (!found->ends) return 0;
+    for (size_t c = 0; c < GATHER_CHUNKS; c++) {
+        if (chunks[c].count == 0) continue; /* its ends may be NULL */
+        memcpy(found->ends + 2 * found->count, chunks[c].ends,
+               2 * chunks[c].count * sizeof *found->ends);
+        found->count += chunks[c].count;
+    }
+    return 1;
 }
 
 /* One record per edge p < q joining two segments: the chunks gather
  * theirs side by side, then join in chunk order (the edge order of one
- * pass over the arcs, whatever the thread count). */
+ * pass over the arcs, whatever the thread count; candidates keep that
+ * order). */
 static int gather_boundaries(ps_segment_graph *sg, const ps_segment_graph_input *in) {
     record_list chunks[GATHER_CHUNKS] = {{0}};
     gather_job j = {in, chunks};
@@ -135,8 +174,9 @@ static int gather_boundaries(ps_segment_graph *sg, const ps_segment_graph_input 
         memcpy(sg->list + sg->count, chunks[c].list, chunks[c].count * sizeof *sg->list);
         sg->count += chunks[c].count;
     }
-    for (size_t c = 0; c < GATHER_CHUNKS; c++) free(chunks[c].list);
-    if (!sg->list) return 0;
+    int ok = sg->list && (!in->found || join_ends(chunks, total, in->found));
+    for (size_t c = 0; c < GATHER_CHUNKS; c++) free(chunks[c].list), free(chunks[c].ends);
+    if (!ok) return 0;
     coalesce(sg);
     return 1;
 }
@@ -182,6 +222,21 @@ ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_segment_graph_in
     }
     ps_segment_graph_free(sg);
     return ps_fail(err, PS_ERR_NOMEM, "out of memory (segment graph)");
+}
+
+ps_status ps_segment_graph_build_along(ps_segment_graph *sg, ps_segment_graph_input *in,
+                                       ps_edge_list *boundary, ps_error *err) {
+    ps_edge_list found = {0};
+    in->candidates = boundary && boundary->ends ? boundary : NULL;
+    in->found = boundary ? &found : NULL;
+    ps_status st = ps_segment_graph_build(sg, in, err);
+    if (st == PS_OK && boundary) {
+        free(boundary->ends);
+        *boundary = found;
+    } else {
+        free(found.ends);
+    }
+    return st;
 }
 
 static int append_merge(ps_merge **merges, int *n_merges, ps_merge merge) {

@@ -50,6 +50,12 @@ typedef struct ps_segment_graph {
     size_t count;
 } ps_segment_graph;
 
+/* kNN edges p-q, p < q, in the order of one pass over the arcs. */
+typedef struct ps_edge_list {
+    uint32_t *ends;  /* #count by 2: p, q (malloc'ed) */
+    size_t count;
+} ps_edge_list;
+
 /* Whether the kNN edge p-q, joining segments group[p] != group[q], is
  * marked. */
 typedef int (*ps_boundary_mark_fn)(void *context, const int *group, size_t p, size_t q);
@@ -66,6 +72,12 @@ typedef struct ps_segment_graph_input {
     void *context;            /* passed to mark */
     int threads;              /* gathering the boundaries (ps_parallel_threads: 0 = all
                                  cores); the graph is the same for any count */
+    const ps_edge_list *candidates; /* may be NULL: every kNN edge is looked at; else
+                                       only these, which must include every edge
+                                       joining two segments (the boundary edges of
+                                       groups these ones merged from) */
+    ps_edge_list *found;      /* out, may be NULL: the edges joining two segments
+                                 (the caller frees ends) */
 } ps_segment_graph_input;
 
 /* What each merge after the boundary cut reads (crease_merge.h,
@@ -78,6 +90,11 @@ typedef struct ps_merge_input {
     double mean_angular;     /* mean angular term over all edges (ps_crease_points.mean) */
     int n_groups;            /* segment ids are in [0, n_groups) */
     int threads;             /* ps_parallel_threads; the merges are the same for any count */
+    ps_edge_list *boundary;  /* in/out, may be NULL: with ends, the edges joining two of
+                                the groups passed in, or more (ps_segment_graph_input's
+                                candidates); a merge that builds its segment graph
+                                replaces them by those it found (still true of its
+                                merged groups), freeing the old ends */
 } ps_merge_input;
 
 /* What each merge does with its input: group_of_point #P in/out, each
@@ -98,6 +115,12 @@ double ps_segment_bulge(const ps_segment_graph *sg, int s);
 /* On failure sg is freed. */
 ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_segment_graph_input *in,
                                  ps_error *err);
+
+/* ps_segment_graph_build for a merge (ps_merge_input's boundary): boundary
+ * (may be NULL) gives in's candidates when it has ends, and on success is
+ * replaced by the edges found (its old ends freed). */
+ps_status ps_segment_graph_build_along(ps_segment_graph *sg, ps_segment_graph_input *in,
+                                       ps_edge_list *boundary, ps_error *err);
 
 /* Merges segment loser into winner (both surviving, adjacent or not) and
  * appends {loser, winner, loser's feature size} to the malloc'ed list

@@ -9,7 +9,8 @@
  * boundary records, and many boundaries (more than one allocation of
  * records) sum as few.  The records, gathered side by side, are the same
  * bit for bit for 1, 2 and 3 threads, their sums those of one pass in edge
- * order.
+ * order.  Looking only at the edges found between finer segments gives
+ * the coarser segments the same records and edges as looking at all.
  */
 #include "hand_graph.h"
 #include "segment_graph.h"
@@ -199,27 +200,71 @@ static void test_many_boundary_edges(void) {
     ps_segment_graph_free(&sg);
 }
 
-/* A path of 20,000 points on a helix in 7 segments, labels scattered: the
- * records for 1, 2 and 3 threads agree bit for bit, and the midpoint sums
- * of pair (0, 1) are those of one pass over its edges in order. */
-static void test_same_for_any_thread_count(void) {
-    enum { N = 20000 };
-    static size_t offsets[N + 1];
-    static uint32_t neighbors[2 * N];
-    static int group[N];
-    static double f[N], points[3 * N];
+enum { HELIX = 20000 };
+static size_t helix_offsets[HELIX + 1];
+static uint32_t helix_neighbors[2 * HELIX];
+static int helix_group[HELIX];
+static double helix_f[HELIX], helix_points[3 * HELIX];
+
+/* A path of HELIX points on a helix in 7 segments, labels scattered. */
+static ps_graph helix(void) {
     size_t arcs = 0;
     unsigned long long s = 99;
-    for (uint32_t p = 0; p < N; p++) {
-        offsets[p] = arcs;
-        if (p > 0) neighbors[arcs++] = p - 1;
-        if (p + 1 < N) neighbors[arcs++] = p + 1;
+    for (uint32_t p = 0; p < HELIX; p++) {
+        helix_offsets[p] = arcs;
+        if (p > 0) helix_neighbors[arcs++] = p - 1;
+        if (p + 1 < HELIX) helix_neighbors[arcs++] = p + 1;
         s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-        group[p] = (int)(s % 7), f[p] = p;
-        points[3 * p] = cos(p * 0.01), points[3 * p + 1] = sin(p * 0.01), points[3 * p + 2] = p * 1e-3;
+        helix_group[p] = (int)(s % 7), helix_f[p] = p;
+        helix_points[3 * p] = cos(p * 0.01), helix_points[3 * p + 1] = sin(p * 0.01);
+        helix_points[3 * p + 2] = p * 1e-3;
     }
-    offsets[N] = arcs;
-    ps_graph path = {.n = N, .offsets = offsets, .neighbors = neighbors};
+    helix_offsets[HELIX] = arcs;
+    return (ps_graph){.n = HELIX, .offsets = helix_offsets, .neighbors = helix_neighbors};
+}
+
+/* On the helix, segments 1 and 4 then merge into 0: built on the edges
+ * found between the 7 segments (on 1 and 3 threads), the records and the
+ * edges found are those of a build that looks at every edge. */
+static void test_candidates_same_graph(void) {
+    ps_graph path = helix();
+    ps_error err = {0};
+    ps_edge_list fine = {0}, coarse[3] = {{0}};
+    ps_segment_graph_input in = {.graph = &path, .f = helix_f, .points = helix_points,
+                                 .group = helix_group, .n_groups = 7, .found = &fine};
+    ps_segment_graph sg[3];
+    REQUIRE(ps_segment_graph_build(&sg[0], &in, &err) == PS_OK);
+    ps_segment_graph_free(&sg[0]);
+    size_t joins = 0;
+    for (uint32_t p = 0; p + 1 < HELIX; p++) joins += helix_group[p] != helix_group[p + 1];
+    REQUIRE(fine.count == joins);
+    for (uint32_t p = 0; p < HELIX; p++)
+        if (helix_group[p] == 1 || helix_group[p] == 4) helix_group[p] = 0;
+    for (int t = 0; t < 3; t++) {
+        in = (ps_segment_graph_input){.graph = &path, .f = helix_f, .points = helix_points,
+                                      .group = helix_group, .n_groups = 7,
+                                      .threads = t == 2 ? 3 : 1,
+                                      .candidates = t ? &fine : NULL, .found = &coarse[t]};
+        REQUIRE(ps_segment_graph_build(&sg[t], &in, &err) == PS_OK);
+    }
+    CHECK(coarse[0].count < fine.count);
+    for (int t = 1; t < 3; t++) {
+        CHECK(sg[t].count == sg[0].count && coarse[t].count == coarse[0].count);
+        CHECK(memcmp(sg[t].list, sg[0].list, sg[0].count * sizeof *sg[0].list) == 0);
+        CHECK(memcmp(coarse[t].ends, coarse[0].ends, 2 * coarse[0].count * sizeof(uint32_t)) == 0);
+    }
+    for (int t = 0; t < 3; t++) ps_segment_graph_free(&sg[t]), free(coarse[t].ends);
+    free(fine.ends);
+}
+
+/* On the helix: the records for 1, 2 and 3 threads agree bit for bit, and
+ * the midpoint sums of pair (0, 1) are those of one pass over its edges in
+ * order. */
+static void test_same_for_any_thread_count(void) {
+    enum { N = HELIX };
+    ps_graph path = helix();
+    const int *group = helix_group;
+    const double *f = helix_f, *points = helix_points;
     ps_segment_graph sg[3];
     for (int t = 0; t < 3; t++) {
         ps_error err = {0};
@@ -246,4 +291,4 @@ static void test_same_for_any_thread_count(void) {
 
 PS_TEST_MAIN(TEST(test_records_per_pair), TEST(test_merge_sums_and_applies), TEST(test_bulge),
              TEST(test_one_segment_no_records), TEST(test_many_boundary_edges),
-             TEST(test_same_for_any_thread_count))
+             TEST(test_same_for_any_thread_count), TEST(test_candidates_same_graph))
