@@ -162,6 +162,7 @@ static ps_status crease_metric(ps_pipeline *pl, ps_error *err) {
                                             pl->n_components, pl->params.smooth_normals,
                                             pl->threads, &span, pl->normals,
                                             &pl->normals_report, err);
+    free(given); /* now, so that the smoothings below reuse its pages */
     if (st == PS_OK)
         st = ps_normals_smooth(&pl->graph, pl->normals, ps_density_iterations(u), pl->threads, err);
     if (st == PS_OK) st = crease_scale(pl, err);
@@ -173,7 +174,6 @@ static ps_status crease_metric(ps_pipeline *pl, ps_error *err) {
         st = ps_crease_weights(&pl->graph, pl->points, pl->normals, pl->threads,
                                &pl->edge_scales, pl->spacing, err);
     }
-    free(given);
     return st;
 }
 
