@@ -6,6 +6,7 @@
  */
 #include "crease.h"
 
+#include "dijkstra.h"
 #include "parallel.h"
 
 #include <stdlib.h>
@@ -43,7 +44,9 @@ static inline double arc_angular(const crease_pass *c, size_t p, size_t e, doubl
 
 /* Each block's sums of edge lengths, of the metric's angular terms and of
  * the concave ones (the same while PS_CREASE_ETA_CONVEX is 0), and each
- * point's spacing when asked; a ps_range_fn over blocks. */
+ * point's spacing when asked; in the weights pass each arc's weight is
+ * then replaced by its angular term, which the weighing reads back (the
+ * length it recomputes from the points); a ps_range_fn over blocks. */
 static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
     (void)worker;
     crease_pass *c = ctx;
@@ -54,10 +57,13 @@ static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
             double row = 0;
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
                 double a0 = arc_angular(c, p, e, 0.0);
+                double term = PS_CREASE_ETA_CONVEX == 0 ? a0
+                                                        : arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
                 len += g->weights[e];
                 row += g->weights[e];
-                ang += PS_CREASE_ETA_CONVEX == 0 ? a0 : arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
+                ang += term;
                 concave += a0;
+                if (c->weights) c->weights[e] = term;
             }
             size_t degree = g->offsets[p + 1] - g->offsets[p];
             if (c->spacing) c->spacing[p] = degree ? row / (double)degree : 0.0;
@@ -66,7 +72,14 @@ static void sum_blocks(void *ctx, size_t begin, size_t end, int worker) {
     }
 }
 
-/* The metric's weights of the arcs out of points [begin, end). */
+/* |p q|, the weight the kNN graph gave arc e out of p (ps_knn_distance's
+ * sum in the same order). */
+static double arc_length(const crease_pass *c, size_t p, size_t e) {
+    return ps_distance3(c->points + 3 * p, c->points + 3 * (size_t)c->g->neighbors[e]);
+}
+
+/* The metric's weights of the arcs out of points [begin, end), from their
+ * angular terms in the weights and their lengths. */
 static void weigh_points(void *ctx, size_t begin, size_t end, int worker) {
     (void)worker;
     crease_pass *c = ctx;
@@ -75,10 +88,19 @@ static void weigh_points(void *ctx, size_t begin, size_t end, int worker) {
     const double delta = PS_CREASE_DELTA;
     for (size_t p = begin; p < end; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            double ang = arc_angular(c, p, e, PS_CREASE_ETA_CONVEX);
-            w[e] = delta * w[e] + (1 - delta) * c->L * ang / c->A;
+            w[e] = delta * arc_length(c, p, e) + (1 - delta) * c->L * w[e] / c->A;
             if (!(w[e] > 0)) w[e] = 1e-12 * c->L;
         }
+}
+
+/* The lengths back in the weights of the arcs out of points [begin, end)
+ * (a flat surface keeps them). */
+static void restore_lengths(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    crease_pass *c = ctx;
+    for (size_t p = begin; p < end; p++)
+        for (size_t e = c->g->offsets[p]; e < c->g->offsets[p + 1]; e++)
+            c->weights[e] = arc_length(c, p, e);
 }
 
 /* Each point's strength, and each block's sum of angular terms (eta 0). */
@@ -144,8 +166,10 @@ ps_status ps_crease_weights(ps_graph *g, const double *points, const double *nor
     ps_edge_scales measured;
     ps_status st = measure(&c, threads, &measured, err);
     if (scales) *scales = measured;
-    if (st != PS_OK || c.A < PS_CREASE_FLAT) return st; /* no arcs leave A at 0 */
-    ps_parallel_for(ps_parallel_threads(threads), g->n, 0, weigh_points, &c);
+    if (st != PS_OK) return st;
+    /* no arcs leave A at 0 */
+    ps_range_fn pass = c.A < PS_CREASE_FLAT ? restore_lengths : weigh_points;
+    ps_parallel_for(ps_parallel_threads(threads), g->n, 0, pass, &c);
     return PS_OK;
 }
 

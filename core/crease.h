@@ -52,7 +52,9 @@ ps_status ps_crease_scales(const ps_graph *g, const double *points, const double
                            int threads, ps_edge_scales *scales, ps_error *err);
 
 /* points #P by 3, normals #P by 3 (outward, unit).  Rewrites g->weights,
- * on threads (ps_parallel_threads) threads; the same for any count.
+ * which must be its Euclidean edge lengths as the kNN graph is built (the
+ * weighing computes them again from the points, ps_distance3), on threads
+ * (ps_parallel_threads) threads; the same for any count.
  * scales out (may be NULL): g's scales as ps_crease_scales gives them, from
  * the same pass.  spacing #P out (may be NULL): each point's mean edge
  * length before the rewrite (0 without edges), from the same pass. */

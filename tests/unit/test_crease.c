@@ -3,7 +3,8 @@
  * flat one does not; an edge whose test is 0 but for rounding is convex
  * however it is turned; on the star the edges where the arms meet the centre
  * (a known concave crease) come out much longer than the rest; the
- * weights and strengths do not depend on the thread count. */
+ * weights and strengths do not depend on the thread count; a flat grid
+ * keeps its weights bit for bit. */
 #include "crease.h"
 #include "star_fixture.h"
 #include "testlib.h"
@@ -122,6 +123,31 @@ static void test_slab_sign_is_no_rounding(void) {
     CHECK_MSG(valleys == 200, "%d of 200 turned gentle valleys concave", valleys);
 }
 
+/* A 40 by 40 grid in a tilted plane, every normal the plane's: no crease
+ * anywhere, and the weights stay the kNN graph's lengths bit for bit. */
+static void test_flat_keeps_lengths(void) {
+    enum { SIDE = 40, N = SIDE * SIDE };
+    static double points[3 * N], normals[3 * N];
+    const double r = sqrt(0.5);
+    for (int i = 0; i < N; i++) {
+        double x = 0.1 * (i % SIDE) + 0.003 * (i % 7), y = 0.1 * (i / SIDE);
+        points[3 * i] = x, points[3 * i + 1] = r * y, points[3 * i + 2] = r * y;
+        normals[3 * i] = 0, normals[3 * i + 1] = -r, normals[3 * i + 2] = r;
+    }
+    ps_graph g = {0};
+    REQUIRE(ps_knn_graph_build(points, N, 3, 7, 1, &g, NULL) == PS_OK);
+    size_t arcs = g.offsets[N];
+    double *lengths = malloc(arcs * sizeof *lengths);
+    REQUIRE(lengths != NULL);
+    memcpy(lengths, g.weights, arcs * sizeof *lengths);
+    ps_edge_scales scales;
+    REQUIRE(ps_crease_weights(&g, points, normals, 2, &scales, NULL, NULL) == PS_OK);
+    CHECK(scales.mean_concave < PS_CREASE_FLAT);
+    CHECK(memcmp(lengths, g.weights, arcs * sizeof *lengths) == 0);
+    free(lengths);
+    ps_graph_free(&g);
+}
+
 PS_TEST_MAIN(TEST(test_valley_ridge_flat), TEST(test_slab_sign_is_no_rounding),
              TEST(test_star_crease_edges_grow),
-             TEST(test_same_for_any_threads))
+             TEST(test_same_for_any_threads), TEST(test_flat_keeps_lengths))
