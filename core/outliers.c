@@ -27,10 +27,16 @@ typedef struct outlier_job {
 #define SHORT_ROW 32
 
 /* The median (the element of rank n / 2) of the n > 0 values x: in a
- * short row the value with at most n / 2 values below it and more than
- * n / 2 at or below it, else by quickselect through row (#n scratch). */
+ * short row a value with exactly n / 2 values below it, or, failing that
+ * (ties), one with at most n / 2 below it and more at or below it; else by
+ * quickselect through row (#n scratch). */
 static double median_of(const double *x, size_t n, double *row) {
     size_t k = n / 2;
+    for (size_t i = 0; n <= SHORT_ROW && i < n; i++) {
+        size_t below = 0;
+        for (size_t j = 0; j < n; j++) below += x[j] < x[i];
+        if (below == k) return x[i];
+    }
     for (size_t i = 0; n <= SHORT_ROW && i < n; i++) {
         size_t below = 0, at_most = 0;
         for (size_t j = 0; j < n; j++) below += x[j] < x[i], at_most += x[j] <= x[i];

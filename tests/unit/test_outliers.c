@@ -2,7 +2,8 @@
  * test_outliers.c: stray points (outliers.h).  A sphere keeps every point;
  * points far off it are found, each mapped to a sphere point; a cluster of
  * its own stays; dropping remaps the distinct points and the duplicates of
- * an outlier to the kept neighbour; the thread count changes nothing.
+ * an outlier to the kept neighbour; the thread count changes nothing; on a
+ * grid, whose edge lengths tie, one point far off it is found.
  */
 #include "dedup.h"
 #include "outliers.h"
@@ -114,5 +115,19 @@ static void test_threads_same_answer(void) {
     free(p), free(one), free(three);
 }
 
+/* A square grid, whose rows of edge lengths are full of ties, and one
+ * point far above its middle: that point alone is stray. */
+static void test_grid_ties(void) {
+    enum { SIDE = 20, N = SIDE * SIDE + 1 };
+    double p[3 * N];
+    for (int i = 0; i < SIDE * SIDE; i++)
+        p[3 * i] = i % SIDE, p[3 * i + 1] = i / SIDE, p[3 * i + 2] = 0;
+    p[3 * (N - 1)] = 9.5, p[3 * (N - 1) + 1] = 9.5, p[3 * (N - 1) + 2] = 30;
+    uint32_t keep_for[N];
+    CHECK(find(p, N, keep_for) == 1);
+    for (int i = 0; i < N - 1; i++) CHECK(keep_for[i] == (uint32_t)i);
+    CHECK(keep_for[N - 1] < N - 1);
+}
+
 PS_TEST_MAIN(TEST(test_threads_same_answer), TEST(test_sphere_keeps_every_point), TEST(test_strays_are_found),
-             TEST(test_far_cluster_stays), TEST(test_drop_remaps))
+             TEST(test_far_cluster_stays), TEST(test_drop_remaps), TEST(test_grid_ties))
