@@ -31,7 +31,8 @@
  *   - per-segment sink counts say whether a cut left a segment without one.
  * A sink point's "infinite" tie to its side is one plus every capacity of
  * the band's network, so no pass covers the whole pair.  An arc's capacity
- * is computed when a band first needs it (most arcs never are).  Every
+ * is computed when a band first needs it (most arcs never are), in the
+ * caller's array when it passes one, so later calls reuse it.  Every
  * scratch array is sized once.
  */
 #include "boundary_cut.h"
@@ -252,7 +253,7 @@ static void moves_free(move_log *log, size_t groups) {
 static void context_free(cut_context *cx) {
     free(cx->size);
     free(cx->sinks_in);
-    free(cx->capacity);
+    if (cx->capacity != cx->in->capacity) free(cx->capacity);
     free(cx->is_sink);
     free(cx->witness);
     free(cx->initial);
@@ -292,7 +293,7 @@ static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *gr
     *cx = (cut_context){.in = in, .group = group};
     cx->size = calloc(groups, sizeof *cx->size);
     cx->sinks_in = calloc(groups, sizeof *cx->sinks_in);
-    cx->capacity = calloc(arcs, sizeof *cx->capacity);
+    cx->capacity = in->capacity ? in->capacity : calloc(arcs, sizeof *cx->capacity);
     cx->is_sink = calloc(n, sizeof *cx->is_sink);
     cx->witness = malloc(groups * WITNESSES * sizeof *cx->witness);
     cx->moves = calloc(1, sizeof *cx->moves);

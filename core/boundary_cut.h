@@ -70,6 +70,11 @@ typedef struct ps_boundary_cut_input {
     const uint32_t *sinks;   /* #S sink point of each supernode */
     const ps_progress_span *span; /* progress over the pairs, and cancel; may be NULL */
     int threads;             /* ps_parallel_threads (0: all cores) */
+    double *capacity;        /* #E (graph->offsets[#P]) in/out, or NULL: each arc's cut
+                                capacity, 0 until computed (calloc it); the calls on one
+                                graph, points, normals and scales may share it, so that
+                                later ones reuse what earlier ones computed.  NULL: the
+                                call keeps its own. */
 } ps_boundary_cut_input;
 
 /* group #P in/out: each point's segment; supernode_of #P in/out: each

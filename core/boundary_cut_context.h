@@ -48,7 +48,8 @@ typedef struct cut_context {
     int *group;                /* #P in/out, shared (read with ps_bc_group) */
     size_t *size;              /* #groups points of each segment, kept current; shared */
     size_t *sinks_in;          /* #groups sink points of each segment, kept current; shared */
-    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed; shared */
+    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed; shared
+                                  (in->capacity, or the call's own) */
     unsigned char *is_sink;    /* #P, shared */
     double mean_edge;          /* mean Euclidean kNN edge length L */
     double angle_scale;        /* A0 of the capacities */

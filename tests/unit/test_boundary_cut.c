@@ -11,7 +11,8 @@
  * moves lies within the band's cap of a boundary it started next to.  With
  * a progress span it answers the same, reports rising progress pair by
  * pair up to the span's end, and stops when cancelled.  Pairs run side by
- * side give the same answer on 1, 2 and 3 threads.
+ * side give the same answer on 1, 2 and 3 threads, and a capacity array
+ * shared by several calls gives the answer of a call without one.
  */
 #include "boundary_cut.h"
 #include "progress_seen.h"
@@ -319,7 +320,58 @@ static void test_same_for_any_thread_count(void) {
     star_free(&s);
 }
 
+/* The messy segments cut with the caller's capacity array, once when the
+ * shifted parts' cut has filled part of it and once more: both answers are
+ * those of a cut with no array, which the array then holds capacities for. */
+static void test_shared_capacities_give_the_same_cut(void) {
+    star s;
+    REQUIRE(star_build(&s));
+    size_t n = s.shape.n, arcs = s.shape.graph.offsets[n];
+    int *start = malloc(n * sizeof *start), *group[3], *supernodes[3];
+    double *capacity = calloc(arcs, sizeof *capacity);
+    uint32_t sinks[N_MESSY];
+    REQUIRE(start && capacity);
+    ps_boundary_cut_input shifted = {.graph = &s.shape.graph, .points = s.shape.points,
+                                     .normals = s.shape.normals, .scales = scales_of(&s.shape),
+                                     .n_groups = N_PARTS, .n_supernodes = N_PARTS,
+                                     .sinks = s.sinks, .capacity = capacity};
+    ps_error err = {0};
+    group[0] = malloc(n * sizeof *group[0]);
+    supernodes[0] = malloc(n * sizeof *supernodes[0]);
+    REQUIRE(group[0] && supernodes[0]);
+    shifted_groups(&s, group[0]);
+    for (size_t p = 0; p < n; p++) supernodes[0][p] = group[0][p];
+    REQUIRE(ps_boundary_cut(&shifted, group[0], supernodes[0], &err) == PS_OK);
+    size_t filled = 0;
+    for (size_t e = 0; e < arcs; e++) filled += capacity[e] > 0;
+    CHECK_MSG(filled > 0 && filled < arcs, "%zu of %zu capacities after one cut", filled, arcs);
+    messy_groups(&s, start);
+    for (int t = 0; t < 3; t++) {
+        if (t > 0) group[t] = malloc(n * sizeof *group[t]);
+        if (t > 0) supernodes[t] = malloc(n * sizeof *supernodes[t]);
+        REQUIRE(group[t] && supernodes[t]);
+        int m = messy_supernodes(&s, start, supernodes[t], sinks);
+        ps_boundary_cut_input in = {.graph = &s.shape.graph, .points = s.shape.points,
+                                    .normals = s.shape.normals, .scales = scales_of(&s.shape),
+                                    .n_groups = N_MESSY, .n_supernodes = m, .sinks = sinks,
+                                    .capacity = t == 0 ? NULL : capacity};
+        memcpy(group[t], start, n * sizeof *group[t]);
+        REQUIRE(ps_boundary_cut(&in, group[t], supernodes[t], &err) == PS_OK);
+    }
+    for (int t = 1; t < 3; t++) {
+        CHECK_MSG(memcmp(group[t], group[0], n * sizeof *group[0]) == 0, "call %d", t);
+        CHECK(memcmp(supernodes[t], supernodes[0], n * sizeof *supernodes[0]) == 0);
+    }
+    size_t more = 0;
+    for (size_t e = 0; e < arcs; e++) more += capacity[e] > 0;
+    CHECK_MSG(more > filled, "%zu capacities after three cuts, %zu after one", more, filled);
+    for (int t = 0; t < 3; t++) free(group[t]), free(supernodes[t]);
+    free(start);
+    free(capacity);
+    star_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_star_boundaries_move_to_creases), TEST(test_true_parts_stay),
              TEST(test_progress_and_cancel),
              TEST(test_deterministic), TEST(test_messy_segments_move_only_near_boundaries),
-             TEST(test_same_for_any_thread_count))
+             TEST(test_same_for_any_thread_count), TEST(test_shared_capacities_give_the_same_cut))
