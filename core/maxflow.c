@@ -26,19 +26,25 @@
 #define SINK_TREE 2
 #define NO_ARC SIZE_MAX /* parent arc of a root or an orphan */
 
+/* A node's search state, in one place: the searches read and write these
+ * fields together. */
+typedef struct flow_node {
+    size_t parent_arc;       /* source tree: the arc parent -> v; sink tree: the
+                                arc v -> parent; NO_ARC */
+    uint64_t checked;        /* stamp of the last round v's origin was found to
+                                be its tree's root */
+    uint32_t parent;
+    uint32_t depth;          /* arcs from v up to its root, as of round checked */
+    unsigned char tree;      /* FREE, SOURCE_TREE or SINK_TREE */
+    unsigned char queued;    /* in the active queue */
+} flow_node;
+
 struct ps_maxflow_workspace {
     size_t nodes, arcs;      /* sizes the arrays below hold */
     size_t *reverse;         /* arcs: index of the reverse arc */
     double *residual;        /* arcs */
-    unsigned char *tree;     /* nodes: FREE, SOURCE_TREE or SINK_TREE */
-    unsigned char *queued;   /* nodes: in the active queue */
-    size_t *parent_arc;      /* nodes: source tree: the arc parent -> v;
-                                sink tree: the arc v -> parent; NO_ARC */
-    uint32_t *parent;        /* nodes */
-    uint64_t *checked;       /* nodes: stamp of the last round v's origin was
-                                found to be its tree's root */
-    uint32_t *depth;         /* nodes: arcs from v up to its root, as of round
-                                checked[v] */
+    flow_node *node;         /* nodes */
+    size_t *cursor;          /* nodes: the reverse arcs' search */
     uint32_t *active;        /* nodes: FIFO ring of active nodes */
     uint32_t *orphans;       /* nodes: stack */
 };
@@ -55,11 +61,10 @@ typedef struct flow_state {
 
 /* Reverse arcs in one pass over the rows in order: as the rows are sorted,
  * the arcs into q met for increasing p are row q's entries in order, so a
- * cursor per row (the parent arcs, left at NO_ARC afterwards) finds each
- * one.  -1 if the graph is not symmetric. */
+ * cursor per row finds each one.  -1 if the graph is not symmetric. */
 static int find_reverse_arcs(flow_state *st) {
     const ps_flow_graph *g = st->g;
-    size_t *cursor = st->w->parent_arc;
+    size_t *cursor = st->w->cursor;
     for (size_t v = 0; v < g->n; v++) cursor[v] = g->offsets[v];
     for (uint32_t p = 0; p < g->n; p++)
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
@@ -68,14 +73,13 @@ static int find_reverse_arcs(flow_state *st) {
                 return -1;
             st->w->reverse[e] = cursor[q]++;
         }
-    for (size_t v = 0; v < g->n; v++) cursor[v] = NO_ARC;
     return 0;
 }
 
 static void activate(flow_state *st, uint32_t v) {
     ps_maxflow_workspace *w = st->w;
-    if (w->queued[v]) return;
-    w->queued[v] = 1;
+    if (w->node[v].queued) return;
+    w->node[v].queued = 1;
     size_t at = st->head + st->count++;
     w->active[at < st->g->n ? at : at - st->g->n] = v;
 }
@@ -86,8 +90,8 @@ static uint32_t next_active(flow_state *st) {
     while (st->count > 0) {
         uint32_t v = w->active[st->head];
         st->head = st->head + 1 < st->g->n ? st->head + 1 : 0, st->count--;
-        w->queued[v] = 0;
-        if (w->tree[v] != FREE) return v;
+        w->node[v].queued = 0;
+        if (w->node[v].tree != FREE) return v;
     }
     return UINT32_MAX;
 }
@@ -99,39 +103,43 @@ static size_t tree_arc(const flow_state *st, unsigned char t, size_t e) {
 }
 
 /* Grows p's tree by its free neighbours; returns the first arc from the
- * source tree into the sink tree met on the way, or NO_ARC. */
+ * source tree into the sink tree met on the way, or NO_ARC.  p's own state
+ * does not change on the way (no arc leads from p to p's tree root through
+ * p itself), so it is read once. */
 static size_t grow(flow_state *st, uint32_t p) {
     const ps_flow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
-    unsigned char t = w->tree[p];
+    const unsigned char t = w->node[p].tree;
+    const uint64_t checked = w->node[p].checked;
+    const uint32_t depth = w->node[p].depth + 1; /* of a child of p */
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         size_t a = tree_arc(st, t, e);
         if (w->residual[a] <= st->tolerance) continue;
         uint32_t q = g->heads[e];
-        if (w->tree[q] == FREE) {
-            w->tree[q] = t, w->parent[q] = p, w->parent_arc[q] = a;
-            w->checked[q] = w->checked[p], w->depth[q] = w->depth[p] + 1;
+        flow_node *nq = &w->node[q];
+        if (nq->tree == FREE) {
+            nq->tree = t, nq->parent = p, nq->parent_arc = a;
+            nq->checked = checked, nq->depth = depth;
             activate(st, q);
-        } else if (w->tree[q] != t) {
+        } else if (nq->tree != t) {
             return a;
-        } else if (w->parent_arc[q] != NO_ARC && w->checked[q] <= w->checked[p] &&
-                   w->depth[q] > w->depth[p] + 1) {
-            w->parent[q] = p, w->parent_arc[q] = a;
-            w->checked[q] = w->checked[p], w->depth[q] = w->depth[p] + 1;
+        } else if (nq->parent_arc != NO_ARC && nq->checked <= checked && nq->depth > depth) {
+            nq->parent = p, nq->parent_arc = a;
+            nq->checked = checked, nq->depth = depth;
         }
     }
     return NO_ARC;
 }
 
 static void make_orphan(flow_state *st, uint32_t v) {
-    st->w->parent_arc[v] = NO_ARC;
+    st->w->node[v].parent_arc = NO_ARC;
     st->w->orphans[st->n_orphans++] = v;
 }
 
 static double path_bottleneck(const flow_state *st, uint32_t v, uint32_t root, double least) {
     const ps_maxflow_workspace *w = st->w;
-    for (; v != root; v = w->parent[v])
-        if (w->residual[w->parent_arc[v]] < least) least = w->residual[w->parent_arc[v]];
+    for (; v != root; v = w->node[v].parent)
+        if (w->residual[w->node[v].parent_arc] < least) least = w->residual[w->node[v].parent_arc];
     return least;
 }
 
@@ -140,8 +148,8 @@ static double path_bottleneck(const flow_state *st, uint32_t v, uint32_t root, d
 static void push_path(flow_state *st, uint32_t v, uint32_t root, double x) {
     ps_maxflow_workspace *w = st->w;
     while (v != root) {
-        size_t a = w->parent_arc[v];
-        uint32_t up = w->parent[v];
+        size_t a = w->node[v].parent_arc;
+        uint32_t up = w->node[v].parent;
         w->residual[a] -= x;
         w->residual[w->reverse[a]] += x;
         if (w->residual[a] <= st->tolerance) make_orphan(st, v);
@@ -168,16 +176,17 @@ static double augment(flow_state *st, size_t bridge) {
 static uint32_t rooted_depth(flow_state *st, uint32_t q) {
     ps_maxflow_workspace *w = st->w;
     uint32_t v = q, d = 0;
-    for (; v != st->source && v != st->sink; v = w->parent[v], d++) {
-        if (w->checked[v] == st->round) {
-            d += w->depth[v];
+    for (; v != st->source && v != st->sink; v = w->node[v].parent, d++) {
+        if (w->node[v].checked == st->round) {
+            d += w->node[v].depth;
             break;
         }
-        if (w->parent_arc[v] == NO_ARC) return UINT32_MAX;
+        if (w->node[v].parent_arc == NO_ARC) return UINT32_MAX;
     }
     uint32_t total = d;
-    for (v = q; v != st->source && v != st->sink && w->checked[v] != st->round; v = w->parent[v])
-        w->checked[v] = st->round, w->depth[v] = d--;
+    for (v = q; v != st->source && v != st->sink && w->node[v].checked != st->round;
+         v = w->node[v].parent)
+        w->node[v].checked = st->round, w->node[v].depth = d--;
     return total;
 }
 
@@ -188,28 +197,28 @@ static uint32_t rooted_depth(flow_state *st, uint32_t q) {
 static void adopt(flow_state *st, uint32_t p) {
     const ps_flow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
-    unsigned char t = w->tree[p];
+    unsigned char t = w->node[p].tree;
     uint32_t best = UINT32_MAX, best_depth = UINT32_MAX;
     size_t best_arc = NO_ARC;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->heads[e];
         size_t a = tree_arc(st, t, w->reverse[e]); /* the arc q's tree would use into p */
-        if (w->tree[q] != t || w->residual[a] <= st->tolerance) continue;
+        if (w->node[q].tree != t || w->residual[a] <= st->tolerance) continue;
         uint32_t d = rooted_depth(st, q);
         if (d < best_depth) best = q, best_depth = d, best_arc = a;
     }
     if (best != UINT32_MAX) {
-        w->parent[p] = best, w->parent_arc[p] = best_arc;
-        w->checked[p] = st->round, w->depth[p] = best_depth + 1;
+        w->node[p].parent = best, w->node[p].parent_arc = best_arc;
+        w->node[p].checked = st->round, w->node[p].depth = best_depth + 1;
         return;
     }
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->heads[e];
-        if (w->tree[q] != t) continue;
+        if (w->node[q].tree != t) continue;
         if (w->residual[tree_arc(st, t, w->reverse[e])] > st->tolerance) activate(st, q);
-        if (w->parent_arc[q] != NO_ARC && w->parent[q] == p) make_orphan(st, q);
+        if (w->node[q].parent_arc != NO_ARC && w->node[q].parent == p) make_orphan(st, q);
     }
-    w->tree[p] = FREE;
+    w->node[p].tree = FREE;
 }
 
 static double largest_capacity(const ps_flow_graph *g) {
@@ -225,9 +234,9 @@ static double max_flow(flow_state *st) {
     activate(st, st->source);
     activate(st, st->sink);
     for (uint32_t p; (p = next_active(st)) != UINT32_MAX;) {
-        for (size_t bridge; st->w->tree[p] != FREE && (bridge = grow(st, p)) != NO_ARC;) {
+        for (size_t bridge; st->w->node[p].tree != FREE && (bridge = grow(st, p)) != NO_ARC;) {
             st->round++;
-            st->w->checked[st->source] = st->w->checked[st->sink] = st->round;
+            st->w->node[st->source].checked = st->w->node[st->sink].checked = st->round;
             total += augment(st, bridge);
             while (st->n_orphans > 0) adopt(st, st->w->orphans[--st->n_orphans]);
         }
@@ -265,12 +274,8 @@ static int workspace_reserve(ps_maxflow_workspace *ws, const ps_flow_graph *g) {
     size_t nodes = g->n, arcs = g->offsets[g->n] ? g->offsets[g->n] : 1;
     if (nodes > ws->nodes) {
         ws->nodes = nodes;
-        ws->tree = fresh_array(ws->tree, nodes, sizeof *ws->tree);
-        ws->queued = fresh_array(ws->queued, nodes, sizeof *ws->queued);
-        ws->parent_arc = fresh_array(ws->parent_arc, nodes, sizeof *ws->parent_arc);
-        ws->parent = fresh_array(ws->parent, nodes, sizeof *ws->parent);
-        ws->checked = fresh_array(ws->checked, nodes, sizeof *ws->checked);
-        ws->depth = fresh_array(ws->depth, nodes, sizeof *ws->depth);
+        ws->node = fresh_array(ws->node, nodes, sizeof *ws->node);
+        ws->cursor = fresh_array(ws->cursor, nodes, sizeof *ws->cursor);
         ws->active = fresh_array(ws->active, nodes, sizeof *ws->active);
         ws->orphans = fresh_array(ws->orphans, nodes, sizeof *ws->orphans);
     }
@@ -279,9 +284,7 @@ static int workspace_reserve(ps_maxflow_workspace *ws, const ps_flow_graph *g) {
         ws->reverse = fresh_array(ws->reverse, arcs, sizeof *ws->reverse);
         ws->residual = fresh_array(ws->residual, arcs, sizeof *ws->residual);
     }
-    if (ws->tree && ws->queued && ws->parent_arc && ws->parent && ws->checked && ws->depth &&
-        ws->active &&
-        ws->orphans && ws->reverse && ws->residual)
+    if (ws->node && ws->cursor && ws->active && ws->orphans && ws->reverse && ws->residual)
         return 0;
     ws->nodes = ws->arcs = 0;
     return -1;
@@ -293,8 +296,7 @@ ps_maxflow_workspace *ps_maxflow_workspace_new(void) {
 
 void ps_maxflow_workspace_free(ps_maxflow_workspace *ws) {
     if (!ws) return;
-    free(ws->reverse), free(ws->residual), free(ws->tree), free(ws->queued);
-    free(ws->parent_arc), free(ws->parent), free(ws->checked), free(ws->depth), free(ws->active);
+    free(ws->reverse), free(ws->residual), free(ws->node), free(ws->cursor), free(ws->active);
     free(ws->orphans);
     free(ws);
 }
@@ -305,9 +307,9 @@ static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_g
                        .tolerance = 1e-12 * largest_capacity(g)};
     for (size_t e = 0; e < g->offsets[g->n]; e++) ws->residual[e] = g->capacity[e];
     for (size_t v = 0; v < g->n; v++)
-        ws->tree[v] = FREE, ws->queued[v] = 0, ws->checked[v] = 0, ws->depth[v] = 0;
-    ws->tree[source] = SOURCE_TREE;
-    ws->tree[sink] = SINK_TREE;
+        ws->node[v] = (flow_node){.parent_arc = NO_ARC, .tree = FREE};
+    ws->node[source].tree = SOURCE_TREE;
+    ws->node[sink].tree = SINK_TREE;
 }
 
 ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_flow_graph *g, uint32_t source,
