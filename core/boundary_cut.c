@@ -44,6 +44,7 @@
 #include "keyed_tasks.h"
 #include "maxflow.h"
 #include "parallel.h"
+#include "sort_util.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -160,48 +161,94 @@ static pair *adjacent_pairs(const cut_context *cx, size_t *count) {
     return pairs;
 }
 
-static int by_pair_then_point(const void *x, const void *y) {
-    const boundary_entry *p = x, *q = y;
-    if (p->a != q->a) return p->a < q->a ? -1 : 1;
-    if (p->b != q->b) return p->b < q->b ? -1 : 1;
-    return (p->point > q->point) - (p->point < q->point);
-}
-
-/* Every pair's boundary points at the start, in one pass over the arcs. */
-static int initial_boundaries(cut_context *cx) {
-    const ps_graph *g = cx->in->graph;
-    size_t arcs = 0, n = 0;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            arcs += cx->group[g->neighbors[e]] != cx->group[p];
-    cx->initial = malloc((arcs ? arcs : 1) * sizeof *cx->initial);
-    if (!cx->initial) return -1;
-    for (uint32_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            int x = cx->group[p], y = cx->group[g->neighbors[e]];
-            if (x != y) cx->initial[n++] = (boundary_entry){x < y ? x : y, x < y ? y : x, p};
-        }
-    qsort(cx->initial, n, sizeof *cx->initial, by_pair_then_point);
-    size_t kept = 0;
-    for (size_t i = 0; i < n; i++)
-        if (kept == 0 || by_pair_then_point(&cx->initial[kept - 1], &cx->initial[i]) != 0)
-            cx->initial[kept++] = cx->initial[i];
-    cx->n_initial = kept;
+/* Appends (a, b, p) to the n entries of list (room for *room, grown as
+ * needed); -1 when out of memory. */
+static int append_entry(boundary_entry **list, size_t *n, size_t *room, boundary_entry entry) {
+    if (*n == *room) {
+        size_t more = *room ? 2 * *room : 1024;
+        boundary_entry *grown = realloc(*list, more * sizeof *grown);
+        if (!grown) return -1;
+        *list = grown, *room = more;
+    }
+    (*list)[(*n)++] = entry;
     return 0;
 }
 
+/* Each point's entries, one per other segment next to it, in point order;
+ * the count, or SIZE_MAX when out of memory. */
+static size_t boundary_entries(const cut_context *cx, boundary_entry **list) {
+    const ps_graph *g = cx->in->graph;
+    size_t n = 0, room = 0;
+    *list = NULL;
+    for (uint32_t p = 0; p < g->n; p++) {
+        size_t first = n;
+        int x = cx->group[p];
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
+            int y = cx->group[g->neighbors[e]];
+            if (x == y) continue;
+            boundary_entry entry = {x < y ? x : y, x < y ? y : x, p};
+            size_t i = first;
+            while (i < n && ((*list)[i].a != entry.a || (*list)[i].b != entry.b)) i++;
+            if (i == n && append_entry(list, &n, &room, entry) != 0) return SIZE_MAX;
+        }
+    }
+    return n;
+}
+
+/* Stable counting sort of the n entries of from into to by their a (first
+ * 1) or b (first 0) over groups segments; count: groups + 1 scratch. */
+static void sort_entries(const boundary_entry *from, boundary_entry *to, size_t n, int first,
+                         size_t groups, size_t *count) {
+    for (size_t g = 0; g <= groups; g++) count[g] = 0;
+    for (size_t i = 0; i < n; i++) count[(size_t)(first ? from[i].a : from[i].b) + 1]++;
+    for (size_t g = 0; g < groups; g++) count[g + 1] += count[g];
+    for (size_t i = 0; i < n; i++) to[count[first ? from[i].a : from[i].b]++] = from[i];
+}
+
+/* Every pair's boundary points at the start, sorted by (a, b, point): the
+ * entries in point order, sorted stably by b, then by a. */
+static int initial_boundaries(cut_context *cx) {
+    size_t groups = cx->in->n_groups > 0 ? (size_t)cx->in->n_groups : 1;
+    boundary_entry *list;
+    size_t n = boundary_entries(cx, &list);
+    boundary_entry *by_b = malloc((n && n != SIZE_MAX ? n : 1) * sizeof *by_b);
+    size_t *count = malloc((groups + 1) * sizeof *count);
+    int ok = n != SIZE_MAX && by_b && count;
+    if (ok) {
+        sort_entries(list, by_b, n, 0, groups, count);
+        sort_entries(by_b, list, n, 1, groups, count);
+        cx->initial = list, cx->n_initial = n;
+    } else {
+        free(list);
+    }
+    free(by_b);
+    free(count);
+    return ok ? 0 : -1;
+}
+
 /* Points whose supernode's sink left their segment join a neighbour's
- * supernode in their own segment, breadth first; one with no such
- * neighbour anywhere goes back to its supernode's segment. */
+ * supernode in their own segment, breadth first from every other point in
+ * point order; one with no such neighbour anywhere goes back to its
+ * supernode's segment.  The search starts from the other points next to
+ * one of them in their segment, in point order, the only ones of the
+ * first round that reach any. */
 static void reassign_supernodes(cut_context *cx, int *supernode_of) {
     const ps_graph *g = cx->in->graph;
     const uint32_t *sinks = cx->in->sinks;
     unsigned char *settled = cx->is_sink; /* reused: sinks are no longer needed */
-    size_t head = 0, tail = 0;
+    uint32_t *loose = cx->band, *next = cx->reached; /* free after the pairs */
+    size_t n_loose = 0, head = 0, tail = 0;
     for (uint32_t p = 0; p < g->n; p++) {
         settled[p] = cx->group[p] == cx->group[sinks[supernode_of[p]]];
-        if (settled[p]) cx->queue[tail++] = p;
+        if (!settled[p]) loose[n_loose++] = p;
     }
+    for (size_t i = 0; i < n_loose; i++)
+        for (size_t e = g->offsets[loose[i]]; e < g->offsets[loose[i] + 1]; e++) {
+            uint32_t v = g->neighbors[e];
+            if (settled[v] == 1 && cx->group[v] == cx->group[loose[i]])
+                settled[v] = 2, cx->queue[tail++] = v;
+        }
+    ps_sort_u32(cx->queue, tail, next);
     while (head < tail) {
         uint32_t v = cx->queue[head++];
         for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
@@ -212,8 +259,8 @@ static void reassign_supernodes(cut_context *cx, int *supernode_of) {
             cx->queue[tail++] = u;
         }
     }
-    for (size_t p = 0; p < g->n; p++)
-        if (!settled[p]) cx->group[p] = cx->group[sinks[supernode_of[p]]];
+    for (size_t i = 0; i < n_loose; i++)
+        if (!settled[loose[i]]) cx->group[loose[i]] = cx->group[sinks[supernode_of[loose[i]]]];
 }
 
 /* The worker's own arrays of cx. */
