@@ -61,16 +61,30 @@ static void edge_scales(cut_context *cx) {
     cx->creased = cx->in->scales.mean_concave >= PS_CREASE_FLAT;
 }
 
-/* capacity[e] = |p-q| / L * exp(-ang / A0) of arc e out of p, computed on
- * first use (0 marks an arc not computed yet). */
-double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e) {
-    if (cx->capacity[e] != 0.0) return cx->capacity[e];
+/* The arc of row q leading to p (rows are sorted and the graph is
+ * symmetric, so there is one). */
+static size_t reverse_arc(const ps_graph *g, size_t q, uint32_t p) {
+    size_t lo = g->offsets[q], hi = g->offsets[q + 1];
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (g->neighbors[mid] < p) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+
+/* capacity[e] = |p-q| / L * exp(-ang / A0) of arc e out of p, set for
+ * both arcs of the edge: ps_crease_angular and ps_distance3 give the same
+ * bits either way round.  The reverse arc leaves a point of the same pair,
+ * so its worker owns it. */
+double ps_bc_new_capacity(cut_context *cx, uint32_t p, size_t e) {
     const double *x = cx->in->points, *nx = cx->in->normals;
     size_t q = cx->in->graph->neighbors[e], i = p;
     double ang = ps_crease_angular(x + 3 * i, nx + 3 * i, x + 3 * q, nx + 3 * q, 0.0);
     double crease = cx->creased && ang > 0 ? exp(-ang / cx->angle_scale) : 1;
-    cx->capacity[e] = ps_distance3(x + 3 * i, x + 3 * q) / cx->mean_edge * crease;
-    return cx->capacity[e];
+    double c = ps_distance3(x + 3 * i, x + 3 * q) / cx->mean_edge * crease;
+    cx->capacity[e] = cx->capacity[reverse_arc(cx->in->graph, q, p)] = c;
+    return c;
 }
 
 /* Segment of p becomes g, keeping the per-segment counts. */

@@ -98,8 +98,18 @@ static inline int ps_bc_group(const cut_context *cx, uint32_t p) {
 
 /* boundary_cut.c */
 
-/* The cut capacity of graph arc e out of point p (boundary_cut.h). */
-double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e);
+/* The cut capacity of graph arc e out of point p (boundary_cut.h),
+ * computed and stored for e and its reverse arc; both ends of e lie in the
+ * running pair's segments. */
+double ps_bc_new_capacity(cut_context *cx, uint32_t p, size_t e);
+
+/* The cut capacity of graph arc e out of point p, computed on first use
+ * (0 marks an arc not computed yet); both ends of e lie in the running
+ * pair's segments. */
+static inline double ps_bc_capacity(cut_context *cx, uint32_t p, size_t e) {
+    double c = cx->capacity[e];
+    return c != 0.0 ? c : ps_bc_new_capacity(cx, p, e);
+}
 
 /* Point p (< #P) joins segment g: group[p] and the per-segment
  * size and sinks_in counts of cx are updated; nothing if p is in g. */
