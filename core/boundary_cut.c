@@ -323,29 +323,36 @@ static void context_free(cut_context *cx) {
 }
 
 /* p becomes a witness of its segment where it is lower or higher along an
- * axis than the witness so far. */
-static void consider_witness(cut_context *cx, uint32_t p) {
-    const double *x = cx->in->points;
-    uint32_t *w = cx->witness + (size_t)cx->group[p] * WITNESSES;
+ * axis than the witness so far; at: #groups by WITNESSES, each witness's
+ * coordinate along its axis. */
+static void consider_witness(cut_context *cx, uint32_t p, double *at) {
+    const double *x = cx->in->points + 3 * (size_t)p;
+    size_t first = (size_t)cx->group[p] * WITNESSES;
+    uint32_t *w = cx->witness + first;
+    double *w_at = at + first;
     for (int d = 0; d < 3; d++) {
-        if (w[2 * d] == NO_WITNESS || x[3 * (size_t)p + d] < x[3 * (size_t)w[2 * d] + d])
-            w[2 * d] = p;
-        if (w[2 * d + 1] == NO_WITNESS || x[3 * (size_t)p + d] > x[3 * (size_t)w[2 * d + 1] + d])
-            w[2 * d + 1] = p;
+        if (w[2 * d] == NO_WITNESS || x[d] < w_at[2 * d]) w[2 * d] = p, w_at[2 * d] = x[d];
+        if (w[2 * d + 1] == NO_WITNESS || x[d] > w_at[2 * d + 1])
+            w[2 * d + 1] = p, w_at[2 * d + 1] = x[d];
     }
 }
 
-/* Per-point, per-segment and per-arc state from the input segments. */
-static void shared_fill(cut_context *cx) {
+/* Per-point, per-segment and per-arc state from the input segments; -1
+ * when out of memory. */
+static int shared_fill(cut_context *cx) {
     const ps_boundary_cut_input *in = cx->in;
-    size_t n = in->graph->n;
+    size_t n = in->graph->n, witnesses = (size_t)in->n_groups * WITNESSES;
+    double *at = malloc((witnesses ? witnesses : 1) * sizeof *at);
+    if (!at) return -1;
     for (int s = 0; s < in->n_supernodes; s++) cx->is_sink[in->sinks[s]] = 1;
-    for (size_t i = 0; i < (size_t)in->n_groups * WITNESSES; i++) cx->witness[i] = NO_WITNESS;
+    for (size_t i = 0; i < witnesses; i++) cx->witness[i] = NO_WITNESS;
     for (uint32_t p = 0; p < n; p++) {
         cx->size[cx->group[p]]++;
         cx->sinks_in[cx->group[p]] += cx->is_sink[p];
-        consider_witness(cx, p);
+        consider_witness(cx, p, at);
     }
+    free(at);
+    return 0;
 }
 
 static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *group) {
@@ -366,7 +373,7 @@ static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *gr
     if (!cx->size || !cx->sinks_in || !cx->capacity || !cx->is_sink || !cx->witness ||
         !cx->moves || !cx->moves->point || !cx->moves->count || !cx->moves->capacity)
         return -1;
-    shared_fill(cx);
+    if (shared_fill(cx) != 0) return -1;
     return initial_boundaries(cx);
 }
 
