@@ -116,28 +116,43 @@ double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, d
                 PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
 }
 
+static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacity) {
+    cx->net_heads[*arcs] = head;
+    cx->net_capacity[(*arcs)++] = capacity;
+}
+
 /* Ties of band point i to the terminals: its arcs to a and b outside the
- * band.  Returns them plus its arcs inside the band. */
-static double tie_band_point(cut_context *cx, size_t i, int a, int b) {
+ * band.  Its arcs inside the band go to the network from *arcs on, *arcs
+ * then left two past them (room for its terminal arcs).  Returns the ties
+ * plus the arcs inside the band. */
+static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *arcs) {
     const ps_graph *g = cx->in->graph;
     uint32_t p = cx->band[i];
     double inside = 0;
     cx->tie_source[i] = cx->tie_sink[i] = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-        uint32_t q = g->neighbors[e];
-        if (!in_pair(ps_bc_group(cx, q), a, b)) continue;
-        if (cx->band_of[q] != NOT_IN_BAND) inside += ps_bc_capacity(cx, p, e);
-        else if (ps_bc_group(cx, q) == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
-        else cx->tie_sink[i] += ps_bc_capacity(cx, p, e);
+        uint32_t q = g->neighbors[e], u = cx->band_of[q];
+        if (u != NOT_IN_BAND) {
+            double c = ps_bc_capacity(cx, p, e);
+            inside += c;
+            add_arc(cx, arcs, u, c);
+            continue;
+        }
+        int s = ps_bc_group(cx, q);
+        if (s == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
+        else if (s == b) cx->tie_sink[i] += ps_bc_capacity(cx, p, e);
     }
+    *arcs += 2;
     return cx->tie_source[i] + cx->tie_sink[i] + inside;
 }
 
 /* Band points (reached within width) in point order, ties to the
- * terminals; returns the count.  A sink point's tie to its own side is
- * "infinite": one plus every capacity of the network, more than any cut. */
+ * terminals and the band's arcs (net_offsets[i]: where band point i's
+ * begin, two slots apart); returns the count.  A sink point's tie to its
+ * own side is "infinite": one plus every capacity of the network, more
+ * than any cut. */
 size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b) {
-    size_t nb = 0;
+    size_t nb = 0, arcs = 0;
     for (size_t i = 0; i < n_reached; i++)
         if (cx->dist[cx->reached[i]] <= width) cx->band[nb++] = cx->reached[i];
     ps_sort_u32(cx->band, nb, cx->queue); /* the queue is free until the pieces */
@@ -146,7 +161,11 @@ size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, i
         cx->old_group[i] = ps_bc_group(cx, cx->band[i]);
     }
     double infinite = 1;
-    for (size_t i = 0; i < nb; i++) infinite += tie_band_point(cx, i, a, b);
+    for (size_t i = 0; i < nb; i++) {
+        cx->net_offsets[i] = arcs;
+        infinite += tie_band_point(cx, i, a, b, &arcs);
+    }
+    cx->net_offsets[nb] = arcs;
     for (size_t i = 0; i < nb; i++) {
         if (!cx->is_sink[cx->band[i]]) continue;
         if (cx->old_group[i] == a) cx->tie_source[i] += infinite;
@@ -155,24 +174,18 @@ size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, i
     return nb;
 }
 
-static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacity) {
-    cx->net_heads[*arcs] = head;
-    cx->net_capacity[(*arcs)++] = capacity;
-}
-
-/* The flow network: band nodes 0..nb-1, source nb, sink nb+1.  Returns 0
- * when a terminal has no tie (nothing to cut). */
+/* The flow network: band nodes 0..nb-1, source nb, sink nb+1; each band
+ * point's arcs inside the band (from ps_bc_mark_band) move down to close
+ * the gaps, its terminal arcs after them.  Returns 0 when a terminal has
+ * no tie (nothing to cut). */
 int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net) {
-    const ps_graph *g = cx->in->graph;
     uint32_t source = (uint32_t)nb, sink = (uint32_t)nb + 1;
     size_t arcs = 0;
     for (size_t i = 0; i < nb; i++) {
-        uint32_t p = cx->band[i];
+        size_t from = cx->net_offsets[i], end = cx->net_offsets[i + 1] - 2;
         cx->net_offsets[i] = arcs;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            uint32_t u = cx->band_of[g->neighbors[e]];
-            if (u != NOT_IN_BAND) add_arc(cx, &arcs, u, ps_bc_capacity(cx, p, e));
-        }
+        for (size_t k = from; k < end; k++)
+            add_arc(cx, &arcs, cx->net_heads[k], cx->net_capacity[k]);
         if (cx->tie_source[i] > 0) add_arc(cx, &arcs, source, cx->tie_source[i]);
         if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->tie_sink[i]);
     }

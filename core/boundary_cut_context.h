@@ -138,11 +138,13 @@ double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, d
 
 /* The reached points within width become band[0..nb) in point order, with
  * band_of, old_group and the terminal ties tie_source / tie_sink
- * (#nb each; infinite for a sink point).  Returns nb. */
+ * (#nb each; infinite for a sink point); the band's arcs go to the net_*
+ * arrays, each band point's from net_offsets[i] on, two slots apart, for
+ * ps_bc_build_network.  Returns nb. */
 size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b);
 
 /* net: the band's flow network, #nb+2 nodes (band nodes 0..nb-1, source
- * nb, sink nb+1), over cx's net_* arrays.  Returns 0 (net unset) when a
+ * nb, sink nb+1), over cx's net_* arrays (after ps_bc_mark_band).  Returns 0 (net unset) when a
  * terminal has no tie, so there is nothing to cut; else 1. */
 int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net);
 
