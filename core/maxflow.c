@@ -41,7 +41,8 @@ typedef struct flow_node {
 
 struct ps_maxflow_workspace {
     size_t nodes, arcs;      /* sizes the arrays below hold */
-    size_t *reverse;         /* arcs: index of the reverse arc */
+    size_t *reverse;         /* arcs: index of the reverse arc (pairs up: the
+                                reverse of reverse[e] is e) */
     double *residual;        /* arcs */
     flow_node *node;         /* nodes */
     size_t *cursor;          /* nodes: the reverse arcs' search */
@@ -202,8 +203,9 @@ static void adopt(flow_state *st, uint32_t p) {
     size_t best_arc = NO_ARC;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->heads[e];
-        size_t a = tree_arc(st, t, w->reverse[e]); /* the arc q's tree would use into p */
-        if (w->node[q].tree != t || w->residual[a] <= st->tolerance) continue;
+        if (w->node[q].tree != t) continue;
+        size_t a = t == SOURCE_TREE ? w->reverse[e] : e; /* the arc q's tree would use into p */
+        if (w->residual[a] <= st->tolerance) continue;
         uint32_t d = rooted_depth(st, q);
         if (d < best_depth) best = q, best_depth = d, best_arc = a;
     }
@@ -215,17 +217,10 @@ static void adopt(flow_state *st, uint32_t p) {
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->heads[e];
         if (w->node[q].tree != t) continue;
-        if (w->residual[tree_arc(st, t, w->reverse[e])] > st->tolerance) activate(st, q);
+        if (w->residual[t == SOURCE_TREE ? w->reverse[e] : e] > st->tolerance) activate(st, q);
         if (w->node[q].parent_arc != NO_ARC && w->node[q].parent == p) make_orphan(st, q);
     }
     w->node[p].tree = FREE;
-}
-
-static double largest_capacity(const ps_flow_graph *g) {
-    double largest = 0;
-    for (size_t e = 0; e < g->offsets[g->n]; e++)
-        if (g->capacity[e] > largest) largest = g->capacity[e];
-    return largest;
 }
 
 /* Grows the trees and augments until neither can grow; the flow value. */
@@ -303,9 +298,13 @@ void ps_maxflow_workspace_free(ps_maxflow_workspace *ws) {
 
 static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_graph *g,
                        uint32_t source, uint32_t sink) {
+    double largest = 0;
+    for (size_t e = 0; e < g->offsets[g->n]; e++) {
+        ws->residual[e] = g->capacity[e];
+        if (g->capacity[e] > largest) largest = g->capacity[e];
+    }
     *st = (flow_state){.g = g, .w = ws, .source = source, .sink = sink,
-                       .tolerance = 1e-12 * largest_capacity(g)};
-    for (size_t e = 0; e < g->offsets[g->n]; e++) ws->residual[e] = g->capacity[e];
+                       .tolerance = 1e-12 * largest};
     for (size_t v = 0; v < g->n; v++)
         ws->node[v] = (flow_node){.parent_arc = NO_ARC, .tree = FREE};
     ws->node[source].tree = SOURCE_TREE;
