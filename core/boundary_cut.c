@@ -33,7 +33,8 @@
  * the band's network, so no pass covers the whole pair.  An arc's capacity
  * is computed when a band first needs it (most arcs never are), in the
  * caller's array when it passes one, so later calls reuse it.  Every
- * scratch array is sized once.
+ * scratch array is sized once, and kept for later calls in the caller's
+ * workspace when it passes one.
  */
 #include "boundary_cut.h"
 #include "boundary_cut_context.h"
@@ -112,23 +113,23 @@ static int log_move(move_log *log, uint32_t p, int g) {
 /* Relabels the band by the cut, keeps both segments whole, undoes it all
  * if a segment lost its last sink point. */
 static void apply_cut(cut_context *cx, size_t nb, int a, int b) {
-    for (size_t i = 0; i < nb; i++) ps_bc_set_group(cx, cx->band[i], cx->side[i] ? a : b);
+    for (size_t i = 0; i < nb; i++) ps_bc_set_group(cx, cx->s.band[i], cx->s.side[i] ? a : b);
     ps_bc_keep_largest_piece(cx, nb, a, b);
     ps_bc_keep_largest_piece(cx, nb, b, a);
     if (cx->sinks_in[a] > 0 && cx->sinks_in[b] > 0) return;
-    for (size_t i = 0; i < nb; i++) ps_bc_set_group(cx, cx->band[i], cx->old_group[i]);
+    for (size_t i = 0; i < nb; i++) ps_bc_set_group(cx, cx->s.band[i], cx->s.old_group[i]);
 }
 
 /* Logs the band points that changed segment; clears the band and ball. */
 static int finish_pair(cut_context *cx, size_t nb, size_t n_reached) {
     int failed = 0;
     for (size_t i = 0; i < nb; i++) {
-        uint32_t p = cx->band[i];
+        uint32_t p = cx->s.band[i];
         int now = ps_bc_group(cx, p);
-        if (now != cx->old_group[i] && !failed) failed = log_move(cx->moves, p, now) != 0;
-        cx->band_of[p] = NOT_IN_BAND;
+        if (now != cx->s.old_group[i] && !failed) failed = log_move(cx->moves, p, now) != 0;
+        cx->s.band_of[p] = NOT_IN_BAND;
     }
-    for (size_t i = 0; i < n_reached; i++) cx->dist[cx->reached[i]] = INFINITY;
+    for (size_t i = 0; i < n_reached; i++) cx->s.dist[cx->s.reached[i]] = INFINITY;
     return failed ? -1 : 0;
 }
 
@@ -141,8 +142,8 @@ static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     double flow;
     ps_status st = PS_OK;
     if (ps_bc_build_network(cx, nb, &net)) {
-        st = ps_maxflow_with(cx->flow_space, &net, (uint32_t)nb, (uint32_t)nb + 1, &flow,
-                             cx->side, err);
+        st = ps_maxflow_with(cx->s.flow_space, &net, (uint32_t)nb, (uint32_t)nb + 1, &flow,
+                             cx->s.side, err);
         if (st == PS_OK) apply_cut(cx, nb, a, b);
     }
     if (finish_pair(cx, nb, n_reached) != 0 && st == PS_OK)
@@ -250,7 +251,7 @@ static void reassign_supernodes(cut_context *cx, int *supernode_of) {
     const ps_graph *g = cx->in->graph;
     const uint32_t *sinks = cx->in->sinks;
     unsigned char *settled = cx->is_sink; /* reused: sinks are no longer needed */
-    uint32_t *loose = cx->band, *next = cx->reached; /* free after the pairs */
+    uint32_t *loose = cx->s.band, *next = cx->s.reached; /* free after the pairs */
     size_t n_loose = 0, head = 0, tail = 0;
     for (uint32_t p = 0; p < g->n; p++) {
         settled[p] = cx->group[p] == cx->group[sinks[supernode_of[p]]];
@@ -260,48 +261,49 @@ static void reassign_supernodes(cut_context *cx, int *supernode_of) {
         for (size_t e = g->offsets[loose[i]]; e < g->offsets[loose[i] + 1]; e++) {
             uint32_t v = g->neighbors[e];
             if (settled[v] == 1 && cx->group[v] == cx->group[loose[i]])
-                settled[v] = 2, cx->queue[tail++] = v;
+                settled[v] = 2, cx->s.queue[tail++] = v;
         }
-    ps_sort_u32(cx->queue, tail, next);
+    ps_sort_u32(cx->s.queue, tail, next);
     while (head < tail) {
-        uint32_t v = cx->queue[head++];
+        uint32_t v = cx->s.queue[head++];
         for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
             uint32_t u = g->neighbors[e];
             if (settled[u] || cx->group[u] != cx->group[v]) continue;
             settled[u] = 1;
             supernode_of[u] = supernode_of[v];
-            cx->queue[tail++] = u;
+            cx->s.queue[tail++] = u;
         }
     }
     for (size_t i = 0; i < n_loose; i++)
         if (!settled[loose[i]]) cx->group[loose[i]] = cx->group[sinks[supernode_of[loose[i]]]];
 }
 
-/* The worker's own arrays of cx. */
-static void scratch_free(cut_context *cx) {
-    free(cx->sources);
-    ps_dijkstra_free(cx->dijkstra);
-    free(cx->region_mark);
-    free(cx->radius_of);
-    free(cx->seen);
-    free(cx->visited);
-    free(cx->dist);
-    free(cx->reached);
-    free(cx->band_of);
-    free(cx->band);
-    free(cx->old_group);
-    free(cx->tie_source);
-    free(cx->tie_sink);
-    free(cx->net_offsets);
-    free(cx->net_heads);
-    free(cx->net_capacity);
-    free(cx->side);
-    ps_maxflow_workspace_free(cx->flow_space);
-    free(cx->piece);
-    free(cx->piece_start);
-    free(cx->piece_size);
-    free(cx->anchored);
-    free(cx->queue);
+/* s's arrays; s is then empty. */
+static void scratch_free(cut_scratch *s) {
+    free(s->sources);
+    ps_dijkstra_free(s->dijkstra);
+    free(s->region_mark);
+    free(s->radius_of);
+    free(s->seen);
+    free(s->visited);
+    free(s->dist);
+    free(s->reached);
+    free(s->band_of);
+    free(s->band);
+    free(s->old_group);
+    free(s->tie_source);
+    free(s->tie_sink);
+    free(s->net_offsets);
+    free(s->net_heads);
+    free(s->net_capacity);
+    free(s->side);
+    ps_maxflow_workspace_free(s->flow_space);
+    free(s->piece);
+    free(s->piece_start);
+    free(s->piece_size);
+    free(s->anchored);
+    free(s->queue);
+    *s = (cut_scratch){0};
 }
 
 static void moves_free(move_log *log, size_t groups) {
@@ -310,7 +312,7 @@ static void moves_free(move_log *log, size_t groups) {
     free(log);
 }
 
-/* The shared arrays, then the worker's own of the first context. */
+/* The shared arrays. */
 static void context_free(cut_context *cx) {
     free(cx->size);
     free(cx->sinks_in);
@@ -319,7 +321,6 @@ static void context_free(cut_context *cx) {
     free(cx->witness);
     free(cx->initial);
     moves_free(cx->moves, cx->in->n_groups > 0 ? (size_t)cx->in->n_groups : 1);
-    scratch_free(cx);
 }
 
 /* p becomes a witness of its segment where it is lower or higher along an
@@ -377,57 +378,57 @@ static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *gr
     return initial_boundaries(cx);
 }
 
-/* The worker's own arrays of cx, whose shared fields are set. */
-static int scratch_init(cut_context *cx) {
-    size_t n = cx->in->graph->n, net_arcs = cx->in->graph->offsets[n] + 1 + 4 * n;
-    size_t groups = cx->in->n_groups > 0 ? (size_t)cx->in->n_groups : 1;
-    cx->sources = malloc(n * sizeof *cx->sources);
-    cx->dijkstra = ps_dijkstra_new(n);
-    cx->region_mark = calloc(groups, sizeof *cx->region_mark);
-    cx->radius_of = malloc(groups * sizeof *cx->radius_of);
-    cx->seen = calloc(n, sizeof *cx->seen);
-    cx->visited = calloc(n, sizeof *cx->visited);
-    cx->dist = malloc(n * sizeof *cx->dist);
-    cx->reached = malloc(n * sizeof *cx->reached);
-    cx->band_of = malloc(n * sizeof *cx->band_of);
-    cx->band = malloc(n * sizeof *cx->band);
-    cx->old_group = malloc(n * sizeof *cx->old_group);
-    cx->tie_source = malloc(n * sizeof *cx->tie_source);
-    cx->tie_sink = malloc(n * sizeof *cx->tie_sink);
-    cx->net_offsets = malloc((n + 3) * sizeof *cx->net_offsets);
-    cx->net_heads = malloc(net_arcs * sizeof *cx->net_heads);
-    cx->net_capacity = malloc(net_arcs * sizeof *cx->net_capacity);
-    cx->side = malloc((n + 2) * sizeof *cx->side);
-    cx->flow_space = ps_maxflow_workspace_new();
-    cx->piece = malloc(n * sizeof *cx->piece);
-    cx->piece_start = malloc(n * sizeof *cx->piece_start);
-    cx->piece_size = malloc(n * sizeof *cx->piece_size);
-    cx->anchored = malloc(n * sizeof *cx->anchored);
-    cx->queue = malloc(n * sizeof *cx->queue);
-    if (!cx->sources || !cx->dijkstra || !cx->region_mark || !cx->radius_of || !cx->seen ||
-        !cx->visited || !cx->dist || !cx->reached || !cx->band_of || !cx->band ||
-        !cx->old_group || !cx->tie_source || !cx->tie_sink || !cx->net_offsets ||
-        !cx->net_heads || !cx->net_capacity || !cx->side || !cx->flow_space || !cx->piece ||
-        !cx->piece_start || !cx->piece_size || !cx->anchored || !cx->queue)
+/* Arrays for n points, arcs graph arcs and groups segments in s, in the
+ * state between pairs; -1 when out of memory. */
+static int scratch_alloc(cut_scratch *s, size_t n, size_t arcs, size_t groups) {
+    size_t net_arcs = arcs + 1 + 4 * n;
+    *s = (cut_scratch){.n = n, .arcs = arcs, .groups = groups};
+    s->sources = malloc(n * sizeof *s->sources);
+    s->dijkstra = ps_dijkstra_new(n);
+    s->region_mark = calloc(groups, sizeof *s->region_mark);
+    s->radius_of = malloc(groups * sizeof *s->radius_of);
+    s->seen = calloc(n, sizeof *s->seen);
+    s->visited = calloc(n, sizeof *s->visited);
+    s->dist = malloc(n * sizeof *s->dist);
+    s->reached = malloc(n * sizeof *s->reached);
+    s->band_of = malloc(n * sizeof *s->band_of);
+    s->band = malloc(n * sizeof *s->band);
+    s->old_group = malloc(n * sizeof *s->old_group);
+    s->tie_source = malloc(n * sizeof *s->tie_source);
+    s->tie_sink = malloc(n * sizeof *s->tie_sink);
+    s->net_offsets = malloc((n + 3) * sizeof *s->net_offsets);
+    s->net_heads = malloc(net_arcs * sizeof *s->net_heads);
+    s->net_capacity = malloc(net_arcs * sizeof *s->net_capacity);
+    s->side = malloc((n + 2) * sizeof *s->side);
+    s->flow_space = ps_maxflow_workspace_new();
+    s->piece = malloc(n * sizeof *s->piece);
+    s->piece_start = malloc(n * sizeof *s->piece_start);
+    s->piece_size = malloc(n * sizeof *s->piece_size);
+    s->anchored = malloc(n * sizeof *s->anchored);
+    s->queue = malloc(n * sizeof *s->queue);
+    if (!s->sources || !s->dijkstra || !s->region_mark || !s->radius_of || !s->seen ||
+        !s->visited || !s->dist || !s->reached || !s->band_of || !s->band || !s->old_group ||
+        !s->tie_source || !s->tie_sink || !s->net_offsets || !s->net_heads ||
+        !s->net_capacity || !s->side || !s->flow_space || !s->piece || !s->piece_start ||
+        !s->piece_size || !s->anchored || !s->queue)
         return -1;
-    for (size_t p = 0; p < n; p++) cx->band_of[p] = NOT_IN_BAND, cx->dist[p] = INFINITY;
+    for (size_t p = 0; p < n; p++) s->band_of[p] = NOT_IN_BAND, s->dist[p] = INFINITY;
     return 0;
 }
 
-/* The worker contexts: the first as it is, then copies of it with scratch
- * arrays of their own; NULL when out of memory. */
-static cut_context *more_workers(const cut_context *first, int workers) {
-    cut_context *w = calloc((size_t)workers, sizeof *w);
-    if (!w) return NULL;
-    for (int i = 0; i < workers; i++) {
-        w[i] = *first; /* scratch_init then replaces every scratch field */
-        if (i > 0 && scratch_init(&w[i]) != 0) {
-            for (int j = 1; j <= i; j++) scratch_free(&w[j]);
-            free(w);
-            return NULL;
-        }
-    }
-    return w;
+/* s ready for in: kept if it holds arrays as large and its stamps are far
+ * from wrapping round, else allocated anew; -1 when out of memory (s is
+ * then empty). */
+static int scratch_ready(cut_scratch *s, const ps_boundary_cut_input *in) {
+    size_t n = in->graph->n, arcs = in->graph->offsets[n];
+    size_t groups = in->n_groups > 0 ? (size_t)in->n_groups : 1;
+    if (s->queue && s->n >= n && s->arcs >= arcs && s->groups >= groups &&
+        s->stamp < UINT32_MAX / 2)
+        return 0;
+    scratch_free(s);
+    if (scratch_alloc(s, n, arcs, groups) == 0) return 0;
+    scratch_free(s);
+    return -1;
 }
 
 /* How many pairs may run side by side: one per thread, at most
@@ -464,15 +465,23 @@ static void cut_report(void *ctx, size_t done) {
 }
 
 /* Every pair, side by side where they share no segment (keyed_tasks.h:
- * the result is that of one worker taking them in order). */
-static ps_status cut_pairs(cut_context *first, const pair *pairs, size_t n_pairs, ps_error *err) {
+ * the result is that of one worker taking them in order).  The workers
+ * are copies of first with scratch of their own: the first first's,
+ * worker i scratch[i] (scratch: #PS_BOUNDARY_CUT_WORKERS), readied here;
+ * each is left where it came from. */
+static ps_status cut_pairs(cut_context *first, cut_scratch *scratch, const pair *pairs,
+                           size_t n_pairs, ps_error *err) {
     int workers = worker_count(first->in);
-    cut_context *w = more_workers(first, workers);
+    cut_context *w = calloc((size_t)workers, sizeof *w);
     ps_error *errors = calloc((size_t)workers, sizeof *errors);
     int *keys = malloc(2 * (n_pairs ? n_pairs : 1) * sizeof *keys);
     ps_status st = PS_OK;
     if (!w || !errors || !keys) st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
+    for (int i = 1; st == PS_OK && i < workers; i++)
+        if (scratch_ready(&scratch[i], first->in) != 0)
+            st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     if (st == PS_OK) {
+        for (int i = 0; i < workers; i++) w[i] = *first, w[i].s = i ? scratch[i] : first->s;
         for (size_t i = 0; i < n_pairs; i++) keys[i] = pairs[i].a, keys[n_pairs + i] = pairs[i].b;
         cut_run r = {w, pairs, n_pairs, errors};
         ps_keyed_tasks tasks = {.count = n_pairs, .key_a = keys, .key_b = keys + n_pairs,
@@ -482,26 +491,48 @@ static ps_status cut_pairs(cut_context *first, const pair *pairs, size_t n_pairs
         st = ps_keyed_tasks_run(&tasks, workers, &failed);
         if (st != PS_OK && failed >= 0 && err) *err = errors[failed];
         else if (st != PS_OK) ps_fail(err, st, "out of memory (boundary cut)");
+        first->s = w[0].s;
+        for (int i = 1; i < workers; i++) scratch[i] = w[i].s;
     }
-    for (int i = 1; w && i < workers; i++) scratch_free(&w[i]);
     free(w), free(errors), free(keys);
     return st;
+}
+
+/* A workspace (boundary_cut.h): each worker's scratch. */
+struct ps_boundary_cut_workspace {
+    cut_scratch worker[PS_BOUNDARY_CUT_WORKERS];
+};
+
+ps_boundary_cut_workspace *ps_boundary_cut_workspace_new(void) {
+    return calloc(1, sizeof(ps_boundary_cut_workspace));
+}
+
+void ps_boundary_cut_workspace_free(ps_boundary_cut_workspace *ws) {
+    if (!ws) return;
+    for (int i = 0; i < PS_BOUNDARY_CUT_WORKERS; i++) scratch_free(&ws->worker[i]);
+    free(ws);
 }
 
 ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supernode_of,
                           ps_error *err) {
     if (in->graph->n == 0 || in->graph->offsets[in->graph->n] == 0) return PS_OK;
+    ps_boundary_cut_workspace own = {0};
+    cut_scratch *scratch = in->workspace ? in->workspace->worker : own.worker;
     cut_context cx;
     size_t n_pairs = 0;
     pair *pairs = NULL;
     ps_status st = PS_OK;
-    if (shared_init(&cx, in, group) != 0 || scratch_init(&cx) != 0 ||
+    if (shared_init(&cx, in, group) != 0 || scratch_ready(&scratch[0], in) != 0 ||
         !(pairs = adjacent_pairs(&cx, &n_pairs)))
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
+    cx.s = scratch[0];
     if (st == PS_OK) edge_scales(&cx);
-    if (st == PS_OK) st = cut_pairs(&cx, pairs, n_pairs, err);
+    if (st == PS_OK) st = cut_pairs(&cx, scratch, pairs, n_pairs, err);
     if (st == PS_OK) reassign_supernodes(&cx, supernode_of);
+    scratch[0] = cx.s;
     free(pairs);
     context_free(&cx);
+    for (int i = 0; !in->workspace && i < PS_BOUNDARY_CUT_WORKERS; i++)
+        scratch_free(&own.worker[i]);
     return st;
 }

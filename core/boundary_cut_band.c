@@ -20,13 +20,13 @@ static int in_pair(int g, int a, int b) {
  * each point is checked once per pair. */
 static void consider(cut_context *cx, uint32_t p, int a, int b) {
     const ps_graph *g = cx->in->graph;
-    if (cx->seen[p] == cx->stamp) return;
-    cx->seen[p] = cx->stamp;
+    if (cx->s.seen[p] == cx->s.stamp) return;
+    cx->s.seen[p] = cx->s.stamp;
     if (!in_pair(ps_bc_group(cx, p), a, b)) return;
     int other = ps_bc_group(cx, p) == a ? b : a;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
         if (ps_bc_group(cx, g->neighbors[e]) == other) {
-            cx->sources[cx->n_sources++] = p;
+            cx->s.sources[cx->s.n_sources++] = p;
             return;
         }
 }
@@ -48,8 +48,8 @@ static size_t first_initial(const cut_context *cx, int a, int b) {
  * neighbour has moved into a or b since. */
 size_t ps_bc_boundary_points(cut_context *cx, int a, int b) {
     const ps_graph *g = cx->in->graph;
-    cx->n_sources = 0;
-    cx->stamp++;
+    cx->s.n_sources = 0;
+    cx->s.stamp++;
     for (size_t i = first_initial(cx, a, b);
          i < cx->n_initial && cx->initial[i].a == a && cx->initial[i].b == b; i++)
         consider(cx, cx->initial[i].point, a, b);
@@ -61,7 +61,7 @@ size_t ps_bc_boundary_points(cut_context *cx, int a, int b) {
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
                 consider(cx, g->neighbors[e], a, b);
         }
-    return cx->n_sources;
+    return cx->s.n_sources;
 }
 
 /* Whether some witness of segment s, still in s, is at least reach away
@@ -73,10 +73,10 @@ static int far_beyond(const cut_context *cx, int s, double reach) {
         uint32_t w = cx->witness[(size_t)s * WITNESSES + (size_t)k];
         if (w == NO_WITNESS || ps_bc_group(cx, w) != s) continue;
         size_t i = 0;
-        while (i < cx->n_sources &&
-               ps_distance3(x + 3 * (size_t)w, x + 3 * (size_t)cx->sources[i]) >= reach)
+        while (i < cx->s.n_sources &&
+               ps_distance3(x + 3 * (size_t)w, x + 3 * (size_t)cx->s.sources[i]) >= reach)
             i++;
-        if (i == cx->n_sources) return 1;
+        if (i == cx->s.n_sources) return 1;
     }
     return 0;
 }
@@ -87,15 +87,15 @@ static int far_beyond(const cut_context *cx, int s, double reach) {
  * points first.  Segment ids are the ball's region labels (a group is
  * never negative, so it reads the same as a uint32_t). */
 size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach) {
-    cx->region_mark[a] = cx->region_mark[b] = cx->stamp;
+    cx->s.region_mark[a] = cx->s.region_mark[b] = cx->s.stamp;
     double cap = PS_BOUNDARY_CUT_BAND * reach;
-    cx->radius_of[a] = far_beyond(cx, a, reach) ? cap : reach;
-    cx->radius_of[b] = far_beyond(cx, b, reach) ? cap : reach;
+    cx->s.radius_of[a] = far_beyond(cx, a, reach) ? cap : reach;
+    cx->s.radius_of[b] = far_beyond(cx, b, reach) ? cap : reach;
     ps_dijkstra_limits limits = {.label = (const uint32_t *)cx->group,
-                                 .mark = cx->region_mark, .stamp = cx->stamp,
-                                 .radius_of = cx->radius_of, .points = cx->in->points};
-    return ps_dijkstra_ball_from(cx->dijkstra, cx->in->graph, cx->sources, cx->n_sources,
-                                 &limits, cx->dist, cx->reached);
+                                 .mark = cx->s.region_mark, .stamp = cx->s.stamp,
+                                 .radius_of = cx->s.radius_of, .points = cx->in->points};
+    return ps_dijkstra_ball_from(cx->s.dijkstra, cx->in->graph, cx->s.sources, cx->s.n_sources,
+                                 &limits, cx->s.dist, cx->s.reached);
 }
 
 /* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
@@ -105,20 +105,20 @@ double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, d
     double extent_a = 0, extent_b = 0;
     size_t reached_a = 0;
     for (size_t i = 0; i < n_reached; i++) {
-        uint32_t p = cx->reached[i];
-        if (ps_bc_group(cx, p) == a) extent_a = fmax(extent_a, cx->dist[p]), reached_a++;
-        else extent_b = fmax(extent_b, cx->dist[p]);
+        uint32_t p = cx->s.reached[i];
+        if (ps_bc_group(cx, p) == a) extent_a = fmax(extent_a, cx->s.dist[p]), reached_a++;
+        else extent_b = fmax(extent_b, cx->s.dist[p]);
     }
-    if (reached_a < cx->size[a] || cx->radius_of[a] < reach) extent_a = fmax(extent_a, reach);
-    if (n_reached - reached_a < cx->size[b] || cx->radius_of[b] < reach)
+    if (reached_a < cx->size[a] || cx->s.radius_of[a] < reach) extent_a = fmax(extent_a, reach);
+    if (n_reached - reached_a < cx->size[b] || cx->s.radius_of[b] < reach)
         extent_b = fmax(extent_b, reach);
     return fmin(PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b),
                 PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
 }
 
 static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacity) {
-    cx->net_heads[*arcs] = head;
-    cx->net_capacity[(*arcs)++] = capacity;
+    cx->s.net_heads[*arcs] = head;
+    cx->s.net_capacity[(*arcs)++] = capacity;
 }
 
 /* Ties of band point i to the terminals: its arcs to a and b outside the
@@ -127,11 +127,11 @@ static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacit
  * plus the arcs inside the band. */
 static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *arcs) {
     const ps_graph *g = cx->in->graph;
-    uint32_t p = cx->band[i];
+    uint32_t p = cx->s.band[i];
     double inside = 0;
-    cx->tie_source[i] = cx->tie_sink[i] = 0;
+    cx->s.tie_source[i] = cx->s.tie_sink[i] = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-        uint32_t q = g->neighbors[e], u = cx->band_of[q];
+        uint32_t q = g->neighbors[e], u = cx->s.band_of[q];
         if (u != NOT_IN_BAND) {
             double c = ps_bc_capacity(cx, p, e);
             inside += c;
@@ -139,11 +139,11 @@ static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *ar
             continue;
         }
         int s = ps_bc_group(cx, q);
-        if (s == a) cx->tie_source[i] += ps_bc_capacity(cx, p, e);
-        else if (s == b) cx->tie_sink[i] += ps_bc_capacity(cx, p, e);
+        if (s == a) cx->s.tie_source[i] += ps_bc_capacity(cx, p, e);
+        else if (s == b) cx->s.tie_sink[i] += ps_bc_capacity(cx, p, e);
     }
     *arcs += 2;
-    return cx->tie_source[i] + cx->tie_sink[i] + inside;
+    return cx->s.tie_source[i] + cx->s.tie_sink[i] + inside;
 }
 
 /* Band points (reached within width) in point order, ties to the
@@ -154,22 +154,22 @@ static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *ar
 size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b) {
     size_t nb = 0, arcs = 0;
     for (size_t i = 0; i < n_reached; i++)
-        if (cx->dist[cx->reached[i]] <= width) cx->band[nb++] = cx->reached[i];
-    ps_sort_u32(cx->band, nb, cx->queue); /* the queue is free until the pieces */
+        if (cx->s.dist[cx->s.reached[i]] <= width) cx->s.band[nb++] = cx->s.reached[i];
+    ps_sort_u32(cx->s.band, nb, cx->s.queue); /* the queue is free until the pieces */
     for (size_t i = 0; i < nb; i++) {
-        cx->band_of[cx->band[i]] = (uint32_t)i;
-        cx->old_group[i] = ps_bc_group(cx, cx->band[i]);
+        cx->s.band_of[cx->s.band[i]] = (uint32_t)i;
+        cx->s.old_group[i] = ps_bc_group(cx, cx->s.band[i]);
     }
     double infinite = 1;
     for (size_t i = 0; i < nb; i++) {
-        cx->net_offsets[i] = arcs;
+        cx->s.net_offsets[i] = arcs;
         infinite += tie_band_point(cx, i, a, b, &arcs);
     }
-    cx->net_offsets[nb] = arcs;
+    cx->s.net_offsets[nb] = arcs;
     for (size_t i = 0; i < nb; i++) {
-        if (!cx->is_sink[cx->band[i]]) continue;
-        if (cx->old_group[i] == a) cx->tie_source[i] += infinite;
-        else cx->tie_sink[i] += infinite;
+        if (!cx->is_sink[cx->s.band[i]]) continue;
+        if (cx->s.old_group[i] == a) cx->s.tie_source[i] += infinite;
+        else cx->s.tie_sink[i] += infinite;
     }
     return nb;
 }
@@ -182,23 +182,23 @@ int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net) {
     uint32_t source = (uint32_t)nb, sink = (uint32_t)nb + 1;
     size_t arcs = 0;
     for (size_t i = 0; i < nb; i++) {
-        size_t from = cx->net_offsets[i], end = cx->net_offsets[i + 1] - 2;
-        cx->net_offsets[i] = arcs;
+        size_t from = cx->s.net_offsets[i], end = cx->s.net_offsets[i + 1] - 2;
+        cx->s.net_offsets[i] = arcs;
         for (size_t k = from; k < end; k++)
-            add_arc(cx, &arcs, cx->net_heads[k], cx->net_capacity[k]);
-        if (cx->tie_source[i] > 0) add_arc(cx, &arcs, source, cx->tie_source[i]);
-        if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->tie_sink[i]);
+            add_arc(cx, &arcs, cx->s.net_heads[k], cx->s.net_capacity[k]);
+        if (cx->s.tie_source[i] > 0) add_arc(cx, &arcs, source, cx->s.tie_source[i]);
+        if (cx->s.tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->s.tie_sink[i]);
     }
-    cx->net_offsets[nb] = arcs;
+    cx->s.net_offsets[nb] = arcs;
     for (uint32_t i = 0; i < nb; i++)
-        if (cx->tie_source[i] > 0) add_arc(cx, &arcs, i, cx->tie_source[i]);
-    cx->net_offsets[nb + 1] = arcs;
-    if (arcs == cx->net_offsets[nb]) return 0;
+        if (cx->s.tie_source[i] > 0) add_arc(cx, &arcs, i, cx->s.tie_source[i]);
+    cx->s.net_offsets[nb + 1] = arcs;
+    if (arcs == cx->s.net_offsets[nb]) return 0;
     for (uint32_t i = 0; i < nb; i++)
-        if (cx->tie_sink[i] > 0) add_arc(cx, &arcs, i, cx->tie_sink[i]);
-    cx->net_offsets[nb + 2] = arcs;
-    if (arcs == cx->net_offsets[nb + 1]) return 0;
-    *net = (ps_flow_graph){.n = nb + 2, .offsets = cx->net_offsets, .heads = cx->net_heads,
-                           .capacity = cx->net_capacity};
+        if (cx->s.tie_sink[i] > 0) add_arc(cx, &arcs, i, cx->s.tie_sink[i]);
+    cx->s.net_offsets[nb + 2] = arcs;
+    if (arcs == cx->s.net_offsets[nb + 1]) return 0;
+    *net = (ps_flow_graph){.n = nb + 2, .offsets = cx->s.net_offsets, .heads = cx->s.net_heads,
+                           .capacity = cx->s.net_capacity};
     return 1;
 }

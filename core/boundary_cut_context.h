@@ -12,7 +12,7 @@
  * cut_context per worker: the fields marked "shared" point at the same
  * arrays in every worker's context, and a pair writes in them only what
  * belongs to its own two segments (their points, their counts, the arcs
- * out of their points); the rest is the worker's own scratch.
+ * out of their points); its cut_scratch is its own.
  */
 #ifndef PS_BOUNDARY_CUT_CONTEXT_H
 #define PS_BOUNDARY_CUT_CONTEXT_H
@@ -43,6 +43,41 @@ typedef struct move_log {
     size_t *capacity;   /* #groups */
 } move_log;
 
+/* A worker's own scratch, every array sized once for up to n points, arcs
+ * graph arcs and groups segments.  Between pairs, and between calls when a
+ * workspace keeps it (boundary_cut.h), band_of is NOT_IN_BAND and dist
+ * INFINITY at every point, the Dijkstra heap is empty, and no stamp in
+ * seen, visited or region_mark is above stamp. */
+typedef struct cut_scratch {
+    size_t n, arcs, groups;
+    uint32_t *sources;         /* #P the pair's boundary points, the ball's sources */
+    size_t n_sources;
+    ps_dijkstra *dijkstra;     /* for #P vertices */
+    uint32_t stamp;            /* bumped for each ball, boundary and piece search */
+    uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
+    double *radius_of;         /* #groups how far the ball may go into each segment */
+    uint32_t *seen;            /* #P stamp of the boundary candidates checked */
+    uint32_t *visited;         /* #P stamp of the points a piece search reached */
+    double *dist;              /* #P INFINITY outside a pair's ball */
+    uint32_t *reached;         /* #P */
+    uint32_t *band_of;         /* #P band index of each point, or NOT_IN_BAND */
+    uint32_t *band;            /* #P band points, increasing */
+    int *old_group;            /* #P group of each band point before the cut */
+    double *tie_source;        /* #P */
+    double *tie_sink;          /* #P */
+    size_t *net_offsets;       /* #P+3 */
+    uint32_t *net_heads;       /* #E+4#P+1 */
+    double *net_capacity;      /* #E+4#P+1 */
+    unsigned char *side;       /* #P+2 */
+    ps_maxflow_workspace *flow_space;  /* reused by every pair's max flow */
+    int *piece;                /* #P piece of each band point of the segment searched */
+    uint32_t *piece_start;     /* #P first band index of each piece (its lowest point) */
+    size_t *piece_size;        /* #P */
+    unsigned char *anchored;   /* #P 1 for a piece with a neighbour outside the band */
+    uint32_t *queue;           /* #P: the breadth-first queues (pieces, supernodes), and
+                                  the scratch of the band's sort before them */
+} cut_scratch;
+
 typedef struct cut_context {
     const ps_boundary_cut_input *in;
     int *group;                /* #P in/out, shared (read with ps_bc_group) */
@@ -55,37 +90,11 @@ typedef struct cut_context {
     double angle_scale;        /* A0 of the capacities */
     int creased;               /* 0 on a flat shape: capacities are lengths alone */
     move_log *moves;           /* shared */
-    /* the worker's own from here on, but witness and initial (shared, read only) */
-    uint32_t *sources;         /* #P the pair's boundary points, the ball's sources */
-    size_t n_sources;
-    ps_dijkstra *dijkstra;     /* for #P vertices */
-    uint32_t stamp;            /* bumped for each ball, boundary and piece search */
-    uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
-    double *radius_of;         /* #groups how far the ball may go into each segment */
     uint32_t *witness;         /* #groups by WITNESSES extreme points of each segment at
                                   the start (NO_WITNESS: none), see far_beyond; shared */
-    uint32_t *seen;            /* #P stamp of the boundary candidates checked */
-    uint32_t *visited;         /* #P stamp of the points a piece search reached */
-    double *dist;              /* #P INFINITY outside a pair's ball */
-    uint32_t *reached;         /* #P */
     boundary_entry *initial;   /* #I initial boundary points, sorted by (a, b, point); shared */
     size_t n_initial;
-    uint32_t *band_of;         /* #P band index of each point, or NOT_IN_BAND */
-    uint32_t *band;            /* #P band points, increasing */
-    int *old_group;            /* #P group of each band point before the cut */
-    double *tie_source;        /* #P */
-    double *tie_sink;          /* #P */
-    size_t *net_offsets;       /* #P+3 */
-    uint32_t *net_heads;       /* #E+4#P */
-    double *net_capacity;      /* #E+4#P */
-    unsigned char *side;       /* #P+2 */
-    ps_maxflow_workspace *flow_space;  /* reused by every pair's max flow */
-    int *piece;                /* #P piece of each band point of the segment searched */
-    uint32_t *piece_start;     /* #P first band index of each piece (its lowest point) */
-    size_t *piece_size;        /* #P */
-    unsigned char *anchored;   /* #P 1 for a piece with a neighbour outside the band */
-    uint32_t *queue;           /* #P: the breadth-first queues (pieces, supernodes), and
-                                  the scratch of the band's sort before them */
+    cut_scratch s;             /* the worker's own */
 } cut_context;
 
 /* Segment of p.  A point outside a running pair's segments may be moving
@@ -118,7 +127,7 @@ void ps_bc_set_group(cut_context *cx, uint32_t p, int g);
 /* boundary_cut_band.c; a < b are the pair's segments throughout. */
 
 /* Lists the pair's current boundary points (in a or b, next to the other)
- * in sources, bumping cx->stamp.  Returns their count, 0 when the pair no
+ * in sources, bumping the stamp.  Returns their count, 0 when the pair no
  * longer touches. */
 size_t ps_bc_boundary_points(cut_context *cx, int a, int b);
 

@@ -15,24 +15,24 @@
 static int band_pieces(cut_context *cx, size_t nb, int x) {
     const ps_graph *g = cx->in->graph;
     int n_pieces = 0;
-    for (size_t i = 0; i < nb; i++) cx->piece[i] = -1;
+    for (size_t i = 0; i < nb; i++) cx->s.piece[i] = -1;
     for (uint32_t start = 0; start < nb; start++) {
-        if (cx->piece[start] >= 0 || ps_bc_group(cx, cx->band[start]) != x) continue;
+        if (cx->s.piece[start] >= 0 || ps_bc_group(cx, cx->s.band[start]) != x) continue;
         size_t head = 0, tail = 0;
-        cx->piece[start] = n_pieces;
-        cx->anchored[n_pieces] = 0;
-        cx->queue[tail++] = start;
+        cx->s.piece[start] = n_pieces;
+        cx->s.anchored[n_pieces] = 0;
+        cx->s.queue[tail++] = start;
         while (head < tail) {
-            uint32_t p = cx->band[cx->queue[head++]];
+            uint32_t p = cx->s.band[cx->s.queue[head++]];
             for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-                uint32_t q = g->neighbors[e], u = cx->band_of[q];
+                uint32_t q = g->neighbors[e], u = cx->s.band_of[q];
                 if (ps_bc_group(cx, q) != x) continue;
-                if (u == NOT_IN_BAND) cx->anchored[n_pieces] = 1;
-                else if (cx->piece[u] < 0) cx->piece[u] = n_pieces, cx->queue[tail++] = u;
+                if (u == NOT_IN_BAND) cx->s.anchored[n_pieces] = 1;
+                else if (cx->s.piece[u] < 0) cx->s.piece[u] = n_pieces, cx->s.queue[tail++] = u;
             }
         }
-        cx->piece_start[n_pieces] = start;
-        cx->piece_size[n_pieces++] = tail;
+        cx->s.piece_start[n_pieces] = start;
+        cx->s.piece_size[n_pieces++] = tail;
     }
     return n_pieces;
 }
@@ -46,16 +46,16 @@ static int comes_first(cut_context *cx, uint32_t start, int x, size_t cap,
     const ps_graph *g = cx->in->graph;
     size_t head = 0, tail = 0;
     uint32_t lowest = start;
-    cx->visited[start] = cx->stamp;
-    cx->queue[tail++] = start;
+    cx->s.visited[start] = cx->s.stamp;
+    cx->s.queue[tail++] = start;
     while (head < tail) {
-        uint32_t p = cx->queue[head++];
+        uint32_t p = cx->s.queue[head++];
         if (p < lowest) lowest = p;
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (ps_bc_group(cx, q) != x || cx->visited[q] == cx->stamp) continue;
-            cx->visited[q] = cx->stamp;
-            cx->queue[tail++] = q;
+            if (ps_bc_group(cx, q) != x || cx->s.visited[q] == cx->s.stamp) continue;
+            cx->s.visited[q] = cx->s.stamp;
+            cx->s.queue[tail++] = q;
             if (tail > cap) return 1;
         }
     }
@@ -68,20 +68,22 @@ static int comes_first(cut_context *cx, uint32_t start, int x, size_t cap,
  * point).  Those joined to the band are searched first; the rest, not
  * joined to it, only if their points could make one as large. */
 static int anchored_piece_first(cut_context *cx, size_t nb, int x, int best, size_t loose) {
-    size_t cap = cx->piece_size[best], explored = 0;
-    uint32_t loose_start = cx->band[cx->piece_start[best]];
-    cx->stamp++;
+    size_t cap = cx->s.piece_size[best], explored = 0;
+    uint32_t loose_start = cx->s.band[cx->s.piece_start[best]];
+    cx->s.stamp++;
     for (size_t i = 0; i < nb; i++)
-        if (cx->piece[i] >= 0 && !cx->anchored[cx->piece[i]]) cx->visited[cx->band[i]] = cx->stamp;
+        if (cx->s.piece[i] >= 0 && !cx->s.anchored[cx->s.piece[i]])
+            cx->s.visited[cx->s.band[i]] = cx->s.stamp;
     for (size_t i = 0; i < nb; i++) {
-        uint32_t p = cx->band[i];
-        if (cx->piece[i] < 0 || !cx->anchored[cx->piece[i]] || cx->visited[p] == cx->stamp)
+        uint32_t p = cx->s.band[i];
+        if (cx->s.piece[i] < 0 || !cx->s.anchored[cx->s.piece[i]] ||
+            cx->s.visited[p] == cx->s.stamp)
             continue;
         if (comes_first(cx, p, x, cap, loose_start, &explored)) return 1;
     }
     if (cx->size[x] - loose - explored < cap) return 0;
     for (uint32_t p = 0; p < cx->in->graph->n; p++)
-        if (ps_bc_group(cx, p) == x && cx->visited[p] != cx->stamp &&
+        if (ps_bc_group(cx, p) == x && cx->s.visited[p] != cx->s.stamp &&
             comes_first(cx, p, x, cap, loose_start, &explored))
             return 1;
     return 0;
@@ -93,13 +95,13 @@ void ps_bc_keep_largest_piece(cut_context *cx, size_t nb, int x, int y) {
     int n_pieces = band_pieces(cx, nb, x), best = -1;
     size_t loose = 0;
     for (int k = 0; k < n_pieces; k++) {
-        if (cx->anchored[k]) continue;
-        loose += cx->piece_size[k];
-        if (best < 0 || cx->piece_size[k] > cx->piece_size[best]) best = k;
+        if (cx->s.anchored[k]) continue;
+        loose += cx->s.piece_size[k];
+        if (best < 0 || cx->s.piece_size[k] > cx->s.piece_size[best]) best = k;
     }
     if (best < 0) return;
     if (anchored_piece_first(cx, nb, x, best, loose)) best = -1;
     for (size_t i = 0; i < nb; i++)
-        if (cx->piece[i] >= 0 && cx->piece[i] != best && !cx->anchored[cx->piece[i]])
-            ps_bc_set_group(cx, cx->band[i], y);
+        if (cx->s.piece[i] >= 0 && cx->s.piece[i] != best && !cx->s.anchored[cx->s.piece[i]])
+            ps_bc_set_group(cx, cx->s.band[i], y);
 }

@@ -6,6 +6,7 @@
 #ifndef PS_PIPELINE_H
 #define PS_PIPELINE_H
 
+#include "boundary_cut.h"
 #include "crease.h"
 #include "dedup.h"
 #include "knn_graph.h"
@@ -40,6 +41,7 @@ typedef struct ps_pipeline {
                               point (the profile split's; freed after it) */
     double *cut_capacity;  /* #E the boundary cut's capacity of each graph arc, 0 until
                               computed (boundary_cut.h); NULL until the first cut */
+    ps_boundary_cut_workspace *cut_workspace; /* the cuts' scratch; NULL until the first */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;

@@ -315,7 +315,9 @@ static ps_status point_groups(ps_pipeline *pl, ps_error *err) {
 static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE, REFINE_CUT_DONE};
     size_t arcs = pl->graph.offsets[pl->graph.n];
-    if (!pl->cut_capacity && !(pl->cut_capacity = calloc(arcs ? arcs : 1, sizeof(double))))
+    if (!pl->cut_capacity) pl->cut_capacity = calloc(arcs ? arcs : 1, sizeof(double));
+    if (!pl->cut_workspace) pl->cut_workspace = ps_boundary_cut_workspace_new();
+    if (!pl->cut_capacity || !pl->cut_workspace)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     ps_boundary_cut_input bc = {
         .graph = &pl->graph,
@@ -328,6 +330,7 @@ static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
         .span = &span,
         .threads = pl->threads,
         .capacity = pl->cut_capacity,
+        .workspace = pl->cut_workspace,
     };
     return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
 }
@@ -401,6 +404,8 @@ void ps_pipeline_shed(ps_pipeline *pl) {
     free(pl->creases.strength);
     free(pl->spacing);
     free(pl->cut_capacity);
+    ps_boundary_cut_workspace_free(pl->cut_workspace);
+    pl->cut_workspace = NULL;
     pl->component = NULL;
     pl->crease_normals = pl->normals = pl->creases.strength = pl->spacing = pl->cut_capacity = NULL;
 }

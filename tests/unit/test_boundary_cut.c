@@ -12,7 +12,8 @@
  * a progress span it answers the same, reports rising progress pair by
  * pair up to the span's end, and stops when cancelled.  Pairs run side by
  * side give the same answer on 1, 2 and 3 threads, and a capacity array
- * shared by several calls gives the answer of a call without one.
+ * or a workspace shared by several calls gives the answer of a call
+ * without one.
  */
 #include "boundary_cut.h"
 #include "progress_seen.h"
@@ -371,7 +372,66 @@ static void test_shared_capacities_give_the_same_cut(void) {
     star_free(&s);
 }
 
+/* One workspace for every call: the shifted parts' cut, the messy
+ * segments' (more segments) on 1, 2 and 3 threads, and the shifted parts'
+ * again, each the answer of a call without one. */
+static void test_workspace_gives_the_same_cut(void) {
+    star s;
+    REQUIRE(star_build(&s));
+    size_t n = s.shape.n;
+    int *start = malloc(n * sizeof *start), *group[2], *supernodes[2];
+    ps_boundary_cut_workspace *ws = ps_boundary_cut_workspace_new();
+    uint32_t sinks[N_MESSY];
+    REQUIRE(start && ws);
+    for (int k = 0; k < 2; k++) {
+        group[k] = malloc(n * sizeof *group[k]);
+        supernodes[k] = malloc(n * sizeof *supernodes[k]);
+        REQUIRE(group[k] && supernodes[k]);
+    }
+    ps_boundary_cut_input shifted = {.graph = &s.shape.graph, .points = s.shape.points,
+                                     .normals = s.shape.normals, .scales = scales_of(&s.shape),
+                                     .n_groups = N_PARTS, .n_supernodes = N_PARTS,
+                                     .sinks = s.sinks};
+    ps_error err = {0};
+    shifted_groups(&s, start);
+    for (int k = 0; k < 2; k++) {
+        memcpy(group[k], start, n * sizeof *start);
+        for (size_t p = 0; p < n; p++) supernodes[k][p] = start[p];
+        shifted.workspace = k ? ws : NULL;
+        REQUIRE(ps_boundary_cut(&shifted, group[k], supernodes[k], &err) == PS_OK);
+    }
+    CHECK(memcmp(group[1], group[0], n * sizeof *group[0]) == 0);
+    int *shifted_cut = malloc(n * sizeof *shifted_cut);
+    REQUIRE(shifted_cut);
+    memcpy(shifted_cut, group[0], n * sizeof *shifted_cut);
+    messy_groups(&s, start);
+    for (int t = 1; t <= 3; t++) {
+        for (int k = 0; k < 2; k++) {
+            int m = messy_supernodes(&s, start, supernodes[k], sinks);
+            ps_boundary_cut_input in = {.graph = &s.shape.graph, .points = s.shape.points,
+                                        .normals = s.shape.normals,
+                                        .scales = scales_of(&s.shape), .n_groups = N_MESSY,
+                                        .n_supernodes = m, .sinks = sinks, .threads = t,
+                                        .workspace = k ? ws : NULL};
+            memcpy(group[k], start, n * sizeof *start);
+            REQUIRE(ps_boundary_cut(&in, group[k], supernodes[k], &err) == PS_OK);
+        }
+        CHECK_MSG(memcmp(group[1], group[0], n * sizeof *group[0]) == 0, "%d threads", t);
+        CHECK(memcmp(supernodes[1], supernodes[0], n * sizeof *supernodes[0]) == 0);
+    }
+    shifted_groups(&s, group[1]); /* fewer segments than the workspace holds */
+    for (size_t p = 0; p < n; p++) supernodes[1][p] = group[1][p];
+    REQUIRE(ps_boundary_cut(&shifted, group[1], supernodes[1], &err) == PS_OK);
+    CHECK(memcmp(group[1], shifted_cut, n * sizeof *shifted_cut) == 0);
+    for (int k = 0; k < 2; k++) free(group[k]), free(supernodes[k]);
+    free(shifted_cut);
+    ps_boundary_cut_workspace_free(ws);
+    free(start);
+    star_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_star_boundaries_move_to_creases), TEST(test_true_parts_stay),
              TEST(test_progress_and_cancel),
              TEST(test_deterministic), TEST(test_messy_segments_move_only_near_boundaries),
-             TEST(test_same_for_any_thread_count), TEST(test_shared_capacities_give_the_same_cut))
+             TEST(test_same_for_any_thread_count), TEST(test_shared_capacities_give_the_same_cut),
+             TEST(test_workspace_gives_the_same_cut))
