@@ -6,9 +6,8 @@
  * the heap, so positions are back to NOT_IN_HEAP and nothing is reset or
  * allocated per run.  All runs share one settling loop; a ball run adds its
  * limits (checked only on an improving edge), its reached list and, with
- * points, edge lengths measured between the points.  Edge lengths are never
- * negative, so without owners an edge into a vertex no farther than the
- * settled one is skipped before its length is computed.
+ * points, edge lengths measured between the points (the settled point's
+ * coordinates read once).
  */
 #include "dijkstra.h"
 
@@ -137,7 +136,6 @@ static inline __attribute__((always_inline)) void settle_with(ps_dijkstra *w, co
         for (int d = 0; points && d < 3; d++) pu[d] = points[3 * (size_t)u + d];
         for (size_t e = g->offsets[u]; e < g->offsets[u + 1]; e++) {
             uint32_t v = g->neighbors[e];
-            if (!owner && dist[v] <= du) continue; /* no edge makes v nearer through u */
             double nd = du + (points ? ps_distance3(pu, points + 3 * (size_t)v) : g->weights[e]);
             if (!improves(w, nd, dist[v], owner, u, v)) continue;
             if (b && !within(b->limits, nd, v)) continue;
