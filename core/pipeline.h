@@ -39,9 +39,9 @@ typedef struct ps_pipeline {
     ps_edge_scales edge_scales; /* with normals: the graph's edges over them */
     double *spacing;       /* with normals: #U mean Euclidean kNN edge length of each
                               point (the profile split's; freed after it) */
-    double *cut_capacity;  /* #E the boundary cut's capacity of each graph arc, 0 until
-                              computed (boundary_cut.h); NULL until the first cut */
-    ps_boundary_cut_workspace *cut_workspace; /* the cuts' scratch; NULL until the first */
+    double *cut_capacity;  /* #E the boundary cuts' capacity of each graph arc, 0 until
+                              computed (boundary_cut.h), from the first cut to the last */
+    ps_boundary_cut_workspace *cut_workspace; /* the cuts' scratch, as long */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;

@@ -312,6 +312,14 @@ static ps_status point_groups(ps_pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
+/* The boundary cuts' capacities and workspace, once no cut is left. */
+static void cut_space_free(ps_pipeline *pl) {
+    free(pl->cut_capacity);
+    ps_boundary_cut_workspace_free(pl->cut_workspace);
+    pl->cut_capacity = NULL;
+    pl->cut_workspace = NULL;
+}
+
 static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE, REFINE_CUT_DONE};
     size_t arcs = pl->graph.offsets[pl->graph.n];
@@ -375,6 +383,7 @@ static ps_status phase_refine(ps_pipeline *pl, ps_error *err) {
     if (st == PS_OK) st = point_groups(pl, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
+    cut_space_free(pl); /* before the merges (an ensemble's draws run them in turn) */
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CUT_DONE);
     if (st == PS_OK && pl->normals) st = merge_segments(pl, err);
     return st;
@@ -403,11 +412,9 @@ void ps_pipeline_shed(ps_pipeline *pl) {
     free(pl->normals);
     free(pl->creases.strength);
     free(pl->spacing);
-    free(pl->cut_capacity);
-    ps_boundary_cut_workspace_free(pl->cut_workspace);
-    pl->cut_workspace = NULL;
+    cut_space_free(pl);
     pl->component = NULL;
-    pl->crease_normals = pl->normals = pl->creases.strength = pl->spacing = pl->cut_capacity = NULL;
+    pl->crease_normals = pl->normals = pl->creases.strength = pl->spacing = NULL;
 }
 
 void ps_pipeline_free(ps_pipeline *pl) {
