@@ -33,10 +33,10 @@
  * PS_BOUNDARY_CUT_SIDE_BY_SIDE points (each worker holds its own per-point
  * scratch, about 340 bytes a point allocated, 12 of them touched for every
  * point, the rest over the largest band; a workspace keeps it between
- * calls); a pair waits for every earlier pair
- * that shares a segment with it, so the result is the same for any thread
- * count.  Progress is reported after each pair, and a raised cancel flag
- * stops it between pairs.
+ * calls); a pair waits for every earlier pair that shares a segment with
+ * it, so the result is the same for any thread count.  Progress is
+ * reported after each pair, and a raised cancel flag stops it between
+ * pairs.
  */
 #ifndef PS_BOUNDARY_CUT_H
 #define PS_BOUNDARY_CUT_H
