@@ -5,7 +5,8 @@
 #   sh tests/docker/run.sh BUILD
 # Needs root: installs docker.io, docker-compose and debootstrap with
 # apt-get when missing and starts dockerd when it is not running (and
-# leaves it running).  No image registry is reachable, so the Debian base
+# stops the one it started at the end; the images stay in Docker's store).
+# No image registry is reachable, so the Debian base
 # images come from debootstrap and the redis and nginx images from Debian's
 # packages (base-images.sh; made once, then cached in Docker's image store:
 # the first run takes about 4 minutes more).  Prints PASS/FAIL/SKIP lines
@@ -17,6 +18,7 @@ tmp=$(mktemp -d)
 project=pointsegtest$$
 passed=0 failed=0 skipped=0
 single=""
+dockerd_pid=""
 COMPOSE_FILES="-f $ROOT/docker/compose.yaml -f $ROOT/tests/docker/compose.test.yaml"
 # Debian's client first: its BuildKit reads docker/Dockerfile.dockerignore.
 PATH=/usr/bin:/usr/sbin:$PATH
@@ -26,7 +28,19 @@ cleanup() {
     # shellcheck disable=SC2086
     command -v docker-compose >/dev/null &&
         docker-compose -p "$project" $COMPOSE_FILES down -v -t 5 >/dev/null 2>&1
+    stop_dockerd
     rm -rf "$tmp"
+}
+
+# Stops the dockerd this script started (none when one was running).
+stop_dockerd() {
+    [ -n "$dockerd_pid" ] || return 0
+    kill "$dockerd_pid" 2>/dev/null
+    for _ in $(seq 40); do
+        kill -0 "$dockerd_pid" 2>/dev/null || return 0
+        sleep 0.5
+    done
+    kill -9 "$dockerd_pid" 2>/dev/null
 }
 trap cleanup EXIT
 trap 'exit 1' INT TERM
@@ -60,6 +74,7 @@ start_dockerd() {
     docker info >/dev/null 2>&1 && return 0
     echo "docker: starting dockerd (log /var/log/pointseg-dockerd.log)" >&2
     nohup dockerd >/var/log/pointseg-dockerd.log 2>&1 &
+    dockerd_pid=$!
     for _ in $(seq 60); do
         docker info >/dev/null 2>&1 && return 0
         sleep 0.5
