@@ -35,21 +35,28 @@ double ps_segment_bulge(const ps_segment_graph *sg, int s) {
     return variance > 0 ? (m->dot_sum / n - nc) / sqrt(variance) : 0;
 }
 
+static int same_pair(const ps_boundary *p, const ps_boundary *q) {
+    return p->a == q->a && p->b == q->b;
+}
+
+/* By pair, then by position: a stable sort by pair, so that the records of
+ * one pair are summed in list order (the sums' rounding depends on it). */
 static int compare_boundary(const void *x, const void *y) {
     const ps_boundary *p = x, *q = y;
     if (p->a != q->a) return p->a < q->a ? -1 : 1;
     if (p->b != q->b) return p->b < q->b ? -1 : 1;
-    return 0;
+    return (p->position > q->position) - (p->position < q->position);
 }
 
 /* Sorts the records and sums those of one pair; drops a == b. */
 static void coalesce(ps_segment_graph *sg) {
     if (sg->count == 0) return;
+    for (size_t i = 0; i < sg->count; i++) sg->list[i].position = i;
     qsort(sg->list, sg->count, sizeof *sg->list, compare_boundary);
     size_t out = 0;
     for (size_t i = 0; i < sg->count; i++) {
         if (sg->list[i].a == sg->list[i].b) continue;
-        if (out > 0 && compare_boundary(&sg->list[out - 1], &sg->list[i]) == 0) {
+        if (out > 0 && same_pair(&sg->list[out - 1], &sg->list[i])) {
             ps_boundary *sum = &sg->list[out - 1];
             sum->marked += sg->list[i].marked;
             sum->edges += sg->list[i].edges;

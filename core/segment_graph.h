@@ -25,6 +25,8 @@ typedef struct ps_boundary {
     double midpoint_sum[3]; /* sum of the edges' midpoints, relative to point
                                0 (0 without points) */
     double norm2_sum;       /* sum of their squared norms */
+    size_t position;        /* the record's index before a sort: ties keep
+                               their order whatever qsort the C library has */
 } ps_boundary;
 
 /* Twice the RMS distance of the boundary's edge midpoints from their
