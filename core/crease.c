@@ -167,7 +167,7 @@ ps_status ps_crease_weights(ps_graph *g, const double *points, const double *nor
     ps_status st = measure(&c, threads, &measured, err);
     if (scales) *scales = measured;
     if (st != PS_OK) return st;
-    /* no arcs leave A at 0 */
+    /* A flat surface (or one without arcs: A is left at 0) keeps its lengths. */
     ps_range_fn pass = c.A < PS_CREASE_FLAT ? restore_lengths : weigh_points;
     ps_parallel_for(ps_parallel_threads(threads), g->n, 0, pass, &c);
     return PS_OK;

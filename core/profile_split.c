@@ -1,15 +1,13 @@
 /*
  * profile_split.c: supernodes cut where their level-set profile jumps
- * (profile_split.h).  The points' spacings (given, or in parallel) and the
- * members of each supernode (a counting sort), then per maximum's
+ * (profile_split.h).  The members of each supernode (a counting sort),
+ * then per maximum's
  * supernode one pass over its points into bands of f and at most
  * PS_PROFILE_TRIES breadth-first fills inside it; then the supernodes are
  * rebuilt.
  */
 #include "profile_split.h"
 
-#include "dijkstra.h"
-#include "parallel.h"
 #include "persistence.h"
 #include "sort_util.h"
 
@@ -18,7 +16,6 @@
 #include <string.h>
 
 #define PI 3.14159265358979323846
-#define SPACING_CHUNK 4096 /* points per hand-out of the spacing loop */
 
 typedef struct profile_work {
     const ps_graph *g;
@@ -26,7 +23,6 @@ typedef struct profile_work {
     const double *f;
     const ps_supernodes *sn;
     const double *spacing; /* #P mean kNN edge length */
-    double *own_spacing;   /* #P the spacings when not given, else NULL */
     size_t *start;     /* #S+1: supernode s's points are members[start[s] .. start[s+1]) */
     uint32_t *members; /* #P by supernode, each in index order */
     double *scratch;   /* #P */
@@ -37,19 +33,6 @@ typedef struct profile_work {
     size_t band_cap;
     int n_new;
 } profile_work;
-
-static void spacing_range(void *ctx, size_t begin, size_t end, int worker) {
-    const profile_work *w = ctx;
-    const ps_graph *g = w->g;
-    (void)worker;
-    for (size_t p = begin; p < end; p++) {
-        double sum = 0.0;
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            sum += ps_distance3(w->points + 3 * p, w->points + 3 * (size_t)g->neighbors[e]);
-        size_t degree = g->offsets[p + 1] - g->offsets[p];
-        w->own_spacing[p] = degree ? sum / (double)degree : 0.0;
-    }
-}
 
 static double median(const double *x, size_t n, double *scratch) {
     memcpy(scratch, x, n * sizeof *scratch);
@@ -164,31 +147,27 @@ static int split_one(profile_work *w, int s) {
 }
 
 static void work_free(profile_work *w) {
-    free(w->own_spacing), free(w->start), free(w->members), free(w->scratch), free(w->label);
+    free(w->start), free(w->members), free(w->scratch), free(w->label);
     free(w->queue), free(w->band), free(w->above);
 }
 
-static int work_alloc(profile_work *w, size_t n, const double *spacing) {
-    if (!spacing) w->own_spacing = malloc(n * sizeof *w->own_spacing);
-    w->spacing = spacing ? spacing : w->own_spacing;
+static int work_alloc(profile_work *w, size_t n) {
     w->start = malloc(((size_t)w->sn->m + 1) * sizeof *w->start);
     w->members = malloc(n * sizeof *w->members);
     w->scratch = malloc(n * sizeof *w->scratch);
     w->label = malloc(n * sizeof *w->label);
     w->queue = malloc(n * sizeof *w->queue);
-    return w->spacing && w->start && w->members && w->scratch && w->label && w->queue;
+    return w->start && w->members && w->scratch && w->label && w->queue;
 }
 
 ps_status ps_supernodes_split_profile(const ps_graph *g, const double *points, const double *f,
-                                      const double *spacing, int threads, ps_supernodes *sn,
+                                      const double *spacing, ps_supernodes *sn,
                                       ps_error *err) {
     size_t n = g->n;
     if (n == 0) return PS_OK;
-    profile_work w = {.g = g, .points = points, .f = f, .sn = sn};
-    int ok = work_alloc(&w, n, spacing);
+    profile_work w = {.g = g, .points = points, .f = f, .sn = sn, .spacing = spacing};
+    int ok = work_alloc(&w, n);
     if (ok) {
-        if (!spacing)
-            ps_parallel_for(ps_parallel_threads(threads), n, SPACING_CHUNK, spacing_range, &w);
         /* a supernode id is never negative: it reads the same as a uint32_t */
         ps_group_by_label((const uint32_t *)sn->supernode_of, n, (size_t)sn->m, w.start,
                           w.members);

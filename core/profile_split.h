@@ -36,14 +36,13 @@
 #define PS_PROFILE_TRIES 4           /* levels tried per supernode at most */
 
 /* g the kNN graph, points #P by 3, f #P the centrality, spacing #P each
- * point's mean kNN edge length (Euclidean), or NULL to compute them here on
- * threads (ps_parallel_threads) threads; the result does not depend on
- * the count.  sn is replaced by its refinement (ps_supernodes_relabel): every new
+ * point's mean kNN edge length (Euclidean; ps_crease_weights gives them
+ * from its pass over the edges).  sn is replaced by its refinement (ps_supernodes_relabel): every new
  * supernode lies inside one old one and keeps its is_minimum; minima's
  * supernodes are not cut.  O(P + E + S), plus O(B^2) per supernode of B
  * bands (B is at most its f range over the band width). */
 ps_status ps_supernodes_split_profile(const ps_graph *g, const double *points, const double *f,
-                                      const double *spacing, int threads, ps_supernodes *sn,
+                                      const double *spacing, ps_supernodes *sn,
                                       ps_error *err);
 
 #endif

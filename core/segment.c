@@ -272,8 +272,8 @@ static ps_status phase_supernodes(ps_pipeline *pl, ps_error *err) {
     if (st == PS_OK && pl->normals)
         st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     if (st == PS_OK && pl->normals && pl->in->dim == 3)
-        st = ps_supernodes_split_profile(&pl->graph, pl->points, pl->f, pl->spacing, pl->threads,
-                                         &pl->sn, err);
+        st = ps_supernodes_split_profile(&pl->graph, pl->points, pl->f, pl->spacing, &pl->sn,
+                                         err);
     free(pl->spacing); /* read by the profile split alone */
     pl->spacing = NULL;
     return st;

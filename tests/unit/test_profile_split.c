@@ -84,19 +84,32 @@ static int one_supernode(const cloud *c, int is_minimum, ps_supernodes *sn, doub
     return 1;
 }
 
+/* spacing #P out: each point's mean kNN edge length (the kNN graph's
+ * weights are the Euclidean lengths), as the pipeline passes them. */
+static void spacings(const ps_graph *g, double *spacing) {
+    for (size_t p = 0; p < g->n; p++) {
+        double sum = 0.0;
+        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) sum += g->weights[e];
+        size_t degree = g->offsets[p + 1] - g->offsets[p];
+        spacing[p] = degree ? sum / (double)degree : 0.0;
+    }
+}
+
 /* Splits the supernode over c's points (scaled by scale); sn out. */
 static ps_status split(const cloud *c, double scale, int is_minimum, ps_supernodes *sn) {
     double *points = malloc(3 * c->n * sizeof *points), *f = malloc(c->n * sizeof *f);
+    double *spacing = malloc(c->n * sizeof *spacing);
     ps_graph g = {0};
     ps_error err = {0};
-    ps_status st = points && f ? PS_OK : PS_ERR_NOMEM;
+    ps_status st = points && f && spacing ? PS_OK : PS_ERR_NOMEM;
     for (size_t i = 0; st == PS_OK && i < 3 * c->n; i++) points[i] = scale * c->points[i];
     if (st == PS_OK) st = ps_knn_graph_build(points, c->n, 3, 7, 1, &g, &err);
     if (st == PS_OK && !one_supernode(c, is_minimum, sn, f)) st = PS_ERR_NOMEM;
     for (size_t p = 0; st == PS_OK && p < c->n; p++) f[p] *= scale;
-    if (st == PS_OK) st = ps_supernodes_split_profile(&g, points, f, NULL, 2, sn, &err);
+    if (st == PS_OK) spacings(&g, spacing);
+    if (st == PS_OK) st = ps_supernodes_split_profile(&g, points, f, spacing, sn, &err);
     ps_graph_free(&g);
-    free(points), free(f);
+    free(points), free(f), free(spacing);
     return st;
 }
 
