@@ -31,10 +31,8 @@
  *   - per-segment sink counts say whether a cut left a segment without one.
  * A sink point's "infinite" tie to its side is one plus every capacity of
  * the band's network, so no pass covers the whole pair.  An arc's capacity
- * is computed when a band first needs it (most arcs never are), in the
- * caller's array when it passes one, so later calls reuse it.  Every
- * scratch array is sized once, and kept for later calls in the caller's
- * workspace when it passes one.
+ * is computed when a band first needs it (most arcs never are).  Every
+ * scratch array is sized once.
  */
 #include "boundary_cut.h"
 #include "boundary_cut_context.h"
@@ -316,7 +314,7 @@ static void moves_free(move_log *log, size_t groups) {
 static void context_free(cut_context *cx) {
     free(cx->size);
     free(cx->sinks_in);
-    if (cx->capacity != cx->in->capacity) free(cx->capacity);
+    free(cx->capacity);
     free(cx->is_sink);
     free(cx->witness);
     free(cx->initial);
@@ -362,7 +360,7 @@ static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *gr
     *cx = (cut_context){.in = in, .group = group};
     cx->size = calloc(groups, sizeof *cx->size);
     cx->sinks_in = calloc(groups, sizeof *cx->sinks_in);
-    cx->capacity = in->capacity ? in->capacity : calloc(arcs, sizeof *cx->capacity);
+    cx->capacity = calloc(arcs, sizeof *cx->capacity);
     cx->is_sink = calloc(n, sizeof *cx->is_sink);
     cx->witness = malloc(groups * WITNESSES * sizeof *cx->witness);
     cx->moves = calloc(1, sizeof *cx->moves);
@@ -378,11 +376,12 @@ static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *gr
     return initial_boundaries(cx);
 }
 
-/* Arrays for n points, arcs graph arcs and groups segments in s, in the
- * state between pairs; -1 when out of memory. */
-static int scratch_alloc(cut_scratch *s, size_t n, size_t arcs, size_t groups) {
-    size_t net_arcs = arcs + 1 + 4 * n;
-    *s = (cut_scratch){.n = n, .arcs = arcs, .groups = groups};
+/* s's arrays for in, in the state between pairs; -1 when out of memory
+ * (s is then empty). */
+static int scratch_alloc(cut_scratch *s, const ps_boundary_cut_input *in) {
+    size_t n = in->graph->n, net_arcs = in->graph->offsets[n] + 1 + 4 * n;
+    size_t groups = in->n_groups > 0 ? (size_t)in->n_groups : 1;
+    *s = (cut_scratch){0};
     s->sources = malloc(n * sizeof *s->sources);
     s->dijkstra = ps_dijkstra_new(n);
     s->region_mark = calloc(groups, sizeof *s->region_mark);
@@ -410,25 +409,12 @@ static int scratch_alloc(cut_scratch *s, size_t n, size_t arcs, size_t groups) {
         !s->visited || !s->dist || !s->reached || !s->band_of || !s->band || !s->old_group ||
         !s->tie_source || !s->tie_sink || !s->net_offsets || !s->net_heads ||
         !s->net_capacity || !s->side || !s->flow_space || !s->piece || !s->piece_start ||
-        !s->piece_size || !s->anchored || !s->queue)
+        !s->piece_size || !s->anchored || !s->queue) {
+        scratch_free(s);
         return -1;
+    }
     for (size_t p = 0; p < n; p++) s->band_of[p] = NOT_IN_BAND, s->dist[p] = INFINITY;
     return 0;
-}
-
-/* s ready for in: kept if it holds arrays as large and its stamps are far
- * from wrapping round, else allocated anew; -1 when out of memory (s is
- * then empty). */
-static int scratch_ready(cut_scratch *s, const ps_boundary_cut_input *in) {
-    size_t n = in->graph->n, arcs = in->graph->offsets[n];
-    size_t groups = in->n_groups > 0 ? (size_t)in->n_groups : 1;
-    if (s->queue && s->n >= n && s->arcs >= arcs && s->groups >= groups &&
-        s->stamp < UINT32_MAX / 2)
-        return 0;
-    scratch_free(s);
-    if (scratch_alloc(s, n, arcs, groups) == 0) return 0;
-    scratch_free(s);
-    return -1;
 }
 
 /* How many pairs may run side by side: one per thread, at most
@@ -467,8 +453,8 @@ static void cut_report(void *ctx, size_t done) {
 /* Every pair, side by side where they share no segment (keyed_tasks.h:
  * the result is that of one worker taking them in order).  The workers
  * are copies of first with scratch of their own: the first first's,
- * worker i scratch[i] (scratch: #PS_BOUNDARY_CUT_WORKERS), readied here;
- * each is left where it came from. */
+ * worker i scratch[i] (scratch: #PS_BOUNDARY_CUT_WORKERS), allocated
+ * here; each is left where it came from (the caller frees them). */
 static ps_status cut_pairs(cut_context *first, cut_scratch *scratch, const pair *pairs,
                            size_t n_pairs, ps_error *err) {
     int workers = worker_count(first->in);
@@ -478,7 +464,7 @@ static ps_status cut_pairs(cut_context *first, cut_scratch *scratch, const pair 
     ps_status st = PS_OK;
     if (!w || !errors || !keys) st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     for (int i = 1; st == PS_OK && i < workers; i++)
-        if (scratch_ready(&scratch[i], first->in) != 0)
+        if (scratch_alloc(&scratch[i], first->in) != 0)
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     if (st == PS_OK) {
         for (int i = 0; i < workers; i++) w[i] = *first, w[i].s = i ? scratch[i] : first->s;
@@ -498,31 +484,15 @@ static ps_status cut_pairs(cut_context *first, cut_scratch *scratch, const pair 
     return st;
 }
 
-/* A workspace (boundary_cut.h): each worker's scratch. */
-struct ps_boundary_cut_workspace {
-    cut_scratch worker[PS_BOUNDARY_CUT_WORKERS];
-};
-
-ps_boundary_cut_workspace *ps_boundary_cut_workspace_new(void) {
-    return calloc(1, sizeof(ps_boundary_cut_workspace));
-}
-
-void ps_boundary_cut_workspace_free(ps_boundary_cut_workspace *ws) {
-    if (!ws) return;
-    for (int i = 0; i < PS_BOUNDARY_CUT_WORKERS; i++) scratch_free(&ws->worker[i]);
-    free(ws);
-}
-
 ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supernode_of,
                           ps_error *err) {
     if (in->graph->n == 0 || in->graph->offsets[in->graph->n] == 0) return PS_OK;
-    ps_boundary_cut_workspace own = {0};
-    cut_scratch *scratch = in->workspace ? in->workspace->worker : own.worker;
+    cut_scratch scratch[PS_BOUNDARY_CUT_WORKERS] = {{0}};
     cut_context cx;
     size_t n_pairs = 0;
     pair *pairs = NULL;
     ps_status st = PS_OK;
-    if (shared_init(&cx, in, group) != 0 || scratch_ready(&scratch[0], in) != 0 ||
+    if (shared_init(&cx, in, group) != 0 || scratch_alloc(&scratch[0], in) != 0 ||
         !(pairs = adjacent_pairs(&cx, &n_pairs)))
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     cx.s = scratch[0];
@@ -532,7 +502,6 @@ ps_status ps_boundary_cut(const ps_boundary_cut_input *in, int *group, int *supe
     scratch[0] = cx.s;
     free(pairs);
     context_free(&cx);
-    for (int i = 0; !in->workspace && i < PS_BOUNDARY_CUT_WORKERS; i++)
-        scratch_free(&own.worker[i]);
+    for (int i = 0; i < PS_BOUNDARY_CUT_WORKERS; i++) scratch_free(&scratch[i]);
     return st;
 }

@@ -32,8 +32,7 @@
  * PS_BOUNDARY_CUT_WORKERS threads when the input has at most
  * PS_BOUNDARY_CUT_SIDE_BY_SIDE points (each worker holds its own per-point
  * scratch, about 340 bytes a point allocated, 12 of them touched for every
- * point, the rest over the largest band; a workspace keeps it between
- * calls); a pair waits for every earlier pair that shares a segment with
+ * point, the rest over the largest band); a pair waits for every earlier pair that shares a segment with
  * it, so the result is the same for any thread count.  Progress is
  * reported after each pair, and a raised cancel flag stops it between
  * pairs.
@@ -60,16 +59,6 @@
 #define PS_BOUNDARY_CUT_WORKERS 2              /* pairs side by side at most */
 #define PS_BOUNDARY_CUT_SIDE_BY_SIDE 131072    /* points up to which they may be */
 
-/* Scratch space ps_boundary_cut keeps between calls: every worker's
- * per-point arrays and flow network space, grown to the largest input it
- * has served, so that a later call allocates, clears and faults in none
- * of it.  One call at a time. */
-typedef struct ps_boundary_cut_workspace ps_boundary_cut_workspace;
-
-/* An empty workspace; NULL when out of memory. */
-ps_boundary_cut_workspace *ps_boundary_cut_workspace_new(void);
-void ps_boundary_cut_workspace_free(ps_boundary_cut_workspace *ws);
-
 typedef struct ps_boundary_cut_input {
     const ps_graph *graph;   /* kNN graph on #P points (its weights are not used) */
     const double *points;    /* #P by 3 */
@@ -81,12 +70,6 @@ typedef struct ps_boundary_cut_input {
     const uint32_t *sinks;   /* #S sink point of each supernode */
     const ps_progress_span *span; /* progress over the pairs, and cancel; may be NULL */
     int threads;             /* ps_parallel_threads (0: all cores) */
-    double *capacity;        /* #E (graph->offsets[#P]) in/out, or NULL: each arc's cut
-                                capacity, 0 until computed (calloc it); the calls on one
-                                graph, points, normals and scales may share it, so that
-                                later ones reuse what earlier ones computed.  NULL: the
-                                call keeps its own. */
-    ps_boundary_cut_workspace *workspace; /* or NULL: the call allocates its own */
 } ps_boundary_cut_input;
 
 /* group #P in/out: each point's segment; supernode_of #P in/out: each

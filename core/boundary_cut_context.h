@@ -43,13 +43,10 @@ typedef struct move_log {
     size_t *capacity;   /* #groups */
 } move_log;
 
-/* A worker's own scratch, every array sized once for up to n points, arcs
- * graph arcs and groups segments.  Between pairs, and between calls when a
- * workspace keeps it (boundary_cut.h), band_of is NOT_IN_BAND and dist
- * INFINITY at every point, the Dijkstra heap is empty, and no stamp in
- * seen, visited or region_mark is above stamp. */
+/* A worker's own scratch, every array sized once.  Between pairs band_of
+ * is NOT_IN_BAND and dist INFINITY at every point, the Dijkstra heap is
+ * empty, and no stamp in seen, visited or region_mark is above stamp. */
 typedef struct cut_scratch {
-    size_t n, arcs, groups;
     uint32_t *sources;         /* #P the pair's boundary points, the ball's sources */
     size_t n_sources;
     ps_dijkstra *dijkstra;     /* for #P vertices */
@@ -83,8 +80,7 @@ typedef struct cut_context {
     int *group;                /* #P in/out, shared (read with ps_bc_group) */
     size_t *size;              /* #groups points of each segment, kept current; shared */
     size_t *sinks_in;          /* #groups sink points of each segment, kept current; shared */
-    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed; shared
-                                  (in->capacity, or the call's own) */
+    double *capacity;          /* #E cut capacity of each graph arc, 0 until needed; shared */
     unsigned char *is_sink;    /* #P, shared */
     double mean_edge;          /* mean Euclidean kNN edge length L */
     double angle_scale;        /* A0 of the capacities */

@@ -6,7 +6,6 @@
 #ifndef PS_PIPELINE_H
 #define PS_PIPELINE_H
 
-#include "boundary_cut.h"
 #include "crease.h"
 #include "dedup.h"
 #include "knn_graph.h"
@@ -39,9 +38,6 @@ typedef struct ps_pipeline {
     ps_edge_scales edge_scales; /* with normals: the graph's edges over them */
     double *spacing;       /* with normals: #U mean Euclidean kNN edge length of each
                               point (the profile split's; freed after it) */
-    double *cut_capacity;  /* #E the boundary cuts' capacity of each graph arc, 0 until
-                              computed (boundary_cut.h), from the first cut to the last */
-    ps_boundary_cut_workspace *cut_workspace; /* the cuts' scratch, as long */
     double *f;             /* #U centrality */
     ps_supernodes sn;
     ps_tree_node *tree;

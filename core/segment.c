@@ -312,21 +312,8 @@ static ps_status point_groups(ps_pipeline *pl, ps_error *err) {
     return PS_OK;
 }
 
-/* The boundary cuts' capacities and workspace, once no cut is left. */
-static void cut_space_free(ps_pipeline *pl) {
-    free(pl->cut_capacity);
-    ps_boundary_cut_workspace_free(pl->cut_workspace);
-    pl->cut_capacity = NULL;
-    pl->cut_workspace = NULL;
-}
-
 static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
     ps_progress_span span = {pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE, REFINE_CUT_DONE};
-    size_t arcs = pl->graph.offsets[pl->graph.n];
-    if (!pl->cut_capacity) pl->cut_capacity = calloc(arcs ? arcs : 1, sizeof(double));
-    if (!pl->cut_workspace) pl->cut_workspace = ps_boundary_cut_workspace_new();
-    if (!pl->cut_capacity || !pl->cut_workspace)
-        return ps_fail(err, PS_ERR_NOMEM, "out of memory (boundary cut)");
     ps_boundary_cut_input bc = {
         .graph = &pl->graph,
         .points = pl->points,
@@ -337,8 +324,6 @@ static ps_status boundary_cut(ps_pipeline *pl, ps_error *err) {
         .sinks = pl->sn.sinks,
         .span = &span,
         .threads = pl->threads,
-        .capacity = pl->cut_capacity,
-        .workspace = pl->cut_workspace,
     };
     return ps_boundary_cut(&bc, pl->group_of_point, pl->sn.supernode_of, err);
 }
@@ -383,7 +368,6 @@ static ps_status phase_refine(ps_pipeline *pl, ps_error *err) {
     if (st == PS_OK) st = point_groups(pl, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);
-    cut_space_free(pl); /* before the merges (an ensemble's draws run them in turn) */
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_CUT_DONE);
     if (st == PS_OK && pl->normals) st = merge_segments(pl, err);
     return st;
@@ -412,7 +396,6 @@ void ps_pipeline_shed(ps_pipeline *pl) {
     free(pl->normals);
     free(pl->creases.strength);
     free(pl->spacing);
-    cut_space_free(pl);
     pl->component = NULL;
     pl->crease_normals = pl->normals = pl->creases.strength = pl->spacing = NULL;
 }

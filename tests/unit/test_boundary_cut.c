@@ -11,9 +11,7 @@
  * moves lies within the band's cap of a boundary it started next to.  With
  * a progress span it answers the same, reports rising progress pair by
  * pair up to the span's end, and stops when cancelled.  Pairs run side by
- * side give the same answer on 1, 2 and 3 threads, and a capacity array
- * or a workspace shared by several calls gives the answer of a call
- * without one.
+ * side give the same answer on 1, 2 and 3 threads.
  */
 #include "boundary_cut.h"
 #include "progress_seen.h"
@@ -321,117 +319,7 @@ static void test_same_for_any_thread_count(void) {
     star_free(&s);
 }
 
-/* The messy segments cut with the caller's capacity array, once when the
- * shifted parts' cut has filled part of it and once more: both answers are
- * those of a cut with no array, which the array then holds capacities for. */
-static void test_shared_capacities_give_the_same_cut(void) {
-    star s;
-    REQUIRE(star_build(&s));
-    size_t n = s.shape.n, arcs = s.shape.graph.offsets[n];
-    int *start = malloc(n * sizeof *start), *group[3], *supernodes[3];
-    double *capacity = calloc(arcs, sizeof *capacity);
-    uint32_t sinks[N_MESSY];
-    REQUIRE(start && capacity);
-    ps_boundary_cut_input shifted = {.graph = &s.shape.graph, .points = s.shape.points,
-                                     .normals = s.shape.normals, .scales = scales_of(&s.shape),
-                                     .n_groups = N_PARTS, .n_supernodes = N_PARTS,
-                                     .sinks = s.sinks, .capacity = capacity};
-    ps_error err = {0};
-    group[0] = malloc(n * sizeof *group[0]);
-    supernodes[0] = malloc(n * sizeof *supernodes[0]);
-    REQUIRE(group[0] && supernodes[0]);
-    shifted_groups(&s, group[0]);
-    for (size_t p = 0; p < n; p++) supernodes[0][p] = group[0][p];
-    REQUIRE(ps_boundary_cut(&shifted, group[0], supernodes[0], &err) == PS_OK);
-    size_t filled = 0;
-    for (size_t e = 0; e < arcs; e++) filled += capacity[e] > 0;
-    CHECK_MSG(filled > 0 && filled < arcs, "%zu of %zu capacities after one cut", filled, arcs);
-    messy_groups(&s, start);
-    for (int t = 0; t < 3; t++) {
-        if (t > 0) group[t] = malloc(n * sizeof *group[t]);
-        if (t > 0) supernodes[t] = malloc(n * sizeof *supernodes[t]);
-        REQUIRE(group[t] && supernodes[t]);
-        int m = messy_supernodes(&s, start, supernodes[t], sinks);
-        ps_boundary_cut_input in = {.graph = &s.shape.graph, .points = s.shape.points,
-                                    .normals = s.shape.normals, .scales = scales_of(&s.shape),
-                                    .n_groups = N_MESSY, .n_supernodes = m, .sinks = sinks,
-                                    .capacity = t == 0 ? NULL : capacity};
-        memcpy(group[t], start, n * sizeof *group[t]);
-        REQUIRE(ps_boundary_cut(&in, group[t], supernodes[t], &err) == PS_OK);
-    }
-    for (int t = 1; t < 3; t++) {
-        CHECK_MSG(memcmp(group[t], group[0], n * sizeof *group[0]) == 0, "call %d", t);
-        CHECK(memcmp(supernodes[t], supernodes[0], n * sizeof *supernodes[0]) == 0);
-    }
-    size_t more = 0;
-    for (size_t e = 0; e < arcs; e++) more += capacity[e] > 0;
-    CHECK_MSG(more > filled, "%zu capacities after three cuts, %zu after one", more, filled);
-    for (int t = 0; t < 3; t++) free(group[t]), free(supernodes[t]);
-    free(start);
-    free(capacity);
-    star_free(&s);
-}
-
-/* One workspace for every call: the shifted parts' cut, the messy
- * segments' (more segments) on 1, 2 and 3 threads, and the shifted parts'
- * again, each the answer of a call without one. */
-static void test_workspace_gives_the_same_cut(void) {
-    star s;
-    REQUIRE(star_build(&s));
-    size_t n = s.shape.n;
-    int *start = malloc(n * sizeof *start), *group[2], *supernodes[2];
-    ps_boundary_cut_workspace *ws = ps_boundary_cut_workspace_new();
-    uint32_t sinks[N_MESSY];
-    REQUIRE(start && ws);
-    for (int k = 0; k < 2; k++) {
-        group[k] = malloc(n * sizeof *group[k]);
-        supernodes[k] = malloc(n * sizeof *supernodes[k]);
-        REQUIRE(group[k] && supernodes[k]);
-    }
-    ps_boundary_cut_input shifted = {.graph = &s.shape.graph, .points = s.shape.points,
-                                     .normals = s.shape.normals, .scales = scales_of(&s.shape),
-                                     .n_groups = N_PARTS, .n_supernodes = N_PARTS,
-                                     .sinks = s.sinks};
-    ps_error err = {0};
-    shifted_groups(&s, start);
-    for (int k = 0; k < 2; k++) {
-        memcpy(group[k], start, n * sizeof *start);
-        for (size_t p = 0; p < n; p++) supernodes[k][p] = start[p];
-        shifted.workspace = k ? ws : NULL;
-        REQUIRE(ps_boundary_cut(&shifted, group[k], supernodes[k], &err) == PS_OK);
-    }
-    CHECK(memcmp(group[1], group[0], n * sizeof *group[0]) == 0);
-    int *shifted_cut = malloc(n * sizeof *shifted_cut);
-    REQUIRE(shifted_cut);
-    memcpy(shifted_cut, group[0], n * sizeof *shifted_cut);
-    messy_groups(&s, start);
-    for (int t = 1; t <= 3; t++) {
-        for (int k = 0; k < 2; k++) {
-            int m = messy_supernodes(&s, start, supernodes[k], sinks);
-            ps_boundary_cut_input in = {.graph = &s.shape.graph, .points = s.shape.points,
-                                        .normals = s.shape.normals,
-                                        .scales = scales_of(&s.shape), .n_groups = N_MESSY,
-                                        .n_supernodes = m, .sinks = sinks, .threads = t,
-                                        .workspace = k ? ws : NULL};
-            memcpy(group[k], start, n * sizeof *start);
-            REQUIRE(ps_boundary_cut(&in, group[k], supernodes[k], &err) == PS_OK);
-        }
-        CHECK_MSG(memcmp(group[1], group[0], n * sizeof *group[0]) == 0, "%d threads", t);
-        CHECK(memcmp(supernodes[1], supernodes[0], n * sizeof *supernodes[0]) == 0);
-    }
-    shifted_groups(&s, group[1]); /* fewer segments than the workspace holds */
-    for (size_t p = 0; p < n; p++) supernodes[1][p] = group[1][p];
-    REQUIRE(ps_boundary_cut(&shifted, group[1], supernodes[1], &err) == PS_OK);
-    CHECK(memcmp(group[1], shifted_cut, n * sizeof *shifted_cut) == 0);
-    for (int k = 0; k < 2; k++) free(group[k]), free(supernodes[k]);
-    free(shifted_cut);
-    ps_boundary_cut_workspace_free(ws);
-    free(start);
-    star_free(&s);
-}
-
 PS_TEST_MAIN(TEST(test_star_boundaries_move_to_creases), TEST(test_true_parts_stay),
              TEST(test_progress_and_cancel),
              TEST(test_deterministic), TEST(test_messy_segments_move_only_near_boundaries),
-             TEST(test_same_for_any_thread_count), TEST(test_shared_capacities_give_the_same_cut),
-             TEST(test_workspace_gives_the_same_cut))
+             TEST(test_same_for_any_thread_count))
