@@ -47,10 +47,12 @@ typedef struct smooth_step {
     double share; /* of the iteration taken: in (0, 1] */
 } smooth_step;
 
-/* to = the unit vector along sum (#3), or from where sum is 0. */
-static void unit_or(const double *sum, const double *from, double *to) {
-    double len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
-    for (int i = 0; i < 3; i++) to[i] = len > 0 ? sum[i] / len : from[i];
+/* to = the unit vector along (x, y, z), or from where that is 0. */
+static inline void unit_or(double x, double y, double z, const double *from, double *to) {
+    double len = sqrt(x * x + y * y + z * z);
+    to[0] = len > 0 ? x / len : from[0];
+    to[1] = len > 0 ? y / len : from[1];
+    to[2] = len > 0 ? z / len : from[2];
 }
 
 /* One iteration over points [begin, end): the unit sum of a point's normal
@@ -61,28 +63,40 @@ static void average_range(void *context, size_t begin, size_t end, int worker) {
     const smooth_step *step = context;
     const ps_graph *g = step->g;
     const double *from = step->from;
+    const double share = step->share;
     for (size_t p = begin; p < end; p++) {
-        double sum[3] = {from[3 * p], from[3 * p + 1], from[3 * p + 2]}, whole[3];
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++)
-            for (int i = 0; i < 3; i++) sum[i] += from[3 * (size_t)g->neighbors[e] + i];
-        unit_or(sum, from + 3 * p, step->share < 1 ? whole : step->to + 3 * p);
-        if (step->share >= 1) continue;
-        for (int i = 0; i < 3; i++)
-            sum[i] = (1 - step->share) * from[3 * p + i] + step->share * whole[i];
-        unit_or(sum, from + 3 * p, step->to + 3 * p);
+        const double *own = from + 3 * p;
+        double x = own[0], y = own[1], z = own[2], whole[3];
+        for (size_t e = g->offsets[p], last = g->offsets[p + 1]; e < last; e++) {
+            const double *n = from + 3 * (size_t)g->neighbors[e];
+            x += n[0], y += n[1], z += n[2];
+        }
+        if (share >= 1) {
+            unit_or(x, y, z, own, step->to + 3 * p);
+            continue;
+        }
+        unit_or(x, y, z, own, whole);
+        unit_or((1 - share) * own[0] + share * whole[0], (1 - share) * own[1] + share * whole[1],
+                (1 - share) * own[2] + share * whole[2], own, step->to + 3 * p);
     }
 }
 
+/* Each iteration reads one buffer and writes the other (normals and a
+ * scratch copy in turn); the last one's result is copied back to normals
+ * when it lies in the scratch. */
 ps_status ps_normals_smooth(const ps_graph *g, double *normals, double iterations, int threads,
                             ps_error *err) {
     if (!(iterations > 0) || g->n == 0) return PS_OK;
     double *scratch = malloc(3 * g->n * sizeof *scratch);
     if (!scratch) return ps_fail(err, PS_ERR_NOMEM, "normals: out of memory (smoothing)");
+    double *from = normals, *to = scratch;
     for (double left = iterations; left > 0; left -= 1) {
-        smooth_step step = {g, normals, scratch, left < 1 ? left : 1};
+        smooth_step step = {g, from, to, left < 1 ? left : 1};
         ps_parallel_for(ps_parallel_threads(threads), g->n, 0, average_range, &step);
-        memcpy(normals, scratch, 3 * g->n * sizeof *normals);
+        double *swap = from;
+        from = to, to = swap;
     }
+    if (from != normals) memcpy(normals, from, 3 * g->n * sizeof *normals);
     free(scratch);
     return PS_OK;
 }
