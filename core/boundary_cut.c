@@ -13,18 +13,21 @@
  *   - the shared boundary comes from the pair's boundary points found once
  *     at the start plus the points moved into A or B by earlier cuts (and
  *     their neighbours), each checked against the current segments;
- *   - one ball Dijkstra on the kNN graph itself (edge lengths measured
- *     between the points as it goes, no copy of the graph), kept to A and
- *     B and to the distance beyond which the band's width is capped,
- *     measures the distance from the boundary, its points the sources;
- *   - a segment's extent is that distance when the ball missed some of its
+ *   - ball Dijkstras on the kNN graph itself (edge lengths measured
+ *     between the points as they go, no copy of the graph), one per
+ *     segment from its own boundary points (no shortest path from the
+ *     boundary into A passes through B), measure the distance from the
+ *     boundary: the first, into the smaller segment, out to the distance
+ *     beyond which the band's width is capped; the second only as far as
+ *     the first one's extent leaves the width open;
+ *   - a segment's extent is that distance when its ball missed some of its
  *     points (per-segment point counts are kept up to date), else the
  *     largest distance reached, exactly as a scan of all members would
  *     give;
  *   - a segment with a witness (one of its extreme points along the axes
  *     at the start, still in it) that far from every boundary point in a
- *     straight line extends that far, since no path is shorter: the ball
- *     goes into it only as far as the widest band;
+ *     straight line extends that far, since no path is shorter: its ball
+ *     goes only as far as the band, whose width the other segment fixes;
  *   - a piece a cut leaves inside the band is found inside the band; only
  *     when one is loose does a search outside it, stopped once a piece is
  *     larger, tell whether an anchored piece is the largest;
@@ -134,8 +137,9 @@ static int finish_pair(cut_context *cx, size_t nb, size_t n_reached) {
 static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     if (ps_bc_boundary_points(cx, a, b) == 0) return PS_OK;
     double reach = PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge / PS_BOUNDARY_CUT_BAND;
-    size_t n_reached = ps_bc_boundary_distances(cx, a, b, reach);
-    size_t nb = ps_bc_mark_band(cx, n_reached, ps_bc_band_width(cx, n_reached, a, b, reach), a, b);
+    double width;
+    size_t n_reached = ps_bc_boundary_distances(cx, a, b, reach, &width);
+    size_t nb = ps_bc_mark_band(cx, n_reached, width, a, b);
     ps_flow_graph net;
     double flow;
     ps_status st = PS_OK;
@@ -281,7 +285,6 @@ static void scratch_free(cut_scratch *s) {
     free(s->sources);
     ps_dijkstra_free(s->dijkstra);
     free(s->region_mark);
-    free(s->radius_of);
     free(s->seen);
     free(s->visited);
     free(s->dist);
@@ -385,7 +388,6 @@ static int scratch_alloc(cut_scratch *s, const ps_boundary_cut_input *in) {
     s->sources = malloc(n * sizeof *s->sources);
     s->dijkstra = ps_dijkstra_new(n);
     s->region_mark = calloc(groups, sizeof *s->region_mark);
-    s->radius_of = malloc(groups * sizeof *s->radius_of);
     s->seen = calloc(n, sizeof *s->seen);
     s->visited = calloc(n, sizeof *s->visited);
     s->dist = malloc(n * sizeof *s->dist);
@@ -405,7 +407,7 @@ static int scratch_alloc(cut_scratch *s, const ps_boundary_cut_input *in) {
     s->piece_size = malloc(n * sizeof *s->piece_size);
     s->anchored = malloc(n * sizeof *s->anchored);
     s->queue = malloc(n * sizeof *s->queue);
-    if (!s->sources || !s->dijkstra || !s->region_mark || !s->radius_of || !s->seen ||
+    if (!s->sources || !s->dijkstra || !s->region_mark || !s->seen ||
         !s->visited || !s->dist || !s->reached || !s->band_of || !s->band || !s->old_group ||
         !s->tie_source || !s->tie_sink || !s->net_offsets || !s->net_heads ||
         !s->net_capacity || !s->side || !s->flow_space || !s->piece || !s->piece_start ||

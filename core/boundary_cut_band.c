@@ -81,39 +81,76 @@ static int far_beyond(const cut_context *cx, int s, double reach) {
     return 0;
 }
 
-/* dist of the points of a and b within reach of the boundary (the extent
- * from which the band's width is capped), or within the cap in a segment
- * known to extend beyond reach; returns the reached count, the boundary
- * points first.  Segment ids are the ball's region labels (a group is
- * never negative, so it reads the same as a uint32_t). */
-size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach) {
-    cx->s.region_mark[a] = cx->s.region_mark[b] = cx->s.stamp;
-    double cap = PS_BOUNDARY_CUT_BAND * reach;
-    cx->s.radius_of[a] = far_beyond(cx, a, reach) ? cap : reach;
-    cx->s.radius_of[b] = far_beyond(cx, b, reach) ? cap : reach;
-    ps_dijkstra_limits limits = {.label = (const uint32_t *)cx->group,
-                                 .mark = cx->s.region_mark, .stamp = cx->s.stamp,
-                                 .radius_of = cx->s.radius_of, .points = cx->in->points};
-    return ps_dijkstra_ball_from(cx->s.dijkstra, cx->in->graph, cx->s.sources, cx->s.n_sources,
-                                 &limits, cx->s.dist, cx->s.reached);
+/* Moves the sources in segment s to the front; returns their count. */
+static size_t sources_first(cut_context *cx, int s) {
+    size_t front = 0;
+    for (size_t i = 0; i < cx->s.n_sources; i++) {
+        uint32_t p = cx->s.sources[i];
+        if (ps_bc_group(cx, p) != s) continue;
+        cx->s.sources[i] = cx->s.sources[front];
+        cx->s.sources[front++] = p;
+    }
+    return front;
 }
 
-/* Band half-width: PS_BOUNDARY_CUT_BAND x the smaller segment's extent, at
- * most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths.  A segment with points
- * beyond reach (unreached, or known from a witness) has the extent reach. */
-double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, double reach) {
-    double extent_a = 0, extent_b = 0;
-    size_t reached_a = 0;
-    for (size_t i = 0; i < n_reached; i++) {
-        uint32_t p = cx->s.reached[i];
-        if (ps_bc_group(cx, p) == a) extent_a = fmax(extent_a, cx->s.dist[p]), reached_a++;
-        else extent_b = fmax(extent_b, cx->s.dist[p]);
-    }
-    if (reached_a < cx->size[a] || cx->s.radius_of[a] < reach) extent_a = fmax(extent_a, reach);
-    if (n_reached - reached_a < cx->size[b] || cx->s.radius_of[b] < reach)
-        extent_b = fmax(extent_b, reach);
+/* The ball within segment s from its n boundary points, out to radius:
+ * its points go to reached from index at on, with their dist.  Returns
+ * how many.  Segment ids are the ball's region labels (a group is never
+ * negative, so it reads the same as a uint32_t). */
+static size_t segment_ball(cut_context *cx, int s, const uint32_t *sources, size_t n,
+                           double radius, size_t at) {
+    cx->s.region_mark[s] = ++cx->s.stamp;
+    ps_dijkstra_limits limits = {.radius = radius, .label = (const uint32_t *)cx->group,
+                                 .mark = cx->s.region_mark, .stamp = cx->s.stamp,
+                                 .points = cx->in->points};
+    return ps_dijkstra_ball_from(cx->s.dijkstra, cx->in->graph, sources, n, &limits, cx->s.dist,
+                                 cx->s.reached + at);
+}
+
+/* Segment s's extent from the count points of its ball at reached[at..):
+ * their largest distance when the ball covered s, else cover (a bound
+ * the extent is known to reach). */
+static double ball_extent(const cut_context *cx, int s, size_t at, size_t count, double cover) {
+    double extent = 0;
+    for (size_t i = at; i < at + count; i++) extent = fmax(extent, cx->s.dist[cx->s.reached[i]]);
+    return count < cx->size[s] ? fmax(extent, cover) : extent;
+}
+
+/* The band's half-width from the two extents. */
+static double band_width(const cut_context *cx, double extent_a, double extent_b) {
     return fmin(PS_BOUNDARY_CUT_BAND * fmin(extent_a, extent_b),
                 PS_BOUNDARY_CUT_MAX_EDGES * cx->mean_edge);
+}
+
+/* No shortest path from the boundary to a point of a passes through b: a
+ * point of a next to b is itself on the boundary.  So each segment's
+ * distances come from a ball of its own from its own boundary points, and
+ * the second ball need go only as far as the first one's extent allows:
+ * the band's width is fixed by the smaller extent, and a segment not
+ * covered within the first's extent has the larger one.  A segment that a
+ * witness shows to extend beyond reach needs no ball to know its extent;
+ * only the band's width of it is explored. */
+size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach, double *width) {
+    int far_a = far_beyond(cx, a, reach), far_b = far_beyond(cx, b, reach);
+    int first = a, second = b;
+    if (far_a || (!far_b && cx->size[b] < cx->size[a])) first = b, second = a;
+    size_t n_first = sources_first(cx, first);
+    const uint32_t *first_sources = cx->s.sources, *second_sources = cx->s.sources + n_first;
+    size_t n_second = cx->s.n_sources - n_first;
+    if (far_a && far_b) {
+        *width = band_width(cx, reach, reach);
+        size_t count = segment_ball(cx, first, first_sources, n_first, *width, 0);
+        return count + segment_ball(cx, second, second_sources, n_second, *width, count);
+    }
+    size_t count = segment_ball(cx, first, first_sources, n_first, reach, 0);
+    double extent = ball_extent(cx, first, 0, count, reach);
+    if (far_a || far_b) {
+        *width = band_width(cx, extent, reach);
+        return count + segment_ball(cx, second, second_sources, n_second, *width, count);
+    }
+    size_t more = segment_ball(cx, second, second_sources, n_second, extent, count);
+    *width = band_width(cx, extent, ball_extent(cx, second, count, more, reach));
+    return count + more;
 }
 
 static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacity) {

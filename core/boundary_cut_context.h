@@ -51,8 +51,7 @@ typedef struct cut_scratch {
     size_t n_sources;
     ps_dijkstra *dijkstra;     /* for #P vertices */
     uint32_t stamp;            /* bumped for each ball, boundary and piece search */
-    uint32_t *region_mark;     /* #groups stamp of the segments the ball may enter */
-    double *radius_of;         /* #groups how far the ball may go into each segment */
+    uint32_t *region_mark;     /* #groups stamp of the segment a ball may enter */
     uint32_t *seen;            /* #P stamp of the boundary candidates checked */
     uint32_t *visited;         /* #P stamp of the points a piece search reached */
     double *dist;              /* #P INFINITY outside a pair's ball */
@@ -127,19 +126,16 @@ void ps_bc_set_group(cut_context *cx, uint32_t p, int g);
  * longer touches. */
 size_t ps_bc_boundary_points(cut_context *cx, int a, int b);
 
-/* Ball Dijkstra from the boundary points within a and b along Euclidean
- * edge lengths: fills dist for the reached points and reached[0..count)
- * (the boundary points first).  Returns that count.  It goes out to reach
- * (the distance from which the band's width is capped) into a segment,
- * and only to the cap (reach x PS_BOUNDARY_CUT_BAND) into one that a
- * witness shows to extend beyond reach (radius_of says which).  Call after
- * ps_bc_boundary_points (it uses the stamp set there). */
-size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach);
-
-/* Band half-width from the n_reached ball of ps_bc_boundary_distances:
- * PS_BOUNDARY_CUT_BAND x the smaller segment's extent (reach for a segment
- * the ball did not cover), at most PS_BOUNDARY_CUT_MAX_EDGES x mean_edge. */
-double ps_bc_band_width(const cut_context *cx, size_t n_reached, int a, int b, double reach);
+/* The distances from the pair's boundary (Euclidean edge lengths, each
+ * segment's from its own boundary points) of the points the band's width
+ * depends on or may take: dist for them and reached[0..count), the count
+ * returned.  *width out: the band's half-width, PS_BOUNDARY_CUT_BAND x the
+ * smaller segment's extent (its largest distance; reach, the distance
+ * from which the width is capped, for a segment extending beyond it), at
+ * most PS_BOUNDARY_CUT_MAX_EDGES x mean_edge.  Every point within *width
+ * is reached.  Bumps the stamp; call after ps_bc_boundary_points (it
+ * reorders the sources). */
+size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach, double *width);
 
 /* The reached points within width become band[0..nb) in point order, with
  * band_of, old_group and the terminal ties tie_source / tie_sink
