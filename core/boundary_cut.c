@@ -64,15 +64,17 @@ static void edge_scales(cut_context *cx) {
 }
 
 /* The arc of row q leading to p (rows are sorted and the graph is
- * symmetric, so there is one). */
+ * symmetric, so there is one): a binary search whose steps depend only on
+ * the row's length, each a conditional move rather than a branch. */
 static size_t reverse_arc(const ps_graph *g, size_t q, uint32_t p) {
-    size_t lo = g->offsets[q], hi = g->offsets[q + 1];
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (g->neighbors[mid] < p) lo = mid + 1;
-        else hi = mid;
+    const uint32_t *at = g->neighbors + g->offsets[q];
+    size_t n = g->offsets[q + 1] - g->offsets[q];
+    while (n > 1) {
+        size_t half = n / 2;
+        at = at[half] <= p ? at + half : at;
+        n -= half;
     }
-    return lo;
+    return (size_t)(at - g->neighbors);
 }
 
 /* capacity[e] = |p-q| / L * exp(-ang / A0) of arc e out of p, set for
