@@ -50,6 +50,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct pair {
     int a, b;             /* a < b */
@@ -284,28 +285,9 @@ static void reassign_supernodes(cut_context *cx, int *supernode_of) {
 
 /* s's arrays; s is then empty. */
 static void scratch_free(cut_scratch *s) {
-    free(s->sources);
+    free(s->block);
     ps_dijkstra_free(s->dijkstra);
-    free(s->region_mark);
-    free(s->seen);
-    free(s->visited);
-    free(s->dist);
-    free(s->reached);
-    free(s->band_of);
-    free(s->band);
-    free(s->old_group);
-    free(s->tie_source);
-    free(s->tie_sink);
-    free(s->net_offsets);
-    free(s->net_heads);
-    free(s->net_capacity);
-    free(s->side);
     ps_maxflow_workspace_free(s->flow_space);
-    free(s->piece);
-    free(s->piece_start);
-    free(s->piece_size);
-    free(s->anchored);
-    free(s->queue);
     *s = (cut_scratch){0};
 }
 
@@ -381,42 +363,60 @@ static int shared_init(cut_context *cx, const ps_boundary_cut_input *in, int *gr
     return initial_boundaries(cx);
 }
 
-/* s's arrays for in, in the state between pairs; -1 when out of memory
- * (s is then empty). */
+/* The start of count items of size bytes from byte *at of block (64-byte
+ * aligned), *at then past them; NULL with no block (sizing only). */
+static void *carve(unsigned char *block, size_t *at, size_t count, size_t size) {
+    size_t start = (*at + 63) & ~(size_t)63;
+    *at = start + (count ? count : 1) * size;
+    return block ? block + start : NULL;
+}
+
+/* s's arrays for n points, net_arcs network arcs and groups segments,
+ * carved out of block (or only sized, with no block); the block's size. */
+static size_t carve_scratch(cut_scratch *s, unsigned char *block, size_t n, size_t net_arcs,
+                            size_t groups) {
+    size_t at = 0;
+    s->sources = carve(block, &at, n, sizeof *s->sources);
+    s->region_mark = carve(block, &at, groups, sizeof *s->region_mark);
+    s->seen = carve(block, &at, n, sizeof *s->seen);
+    s->visited = carve(block, &at, n, sizeof *s->visited);
+    s->dist = carve(block, &at, n, sizeof *s->dist);
+    s->reached = carve(block, &at, n, sizeof *s->reached);
+    s->band_of = carve(block, &at, n, sizeof *s->band_of);
+    s->band = carve(block, &at, n, sizeof *s->band);
+    s->old_group = carve(block, &at, n, sizeof *s->old_group);
+    s->tie_source = carve(block, &at, n, sizeof *s->tie_source);
+    s->tie_sink = carve(block, &at, n, sizeof *s->tie_sink);
+    s->net_offsets = carve(block, &at, n + 3, sizeof *s->net_offsets);
+    s->net_heads = carve(block, &at, net_arcs, sizeof *s->net_heads);
+    s->net_capacity = carve(block, &at, net_arcs, sizeof *s->net_capacity);
+    s->side = carve(block, &at, n + 2, sizeof *s->side);
+    s->piece = carve(block, &at, n, sizeof *s->piece);
+    s->piece_start = carve(block, &at, n, sizeof *s->piece_start);
+    s->piece_size = carve(block, &at, n, sizeof *s->piece_size);
+    s->anchored = carve(block, &at, n, sizeof *s->anchored);
+    s->queue = carve(block, &at, n, sizeof *s->queue);
+    return at;
+}
+
+/* s's arrays for in, in the state between pairs, all in one block (one
+ * allocation and one release a worker); -1 when out of memory (s is then
+ * empty). */
 static int scratch_alloc(cut_scratch *s, const ps_boundary_cut_input *in) {
     size_t n = in->graph->n, net_arcs = in->graph->offsets[n] + 1 + 4 * n;
     size_t groups = in->n_groups > 0 ? (size_t)in->n_groups : 1;
     *s = (cut_scratch){0};
-    s->sources = malloc(n * sizeof *s->sources);
+    s->block = malloc(carve_scratch(s, NULL, n, net_arcs, groups));
     s->dijkstra = ps_dijkstra_new(n);
-    s->region_mark = calloc(groups, sizeof *s->region_mark);
-    s->seen = calloc(n, sizeof *s->seen);
-    s->visited = calloc(n, sizeof *s->visited);
-    s->dist = malloc(n * sizeof *s->dist);
-    s->reached = malloc(n * sizeof *s->reached);
-    s->band_of = malloc(n * sizeof *s->band_of);
-    s->band = malloc(n * sizeof *s->band);
-    s->old_group = malloc(n * sizeof *s->old_group);
-    s->tie_source = malloc(n * sizeof *s->tie_source);
-    s->tie_sink = malloc(n * sizeof *s->tie_sink);
-    s->net_offsets = malloc((n + 3) * sizeof *s->net_offsets);
-    s->net_heads = malloc(net_arcs * sizeof *s->net_heads);
-    s->net_capacity = malloc(net_arcs * sizeof *s->net_capacity);
-    s->side = malloc((n + 2) * sizeof *s->side);
     s->flow_space = ps_maxflow_workspace_new();
-    s->piece = malloc(n * sizeof *s->piece);
-    s->piece_start = malloc(n * sizeof *s->piece_start);
-    s->piece_size = malloc(n * sizeof *s->piece_size);
-    s->anchored = malloc(n * sizeof *s->anchored);
-    s->queue = malloc(n * sizeof *s->queue);
-    if (!s->sources || !s->dijkstra || !s->region_mark || !s->seen ||
-        !s->visited || !s->dist || !s->reached || !s->band_of || !s->band || !s->old_group ||
-        !s->tie_source || !s->tie_sink || !s->net_offsets || !s->net_heads ||
-        !s->net_capacity || !s->side || !s->flow_space || !s->piece || !s->piece_start ||
-        !s->piece_size || !s->anchored || !s->queue) {
+    if (!s->block || !s->dijkstra || !s->flow_space) {
         scratch_free(s);
         return -1;
     }
+    carve_scratch(s, s->block, n, net_arcs, groups);
+    memset(s->region_mark, 0, groups * sizeof *s->region_mark);
+    memset(s->seen, 0, n * sizeof *s->seen);
+    memset(s->visited, 0, n * sizeof *s->visited);
     for (size_t p = 0; p < n; p++) s->band_of[p] = NOT_IN_BAND, s->dist[p] = INFINITY;
     return 0;
 }

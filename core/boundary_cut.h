@@ -31,8 +31,8 @@
  * Pairs that share no segment run side by side, on up to
  * PS_BOUNDARY_CUT_WORKERS threads when the input has at most
  * PS_BOUNDARY_CUT_SIDE_BY_SIDE points (each worker holds its own per-point
- * scratch, about 340 bytes a point allocated, 12 of them touched for every
- * point, the rest over the largest band); a pair waits for every earlier pair that shares a segment with
+ * scratch in one block, about 340 bytes a point allocated, 20 of them
+ * touched for every point, the rest over the largest band); a pair waits for every earlier pair that shares a segment with
  * it, so the result is the same for any thread count.  Progress is
  * reported after each pair, and a raised cancel flag stops it between
  * pairs.

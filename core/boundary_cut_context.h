@@ -47,6 +47,8 @@ typedef struct move_log {
  * is NOT_IN_BAND and dist INFINITY at every point, the Dijkstra heap is
  * empty, and no stamp in seen, visited or region_mark is above stamp. */
 typedef struct cut_scratch {
+    void *block;               /* the arrays below but the Dijkstra and max flow
+                                  workspaces, in one allocation */
     uint32_t *sources;         /* #P the pair's boundary points, the ball's sources */
     size_t n_sources;
     ps_dijkstra *dijkstra;     /* for #P vertices */

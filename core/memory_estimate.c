@@ -41,9 +41,10 @@
 #define DRAWS_BYTES_PER_NEIGHBOUR 19
 /* Each further worker of the boundary cut (boundary_cut.h), up to
  * PS_BOUNDARY_CUT_SIDE_BY_SIDE points a pipeline, holds per-point scratch
- * of its own; what it touches is its distances and band marks for every
- * point (12 bytes) and the rest only over the largest band. */
-#define CUT_WORKER_BYTES_PER_POINT 40
+ * of its own; what it touches is its distances, band marks and search
+ * stamps for every point (20 bytes) and the rest only over the largest
+ * band. */
+#define CUT_WORKER_BYTES_PER_POINT 48
 
 /* The boundary cut's further workers on a pipeline of n points. */
 static size_t cut_workers_bytes(size_t n, const ps_params *params) {
