@@ -24,23 +24,25 @@ static int along(const double *points, size_t p, size_t r, const double *across)
     return dot * dot >= PS_CREASE_MERGE_CONE * PS_CREASE_MERGE_CONE * length2;
 }
 
-/* p's largest angular term over its edges into segments a and b that run
- * along the boundary edge's line (across, unit #3): only those can make a
- * crease of the boundary between a and b.  A wing root next to the
- * boundary between nose and fuselage is in a third segment; a fillet
- * running across that boundary bends along it, not across. */
-static double strength_within(const ps_merge_input *in, const int *group, size_t p,
-                              int a, int b, const double *across) {
+/* Whether one of p's edges into segments a and b that run along the
+ * boundary edge's line (across, unit #3) has an angular term of crease or
+ * more (the first such edge answers; any crease <= 0 is met, as by an
+ * edge-less point's strength 0): only those can make a crease of the
+ * boundary between a and b.  A wing root next to the boundary between nose
+ * and fuselage is in a third segment; a fillet running across that
+ * boundary bends along it, not across. */
+static int creased_within(const ps_merge_input *in, const int *group, size_t p, int a, int b,
+                          const double *across, double crease) {
     const ps_graph *g = in->graph;
-    double best = 0;
+    if (crease <= 0) return 1;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         size_t r = g->neighbors[e];
         if ((group[r] != a && group[r] != b) || !along(in->points, p, r, across)) continue;
-        double ang = ps_crease_angular(in->points + 3 * p, in->normals + 3 * p,
-                                       in->points + 3 * r, in->normals + 3 * r, 0.0);
-        if (ang > best) best = ang;
+        if (ps_crease_angular(in->points + 3 * p, in->normals + 3 * p, in->points + 3 * r,
+                              in->normals + 3 * r, 0.0) >= crease)
+            return 1;
     }
-    return best;
+    return 0;
 }
 
 ps_crease_test ps_crease_test_of(const ps_merge_input *in) {
@@ -59,8 +61,8 @@ int ps_crease_marked_edge(void *context, const int *group, size_t p, size_t q) {
     if (length2 > 0)
         for (int i = 0; i < 3; i++) across[i] /= sqrt(length2);
     int a = group[p], b = group[q];
-    return strength_within(in, group, p, a, b, across) >= test->crease ||
-           strength_within(in, group, q, a, b, across) >= test->crease;
+    return creased_within(in, group, p, a, b, across, test->crease) ||
+           creased_within(in, group, q, a, b, across, test->crease);
 }
 
 /* The smaller segment of record i. */
