@@ -18,8 +18,8 @@
 typedef struct split_work {
     const ps_graph *g;
     const ps_supernodes *sn;
-    unsigned char *on_crease; /* #P */
-    int *piece;               /* #P piece of each point off creases, else -1 */
+    int *piece;               /* #P piece of each point off creases; -1 before its fill,
+                                 ON_CREASE on a crease */
     size_t *piece_size;       /* #P (at most one piece per point) */
     int *label;               /* #P new supernode, -1 while unknown */
     int *new_of_piece;        /* #P new supernode of a kept piece, else -1 */
@@ -28,21 +28,23 @@ typedef struct split_work {
     int n_new;
 } split_work;
 
-static int same_supernode(const split_work *w, size_t p, size_t q) {
-    return w->sn->supernode_of[p] == w->sn->supernode_of[q];
-}
+#define ON_CREASE (-2)
 
-/* Flood fill of one piece from seed over non-crease points; its size. */
+/* Flood fill of one piece from seed over non-crease points; its size.
+ * A neighbour joins when it has no piece yet and is off creases (piece
+ * -1) and in the same supernode, the two tests taken together. */
 static size_t fill_piece(split_work *w, uint32_t seed, int id) {
     const ps_graph *g = w->g;
+    const int *supernode_of = w->sn->supernode_of;
     size_t head = 0, tail = 0;
     w->piece[seed] = id;
     w->queue[tail++] = seed;
     while (head < tail) {
         uint32_t p = w->queue[head++];
+        int s = supernode_of[p];
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (w->piece[q] >= 0 || w->on_crease[q] || !same_supernode(w, p, q)) continue;
+            if ((w->piece[q] != -1) | (supernode_of[q] != s)) continue;
             w->piece[q] = id;
             w->queue[tail++] = q;
         }
@@ -50,14 +52,18 @@ static size_t fill_piece(split_work *w, uint32_t seed, int id) {
     return tail;
 }
 
-/* Pieces, and the new supernode of each point of a kept piece (numbered
- * in order of their lowest point). */
-static void label_pieces(split_work *w) {
+/* Pieces of the points whose strength is below crease, and the new
+ * supernode of each point of a kept piece (numbered in order of their
+ * lowest point). */
+static void label_pieces(split_work *w, const double *strength, double crease) {
     size_t n = w->g->n;
     int n_pieces = 0;
-    for (size_t p = 0; p < n; p++) w->piece[p] = -1, w->label[p] = -1;
+    for (size_t p = 0; p < n; p++) {
+        w->piece[p] = strength[p] >= crease ? ON_CREASE : -1;
+        w->label[p] = -1;
+    }
     for (size_t p = 0; p < n; p++)
-        if (!w->on_crease[p] && w->piece[p] < 0) {
+        if (w->piece[p] == -1) {
             w->piece_size[n_pieces] = fill_piece(w, (uint32_t)p, n_pieces);
             w->new_of_piece[n_pieces++] = -1;
         }
@@ -89,9 +95,10 @@ static void spread_labels(split_work *w) {
     }
     while (head < tail) {
         uint32_t p = w->queue[head++];
+        int s = w->sn->supernode_of[p];
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (w->label[q] >= 0 || !same_supernode(w, p, q)) continue;
+            if ((w->label[q] >= 0) | (w->sn->supernode_of[q] != s)) continue;
             w->label[q] = w->label[p];
             w->queue[tail++] = q;
         }
@@ -109,7 +116,6 @@ static void label_the_rest(split_work *w) {
 }
 
 static void work_free(split_work *w) {
-    free(w->on_crease);
     free(w->piece);
     free(w->piece_size);
     free(w->label);
@@ -119,14 +125,13 @@ static void work_free(split_work *w) {
 }
 
 static int work_alloc(split_work *w, size_t n, int m) {
-    w->on_crease = malloc(n);
     w->piece = malloc(n * sizeof *w->piece);
     w->piece_size = malloc(n * sizeof *w->piece_size);
     w->label = malloc(n * sizeof *w->label);
     w->new_of_piece = malloc(n * sizeof *w->new_of_piece);
     w->whole = malloc((size_t)(m > 0 ? m : 1) * sizeof *w->whole);
     w->queue = malloc(n * sizeof *w->queue);
-    return w->on_crease && w->piece && w->piece_size && w->label && w->new_of_piece &&
+    return w->piece && w->piece_size && w->label && w->new_of_piece &&
            w->whole && w->queue;
 }
 
@@ -159,8 +164,7 @@ ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points 
         work_free(&w);
         return ps_fail(err, PS_ERR_NOMEM, "crease split: out of memory");
     }
-    for (size_t p = 0; p < g->n; p++) w.on_crease[p] = creases->strength[p] >= crease;
-    label_pieces(&w);
+    label_pieces(&w, creases->strength, crease);
     spread_labels(&w);
     if (w.n_new > sn->m && w.n_new <= PS_MAX_SUPERNODES) {
         label_the_rest(&w);
