@@ -74,7 +74,7 @@ ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_f
         int a = flow->sink_of[p];
         for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (q <= p || flow->sink_of[q] == a) continue;
+            if ((q <= p) | (flow->sink_of[q] == a)) continue; /* one test, no short circuit */
             if (!saddles_room(&s, k, &capacity)) return free(s), NULL;
             s[k++] = (ps_saddle){f[p] < f[q] ? f[p] : f[q], (uint32_t)p, q};
         }
