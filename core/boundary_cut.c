@@ -387,6 +387,7 @@ static size_t carve_scratch(cut_scratch *s, unsigned char *block, size_t n, size
     s->old_group = carve(block, &at, n, sizeof *s->old_group);
     s->tie_source = carve(block, &at, n, sizeof *s->tie_source);
     s->tie_sink = carve(block, &at, n, sizeof *s->tie_sink);
+    s->outside = carve(block, &at, n, sizeof *s->outside);
     s->net_offsets = carve(block, &at, n + 3, sizeof *s->net_offsets);
     s->net_heads = carve(block, &at, net_arcs, sizeof *s->net_heads);
     s->net_capacity = carve(block, &at, net_arcs, sizeof *s->net_capacity);

@@ -159,13 +159,15 @@ static void add_arc(cut_context *cx, size_t *arcs, uint32_t head, double capacit
 }
 
 /* Ties of band point i to the terminals: its arcs to a and b outside the
- * band.  Its arcs inside the band go to the network from *arcs on, *arcs
- * then left two past them (room for its terminal arcs).  Returns the ties
- * plus the arcs inside the band. */
+ * band, which outside[i] notes (OUTSIDE_A, OUTSIDE_B).  Its arcs inside
+ * the band go to the network from *arcs on, *arcs then left two past them
+ * (room for its terminal arcs).  Returns the ties plus the arcs inside the
+ * band. */
 static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *arcs) {
     const ps_graph *g = cx->in->graph;
     uint32_t p = cx->s.band[i];
     double inside = 0;
+    unsigned char outside = 0;
     cx->s.tie_source[i] = cx->s.tie_sink[i] = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->neighbors[e], u = cx->s.band_of[q];
@@ -176,9 +178,10 @@ static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *ar
             continue;
         }
         int s = ps_bc_group(cx, q);
-        if (s == a) cx->s.tie_source[i] += ps_bc_capacity(cx, p, e);
-        else if (s == b) cx->s.tie_sink[i] += ps_bc_capacity(cx, p, e);
+        if (s == a) cx->s.tie_source[i] += ps_bc_capacity(cx, p, e), outside |= OUTSIDE_A;
+        else if (s == b) cx->s.tie_sink[i] += ps_bc_capacity(cx, p, e), outside |= OUTSIDE_B;
     }
+    cx->s.outside[i] = outside;
     *arcs += 2;
     return cx->s.tie_source[i] + cx->s.tie_sink[i] + inside;
 }

@@ -27,6 +27,8 @@
 #define NOT_IN_BAND UINT32_MAX
 #define NO_WITNESS UINT32_MAX
 #define WITNESSES 6 /* per segment: its lowest and highest point along x, y and z */
+#define OUTSIDE_A 1 /* a band point's neighbour outside the band in a (outside) */
+#define OUTSIDE_B 2 /* ... in b */
 
 /* A point on the boundary between segments a < b at the start. */
 typedef struct boundary_entry {
@@ -63,6 +65,8 @@ typedef struct cut_scratch {
     int *old_group;            /* #P group of each band point before the cut */
     double *tie_source;        /* #P */
     double *tie_sink;          /* #P */
+    unsigned char *outside;    /* #P OUTSIDE_A | OUTSIDE_B: band point i has neighbours
+                                  outside the band in a, in b */
     size_t *net_offsets;       /* #P+3 */
     uint32_t *net_heads;       /* #E+4#P+1 */
     double *net_capacity;      /* #E+4#P+1 */
@@ -140,8 +144,8 @@ size_t ps_bc_boundary_points(cut_context *cx, int a, int b);
 size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach, double *width);
 
 /* The reached points within width become band[0..nb) in point order, with
- * band_of, old_group and the terminal ties tie_source / tie_sink
- * (#nb each; infinite for a sink point); the band's arcs go to the net_*
+ * band_of, old_group, the terminal ties tie_source / tie_sink (#nb each;
+ * infinite for a sink point) and outside (#nb); the band's arcs go to the net_*
  * arrays, each band point's from net_offsets[i] on, two slots apart, for
  * ps_bc_build_network.  Returns nb. */
 size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b);
@@ -155,7 +159,9 @@ int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net);
 
 /* Pieces of segment x the cut left wholly inside band[0..nb), except the
  * largest of all x's pieces (ties: the lowest point), join segment y
- * (through ps_bc_set_group). */
+ * (through ps_bc_set_group); x and y are the pair's segments, and the band
+ * is the flow network's (net_* and outside as ps_bc_mark_band and
+ * ps_bc_build_network left them). */
 void ps_bc_keep_largest_piece(cut_context *cx, size_t nb, int x, int y);
 
 #endif

@@ -10,10 +10,11 @@
 #include "boundary_cut_context.h"
 
 /* Pieces of the band points labelled x (connected within the band, in
- * order of their lowest point); a piece with an x neighbour outside the
- * band is anchored.  Returns the count. */
-static int band_pieces(cut_context *cx, size_t nb, int x) {
-    const ps_graph *g = cx->in->graph;
+ * order of their lowest point), over the band's arcs of the flow network
+ * (band nodes first in each row, in graph order); a piece with an x
+ * neighbour outside the band (outside has bit) is anchored.  Returns the
+ * count. */
+static int band_pieces(cut_context *cx, size_t nb, int x, unsigned char bit) {
     int n_pieces = 0;
     for (size_t i = 0; i < nb; i++) cx->s.piece[i] = -1;
     for (uint32_t start = 0; start < nb; start++) {
@@ -23,12 +24,14 @@ static int band_pieces(cut_context *cx, size_t nb, int x) {
         cx->s.anchored[n_pieces] = 0;
         cx->s.queue[tail++] = start;
         while (head < tail) {
-            uint32_t p = cx->s.band[cx->s.queue[head++]];
-            for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-                uint32_t q = g->neighbors[e], u = cx->s.band_of[q];
-                if (ps_bc_group(cx, q) != x) continue;
-                if (u == NOT_IN_BAND) cx->s.anchored[n_pieces] = 1;
-                else if (cx->s.piece[u] < 0) cx->s.piece[u] = n_pieces, cx->s.queue[tail++] = u;
+            uint32_t i = cx->s.queue[head++];
+            if (cx->s.outside[i] & bit) cx->s.anchored[n_pieces] = 1;
+            for (size_t k = cx->s.net_offsets[i]; k < cx->s.net_offsets[i + 1]; k++) {
+                uint32_t u = cx->s.net_heads[k];
+                if (u >= nb || cx->s.piece[u] >= 0 || ps_bc_group(cx, cx->s.band[u]) != x)
+                    continue;
+                cx->s.piece[u] = n_pieces;
+                cx->s.queue[tail++] = u;
             }
         }
         cx->s.piece_start[n_pieces] = start;
@@ -92,7 +95,7 @@ static int anchored_piece_first(cut_context *cx, size_t nb, int x, int best, siz
 /* Pieces of x the cut made (wholly inside the band), except the largest
  * of all x's pieces (ties: the lowest point), become y. */
 void ps_bc_keep_largest_piece(cut_context *cx, size_t nb, int x, int y) {
-    int n_pieces = band_pieces(cx, nb, x), best = -1;
+    int n_pieces = band_pieces(cx, nb, x, x < y ? OUTSIDE_A : OUTSIDE_B), best = -1;
     size_t loose = 0;
     for (int k = 0; k < n_pieces; k++) {
         if (cx->s.anchored[k]) continue;
