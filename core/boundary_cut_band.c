@@ -172,7 +172,8 @@ static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *ar
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->neighbors[e], u = cx->s.band_of[q];
         if (u != NOT_IN_BAND) {
-            double c = ps_bc_capacity(cx, p, e);
+            /* an earlier band point's row set this arc's capacity with its own */
+            double c = u < i ? cx->capacity[e] : ps_bc_capacity(cx, p, e);
             inside += c;
             add_arc(cx, arcs, u, c);
             continue;
