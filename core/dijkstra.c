@@ -113,7 +113,7 @@ typedef struct ball {
 static int within(const ps_dijkstra_limits *l, double nd, uint32_t v) {
     if (!l->label) return nd <= l->radius;
     uint32_t cell = __atomic_load_n(&l->label[v], __ATOMIC_RELAXED); /* see dijkstra.h */
-    return l->mark[cell] == l->stamp && nd <= (l->radius_of ? l->radius_of[cell] : l->radius);
+    return l->mark[cell] == l->stamp && nd <= l->radius;
 }
 
 /* Pops the heap until it is empty, relaxing each popped vertex's edges;

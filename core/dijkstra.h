@@ -47,9 +47,7 @@ void ps_dijkstra_lower(ps_dijkstra *w, const ps_graph *g, uint32_t source,
 /* Where a ball run may go: vertices at distance <= radius (inclusive;
  * INFINITY for no bound) and, when label is not NULL, only the vertices v
  * with mark[label[v]] == stamp (label #P, e.g. the cell of each vertex;
- * mark #L, e.g. a stamp on the cells the run may enter).  radius_of, when
- * not NULL (with label), #L: v's bound is radius_of[label[v]] instead of
- * radius.  Labels are read with relaxed atomic loads, so another thread
+ * mark #L, e.g. a stamp on the cells the run may enter).  Labels are read with relaxed atomic loads, so another thread
  * may relabel vertices outside the region during a run (the boundary
  * cut's pairs side by side), as long as no vertex enters or leaves it.
  * points, when not NULL, #P by 3: an edge's length is then
@@ -59,7 +57,6 @@ typedef struct ps_dijkstra_limits {
     const uint32_t *label;
     const uint32_t *mark;
     uint32_t stamp;
-    const double *radius_of;
     const double *points;
 } ps_dijkstra_limits;
 

@@ -269,21 +269,6 @@ static void test_ball_region(void) {
     ps_dijkstra_free(h.w);
 }
 
-/* A bound per cell: vertices 0, 1 and 5 (cell 0) within 1, vertices 2, 3
- * and 4 (cell 1) within 3, so 5 (at 2) and 4 (at 4) are beyond. */
-static void test_ball_radius_per_cell(void) {
-    hand_ball h;
-    REQUIRE(hand_open(&h));
-    const uint32_t label[HAND_N] = {0, 0, 1, 1, 1, 0}, mark[2] = {7, 7};
-    const double radius_of[2] = {1.0, 3.0};
-    ps_dijkstra_limits limits = {.radius = INFINITY, .label = label, .mark = mark, .stamp = 7,
-                                 .radius_of = radius_of};
-    h.count = ps_dijkstra_ball(h.w, &h.g, 0, &limits, h.dist, h.reached);
-    CHECK(h.count == 4);
-    check_dists(&h, (const double[HAND_N]){0, 1, 2, 3, INFINITY, INFINITY});
-    ps_dijkstra_free(h.w);
-}
-
 /* Settling order from 3 within 2.5: 3, then 2 and 4 (1 each, in either
  * order), then 1 (2); 5 and 0 (3) are beyond. */
 static void test_ball_reached_list(void) {
@@ -333,6 +318,5 @@ static void test_tracked_run_same_answer(void) {
 PS_TEST_MAIN(TEST(test_single_source_and_ball), TEST(test_multi_source_owner),
              TEST(test_lower_is_min_of_runs),
              TEST(test_ball_radius_is_inclusive), TEST(test_ball_region),
-             TEST(test_ball_radius_per_cell),
              TEST(test_ball_reached_list), TEST(test_ball_from_sources_between_points),
              TEST(test_tracked_run_same_answer))
