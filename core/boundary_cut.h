@@ -43,18 +43,11 @@
 #include "crease.h"
 #include "knn_graph.h"
 
-/* PSB dev set, mean 1 - RI (without the cut 0.1930), over BAND x ANGLE:
- * 0.3 x 0.5 0.1721, 0.3 x 0.25 0.1720, 0.3 x 1 0.1745, 0.2 x 0.5 0.1755,
- * 0.25 x 0.5 0.1757, 0.4 x 0.5 0.1742, 0.5 x 1 0.1777 (wide bands let the
- * cut slide down tapering limbs: Human and Fourleg get worse).  Raising
- * capacities with the distance from the old boundary did not help. */
-#define PS_BOUNDARY_CUT_BAND 0.3
-#define PS_BOUNDARY_CUT_ANGLE 0.5
-/* The band is also at most this many mean edge lengths wide, so the cost
- * grows with the boundary's length, not the parts' area, on dense scans
- * (1M points: 36 s without the cap).  10 and 20 score alike on the PSB
- * dev set (0.1203, 0.1204); 10 takes the horse's refinement from 93 to
- * 59 ms. */
+/* The constants (docs/method.md, "Constants", has their sweeps): */
+#define PS_BOUNDARY_CUT_BAND 0.3      /* the band's width over the smaller extent */
+#define PS_BOUNDARY_CUT_ANGLE 0.5     /* A0 over the mean angular term */
+/* The band's width at most, in mean edge lengths: the cost grows with the
+ * boundary's length, not the parts' area. */
 #define PS_BOUNDARY_CUT_MAX_EDGES 10
 #define PS_BOUNDARY_CUT_WORKERS 2              /* pairs side by side at most */
 #define PS_BOUNDARY_CUT_SIDE_BY_SIDE 131072    /* points up to which they may be */

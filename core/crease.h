@@ -14,23 +14,19 @@
  * edges (so the metric is scale free and its two parts weigh alike).  An
  * edge is concave when the outward normals close in along it:
  * (n_q - n_p) . (q - p) < 0 (the convexity test of LCCP, Stein et al. 2014).
- *
- * On the PSB dev set (mean 1 - RI, lower is better; plain geodesics 0.221):
- * DELTA 0.7 gives 0.195, 0.8 0.203, 0.9 0.205, 0.5 0.225, 0.2 0.258; convex
- * edges weighing nothing (ETA_CONVEX 0) beats 0.05 and 0.3 slightly.
+ * docs/method.md ("Constants") has the sweeps behind the constants.
  */
-#define PS_CREASE_DELTA 0.7
+#define PS_CREASE_DELTA 0.7 /* weight of the Euclidean part */
 /* A surface whose mean angular term is below this is flat (a plane, or
  * 2-D points given with z = 0): it has no creases, and the crease steps
  * (metric, split, merge, the cut's preference) leave it alone.  1 - cos of
  * 0.08 degrees. */
 #define PS_CREASE_FLAT 1e-6
-#define PS_CREASE_ETA_CONVEX 0.0
+#define PS_CREASE_ETA_CONVEX 0.0 /* eta of a convex edge */
 /* The crease scale: on a clean surface the crease split and merge read
  * normals smoothed this many more times (normals_smooth.h; core/segment.c),
  * so that a crease must hold at that scale and the sharp facet edges of a
- * coarse mesh sampled densely do not cut thin parts into rings.
- * docs/method.md has the sweep. */
+ * coarse mesh sampled densely do not cut thin parts into rings. */
 #define PS_CREASE_SCALE_SMOOTHING 2
 #ifndef PS_CREASE_H
 #define PS_CREASE_H

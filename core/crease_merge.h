@@ -37,22 +37,13 @@
 
 #include "segment_graph.h"
 
-/* PSB dev set, mean 1 - RI (without the merge 0.1721, and before the
- * crease split), over STRENGTH x FRACTION: 1.5 x 0.5 0.1471, 1 x 0.5
- * 0.1527, 2 x 0.5 0.1490, 1.5 x 0.4 0.1498, 1.5 x 0.6 0.1494.  With the
- * split: FRACTION 0.4 0.1259, 0.5 0.1204, 0.6 0.1242, 0.7 0.1321; counting
- * only edges into A or B (above) 0.1172 instead of 0.1203.  Merging on
- * the mean angular term of the boundary edges instead (below the mean over
- * all edges) gave 0.1579: a boundary that follows a crease for part of its
- * length and then crosses smooth surface (the inside of a cup) averages
- * out as concave; measured against the two segments' own edges it was no
- * better (0.1610). */
+/* The constants (docs/method.md, "Constants", has their sweeps): */
+/* An edge is creased above this many times the mean angular term. */
 #define PS_CREASE_MERGE_STRENGTH 1.5
 /* cos of the widest angle between an edge that can crease a boundary and
- * the boundary edge: 0.5 (60 degrees) 0.1158; no cone 0.1172, 0.3 (73
- * degrees) 0.1166, 0.7 (46 degrees) 0.1163.  PSB 62's nose and fuselage
- * merge (0.200 -> 0.167), Airplane 0.1735 -> 0.1570. */
+ * the boundary edge (60 degrees). */
 #define PS_CREASE_MERGE_CONE 0.5
+/* A boundary creased along less than this fraction of its edges merges. */
 #define PS_CREASE_MERGE_FRACTION 0.5
 /* A part at least this many times longer (feature size, in f) than its
  * boundary is wide (ps_boundary_width) stays without a crease. */

@@ -17,8 +17,8 @@
 #include "knn_graph.h"
 
 /* sigma of a component = PS_NCUT_SIGMA_SCALE * (mean geodesic distance
- * between two of its sinks).  The one knob of W; the PSB dev benchmark is
- * flat around it (mean 1 - RI 0.2202, 0.2198, 0.2221 at 0.05, 0.1, 0.2). */
+ * between two of its sinks), the one knob of W (docs/method.md,
+ * "Constants", has its sweep). */
 #define PS_NCUT_SIGMA_SCALE 0.1
 
 typedef struct ps_supernode_graph {

@@ -31,19 +31,10 @@
 
 #include "knn_graph.h"
 
-/* PSB dev mean 1 - RI of method auto by the noise added (bench_quality
- * --noise F, F in mean mesh edge lengths), without -> with smoothing,
- * before the patch merge and the crease split's cap on crease points
- * (patch_merge.h, crease_split.h; with both 0.1: 0.150 -> 0.149, 0.25:
- * 0.173 -> 0.140, 0.5: 0.217 -> 0.166, 1: 0.259 -> 0.260):
- * F 0: 0.1158 -> 0.1158, 0.1: 0.167 -> 0.167, 0.25: 0.236 -> 0.142,
- * 0.5: 0.256 -> 0.176, 1: 0.264 -> 0.286 (the surface is lost at that
- * noise: method paper 0.314).  A floor of 0.10 instead: 0.1 0.181, 0.25
- * 0.132 (a clean model sits at 0.1005).  Fixed iterations instead: 1, 2,
- * 4 on clean input 0.128, 0.128, 0.135; 4 at 0.25 0.132, 8 at 0.5 0.176. */
-#define PS_NOISE_FLOOR 0.12
-#define PS_NOISE_STEP 0.02
-#define PS_SMOOTH_MAX 8
+/* The constants (docs/method.md, "Constants", has their sweeps): */
+#define PS_NOISE_FLOOR 0.12 /* noise ratio above which normals are smoothed */
+#define PS_NOISE_STEP 0.02  /* one iteration per this much of the ratio above it */
+#define PS_SMOOTH_MAX 8     /* iterations at most */
 #define PS_NOISE_BINS 1024 /* histogram of the ratio over [0, 1) */
 /* Points of the sampling whose normal scale the crease steps use. */
 #define PS_DENSITY_REFERENCE_POINTS 40000

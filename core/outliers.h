@@ -24,20 +24,9 @@
 #include "dedup.h"
 #include "knn_graph.h"
 
-/* The clean PSB dev meshes reach a ratio of at most 4.6, but 8.5 on two
- * (uneven CAD sampling), the horse and bunny scans 3.6.  PSB dev mean
- * 1 - RI clean / with 0.1% / 0.5% stray points per vertex in the grown
- * bounding box (bench_quality --strays): without the step 0.1138 / 0.1629
- * / 0.3576; ratio 10 0.1138 / 0.1554 / 0.2575, 7 0.1138 / 0.1473 / 0.2215,
- * 5 0.1138 / 0.1241 / 0.1705, 4 0.1203 / 0.1272 / 0.1626 (cup 22 changes
- * labels), 3 0.1201 / 0.1226 / 0.1458.  At 5 no clean label changes (PSB,
- * horse, bunny; cmp), nor do the noise figures.  20 stray points in the
- * horse's box (0.04%): 1 - RI against its clean segmentation 0.182 ->
- * 0.037; 50: 0.288 -> 0.040. */
-#define PS_OUTLIER_RATIO 5.0
-/* 50 stray points on the horse at ratio 10: one round 0.268, two rounds
- * 0.030, four the same. */
-#define PS_OUTLIER_ROUNDS 4
+/* The constants (docs/method.md, "Constants", has their sweeps): */
+#define PS_OUTLIER_RATIO 5.0 /* an outlier's median edge over its neighbours' */
+#define PS_OUTLIER_ROUNDS 4  /* searches at most */
 
 /* g: kNN graph on #U distinct points, weights Euclidean lengths; threads
  * as ps_parallel_threads (the answer does not depend on them).

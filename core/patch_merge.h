@@ -33,10 +33,8 @@
 #include "crease_split.h"
 #include "segment_graph.h"
 
-/* PSB dev set, mean 1 - RI (without the merge 0.1158): 0.8 0.1144, 0.85
- * 0.1140, 0.9 0.1138, 0.925 0.1148, 0.95 0.1147.  0.9 is a cap of
- * half-angle 37 degrees.  Before the crease merge instead of after it:
- * 0.1164. */
+/* A segment this flat (a cap of half-angle 37 degrees) is a patch; the
+ * sweep is in docs/method.md, "Constants". */
 #define PS_PATCH_MERGE_FLATNESS 0.9
 /* A crumb's share of the points: one notion of too small to be a part with
  * the crease split's pieces. */
