@@ -30,7 +30,7 @@
  * component: #S component of each supernode.  threshold: largest NCut kept.
  * ctl (may be NULL): cancel is checked between bisections, progress
  * (PS_PHASE_HIERARCHY) counts supernodes that reached a leaf.  tree out as in
- * ps_ncut_hierarchy: #n_tree nodes, free with ps_tree_free (defined here). */
+ * ps_ncut_hierarchy: #n_tree nodes, free with ps_tree_free (ncut.h). */
 ps_status ps_ncut_tree_build(const double *W, int m, const int *component,
                              double threshold, const ps_control *ctl,
                              ps_tree_node **tree, int *n_tree, ps_error *err);
