@@ -150,8 +150,8 @@ static int crease_threshold(const ps_crease_points *creases, size_t n, double *t
     return 1;
 }
 
-ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points *creases,
-                                      const double *f, ps_supernodes *sn, ps_error *err) {
+ps_status ps_crease_split(const ps_graph *g, const ps_crease_points *creases, const double *f,
+                          ps_supernodes *sn, ps_error *err) {
     if (g->n == 0) return PS_OK;
     split_work w = {.g = g, .sn = sn};
     ps_status st = PS_OK;

@@ -36,7 +36,7 @@
  * centrality (picks the representatives).  sn is replaced by its
  * refinement: every new supernode lies inside one old one and keeps its
  * is_minimum. */
-ps_status ps_supernodes_split_creases(const ps_graph *g, const ps_crease_points *creases,
-                                      const double *f, ps_supernodes *sn, ps_error *err);
+ps_status ps_crease_split(const ps_graph *g, const ps_crease_points *creases, const double *f,
+                          ps_supernodes *sn, ps_error *err);
 
 #endif

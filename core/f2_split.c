@@ -50,8 +50,8 @@ static uint32_t *f2_sources(const ps_supernodes *sn, const int *piece, int n_pie
     return src;
 }
 
-ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double persistence,
-                                 ps_supernodes *sn, ps_error *err) {
+ps_status ps_f2_split(const ps_graph *g, const double *f, double persistence, ps_supernodes *sn,
+                      ps_error *err) {
     ps_graph h = {0};
     ps_flow basins = {0};
     int *piece = malloc(g->n * sizeof *piece);
@@ -68,8 +68,8 @@ ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double pers
         st = ps_flow_build(&h, f2, +1, &basins, err);
     }
     if (st == PS_OK)
-        st = ps_flow_simplify(&h, f2, piece, n_pieces, persistence, PS_PERSISTENCE_MIN_BASIN,
-                              &basins, err);
+        st = ps_persistence_simplify(&h, f2, piece, n_pieces, persistence, PS_PERSISTENCE_MIN_BASIN,
+                                     &basins, err);
     if (st == PS_OK)
         st = ps_supernodes_relabel(sn, basins.sink_of, basins.n_sinks, f, g->n, err);
     ps_flow_free(&basins);

@@ -17,7 +17,7 @@
 /* f #P the centrality (sets the representatives of the new supernodes).
  * sn is replaced by its refinement: every new supernode lies inside one old
  * one and keeps its is_minimum. */
-ps_status ps_supernodes_split_f2(const ps_graph *g, const double *f, double persistence,
-                                 ps_supernodes *sn, ps_error *err);
+ps_status ps_f2_split(const ps_graph *g, const double *f, double persistence, ps_supernodes *sn,
+                      ps_error *err);
 
 #endif

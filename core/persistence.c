@@ -119,7 +119,7 @@ static void merge_sweep(const ps_saddle *s, size_t count, const double *f, const
     }
 }
 
-void ps_flow_merge(ps_flow *flow, int *parent, int *new_id, size_t n) {
+void ps_persistence_merge(ps_flow *flow, int *parent, int *new_id, size_t n) {
     int m = flow->n_sinks, kept = 0;
     for (int s = 0; s < m; s++) parent[s] = ps_union_find_root(parent, s);
     for (int s = 0; s < m; s++)
@@ -141,7 +141,7 @@ ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *
         for (int k = 0; k < m; k++) parent[k] = k;
         for (size_t p = 0; p < g->n; p++) size[flow->sink_of[p]]++;
         merge_sweep(s, *count, f, component, threshold, flow, parent, size, min_size);
-        ps_flow_merge(flow, parent, new_id, g->n);
+        ps_persistence_merge(flow, parent, new_id, g->n);
         ps_saddles_keep_borders(flow, s, count);
     }
     free(threshold);
@@ -151,9 +151,9 @@ ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *
     return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
 }
 
-ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *component,
-                           int n_components, double fraction, size_t min_size,
-                           ps_flow *flow, ps_error *err) {
+ps_status ps_persistence_simplify(const ps_graph *g, const double *f, const int *component,
+                                  int n_components, double fraction, size_t min_size,
+                                  ps_flow *flow, ps_error *err) {
     if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     size_t count = 0;
     ps_saddle *s = ps_flow_border_saddles(g, f, flow, &count);

@@ -24,9 +24,9 @@
  * fewer sinks (still increasing vertex ids), sink_of remapped.  Basins of
  * fewer than min_size points merge whatever their persistence (pass
  * PS_PERSISTENCE_MIN_BASIN, or 0 for none).  fraction 0 changes nothing. */
-ps_status ps_flow_simplify(const ps_graph *g, const double *f, const int *component,
-                           int n_components, double fraction, size_t min_size,
-                           ps_flow *flow, ps_error *err);
+ps_status ps_persistence_simplify(const ps_graph *g, const double *f, const int *component,
+                                  int n_components, double fraction, size_t min_size,
+                                  ps_flow *flow, ps_error *err);
 
 /* A kNN edge joining two basins, at the height where they meet there. */
 typedef struct ps_saddle {
@@ -41,11 +41,11 @@ ps_saddle *ps_flow_border_saddles(const ps_graph *g, const double *f, const ps_f
                                   size_t *count);
 
 /* Keeps, in order, the saddles of s (#*count) whose ends lie in different
- * basins of flow: after basins merge (ps_flow_merge), the border saddles
+ * basins of flow: after basins merge (ps_persistence_merge), the border saddles
  * of the merged flow from those of the flow before. */
 void ps_saddles_keep_borders(const ps_flow *flow, ps_saddle *s, size_t *count);
 
-/* ps_flow_simplify on flow's border saddles s (#*count, as
+/* ps_persistence_simplify on flow's border saddles s (#*count, as
  * ps_flow_border_saddles gives them), which become the simplified flow's
  * (*count updated; untouched when nothing merges). */
 ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *component,
@@ -55,6 +55,6 @@ ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *
 /* Merges the basins as the union-find forest parent (#S) says: each tree
  * becomes its root's basin; surviving sinks keep increasing order and
  * sink_of (#n) is remapped.  new_id #S scratch. */
-void ps_flow_merge(ps_flow *flow, int *parent, int *new_id, size_t n);
+void ps_persistence_merge(ps_flow *flow, int *parent, int *new_id, size_t n);
 
 #endif

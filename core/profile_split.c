@@ -160,9 +160,8 @@ static int work_alloc(profile_work *w, size_t n) {
     return w->start && w->members && w->scratch && w->label && w->queue;
 }
 
-ps_status ps_supernodes_split_profile(const ps_graph *g, const double *points, const double *f,
-                                      const double *spacing, ps_supernodes *sn,
-                                      ps_error *err) {
+ps_status ps_profile_split(const ps_graph *g, const double *points, const double *f,
+                           const double *spacing, ps_supernodes *sn, ps_error *err) {
     size_t n = g->n;
     if (n == 0) return PS_OK;
     profile_work w = {.g = g, .points = points, .f = f, .sn = sn, .spacing = spacing};

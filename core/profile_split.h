@@ -41,8 +41,7 @@
  * supernode lies inside one old one and keeps its is_minimum; minima's
  * supernodes are not cut.  O(P + E + S), plus O(B^2) per supernode of B
  * bands (B is at most its f range over the band width). */
-ps_status ps_supernodes_split_profile(const ps_graph *g, const double *points, const double *f,
-                                      const double *spacing, ps_supernodes *sn,
-                                      ps_error *err);
+ps_status ps_profile_split(const ps_graph *g, const double *points, const double *f,
+                           const double *spacing, ps_supernodes *sn, ps_error *err);
 
 #endif

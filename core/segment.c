@@ -267,13 +267,12 @@ static ps_status phase_supernodes(ps_pipeline *pl, ps_error *err) {
                                                pl->n_components, &p->persistence,
                                                p->use_minima, pl->threads, &span, &pl->sn, err);
     if (st == PS_OK && p->use_f2)
-        st = ps_supernodes_split_f2(&pl->graph, pl->f, p->persistence, &pl->sn, err);
+        st = ps_f2_split(&pl->graph, pl->f, p->persistence, &pl->sn, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_SUPERNODES, SUPERNODES_F2_DONE);
     if (st == PS_OK && pl->normals)
-        st = ps_supernodes_split_creases(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
+        st = ps_crease_split(&pl->graph, &pl->creases, pl->f, &pl->sn, err);
     if (st == PS_OK && pl->normals && pl->in->dim == 3)
-        st = ps_supernodes_split_profile(&pl->graph, pl->points, pl->f, pl->spacing, &pl->sn,
-                                         err);
+        st = ps_profile_split(&pl->graph, pl->points, pl->f, pl->spacing, &pl->sn, err);
     free(pl->spacing); /* read by the profile split alone */
     pl->spacing = NULL;
     return st;

@@ -36,8 +36,8 @@ static ps_status simplified_descent(const ps_graph *g, const double *f, const in
     for (size_t p = 0; p < g->n; p++) minus_f[p] = -f[p];
     ps_status st = ps_flow_build(g, minus_f, +1, flow, err);
     if (st == PS_OK)
-        st = ps_flow_simplify(g, minus_f, component, n_components, persistence,
-                              PS_PERSISTENCE_MIN_BASIN, flow, err);
+        st = ps_persistence_simplify(g, minus_f, component, n_components, persistence,
+                                     PS_PERSISTENCE_MIN_BASIN, flow, err);
     free(minus_f);
     return st;
 }
@@ -50,8 +50,8 @@ static ps_status simplified_ascent(const ps_graph *g, const double *f, const int
     ps_status st = ps_flow_build(g, f, +1, flow, err);
     if (st != PS_OK) return st;
     if (!want_saddles)
-        return ps_flow_simplify(g, f, component, n_components, persistence,
-                                PS_PERSISTENCE_MIN_BASIN, flow, err);
+        return ps_persistence_simplify(g, f, component, n_components, persistence,
+                                       PS_PERSISTENCE_MIN_BASIN, flow, err);
     *s = ps_flow_border_saddles(g, f, flow, count);
     if (!*s) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     return ps_flow_simplify_along(g, f, component, n_components, persistence,
@@ -95,7 +95,7 @@ static int merge_round(const ps_graph *g, const double *f, ps_flow *up, size_t m
         if (a != b) parent[a] = b, merged++;
     }
     if (merged) {
-        ps_flow_merge(up, parent, scratch, g->n);
+        ps_persistence_merge(up, parent, scratch, g->n);
         ps_saddles_keep_borders(up, saddles, count);
     }
     return merged;

@@ -40,7 +40,7 @@ static ps_status split(const ps_graph *g, const double *points, const double *no
     ps_crease_points creases = {malloc(g->n * sizeof(double)), 0};
     if (!creases.strength) return PS_ERR_NOMEM;
     ps_status st = ps_crease_strengths(g, points, normals, 1, &creases, &err);
-    if (st == PS_OK) st = ps_supernodes_split_creases(g, &creases, f, sn, &err);
+    if (st == PS_OK) st = ps_crease_split(g, &creases, f, sn, &err);
     free(creases.strength);
     return st;
 }
@@ -147,7 +147,7 @@ static void test_noise_does_not_shatter(void) {
     }
     CHECK(raised > s.n / 2);
     ps_error err = {0};
-    CHECK(ps_supernodes_split_creases(&s.graph, &creases, f, &sn, &err) == PS_OK);
+    CHECK(ps_crease_split(&s.graph, &creases, f, &sn, &err) == PS_OK);
     CHECK_MSG(sn.m == PS_STAR_PARTS, "%d supernodes", sn.m);
     double pure = purity(&s, &sn);
     CHECK_MSG(pure > 0.95, "purity %.3f", pure);

@@ -107,7 +107,7 @@ static ps_status split(const cloud *c, double scale, int is_minimum, ps_supernod
     if (st == PS_OK && !one_supernode(c, is_minimum, sn, f)) st = PS_ERR_NOMEM;
     for (size_t p = 0; st == PS_OK && p < c->n; p++) f[p] *= scale;
     if (st == PS_OK) spacings(&g, spacing);
-    if (st == PS_OK) st = ps_supernodes_split_profile(&g, points, f, spacing, sn, &err);
+    if (st == PS_OK) st = ps_profile_split(&g, points, f, spacing, sn, &err);
     ps_graph_free(&g);
     free(points), free(f), free(spacing);
     return st;

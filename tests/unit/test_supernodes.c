@@ -126,7 +126,7 @@ static void test_f2_splits_two_ends(void) {
                             malloc(sizeof(size_t)), calloc(N, sizeof(int))};
         sn.sinks[0] = REP, sn.sizes[0] = N;
         double persistence = pass == 0 ? 0.1 : 1.0;
-        REQUIRE(ps_supernodes_split_f2(&g, f, persistence, &sn, NULL) == PS_OK);
+        REQUIRE(ps_f2_split(&g, f, persistence, &sn, NULL) == PS_OK);
         if (pass == 0) {
             REQUIRE(sn.m == 2);
             CHECK(sn.supernode_of[0] != sn.supernode_of[N - 1]);
