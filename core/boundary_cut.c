@@ -143,7 +143,7 @@ static ps_status cut_pair(cut_context *cx, int a, int b, ps_error *err) {
     double width;
     size_t n_reached = ps_bc_boundary_distances(cx, a, b, reach, &width);
     size_t nb = ps_bc_mark_band(cx, n_reached, width, a, b);
-    ps_flow_graph net;
+    ps_maxflow_graph net;
     double flow;
     ps_status st = PS_OK;
     if (ps_bc_build_network(cx, nb, &net)) {
@@ -385,8 +385,8 @@ static size_t carve_scratch(cut_scratch *s, unsigned char *block, size_t n, size
     s->band_of = carve(block, &at, n, sizeof *s->band_of);
     s->band = carve(block, &at, n, sizeof *s->band);
     s->old_group = carve(block, &at, n, sizeof *s->old_group);
-    s->tie_source = carve(block, &at, n, sizeof *s->tie_source);
-    s->tie_sink = carve(block, &at, n, sizeof *s->tie_sink);
+    s->tie_a = carve(block, &at, n, sizeof *s->tie_a);
+    s->tie_b = carve(block, &at, n, sizeof *s->tie_b);
     s->outside = carve(block, &at, n, sizeof *s->outside);
     s->net_offsets = carve(block, &at, n + 3, sizeof *s->net_offsets);
     s->net_heads = carve(block, &at, net_arcs, sizeof *s->net_heads);

@@ -14,7 +14,7 @@
  *     boundary), so the band scales with the part and never swallows it,
  *     and at most PS_BOUNDARY_CUT_MAX_EDGES mean edge lengths;
  *   - network: band points; A's points outside the band are tied to the
- *     source, B's to the sink, and every supernode's sink point to its own
+ *     terminal s, B's to t, and every supernode's sink point to its own
  *     side (sinks never move, so no segment loses all its supernodes);
  *   - capacities: c(p,q) = |p-q| / L x exp(-ang(p,q) / A0), ang the
  *     concave angular term of crease.h (0 on convex edges), L the mean edge

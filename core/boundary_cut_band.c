@@ -168,7 +168,7 @@ static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *ar
     uint32_t p = cx->s.band[i];
     double inside = 0;
     unsigned char outside = 0;
-    cx->s.tie_source[i] = cx->s.tie_sink[i] = 0;
+    cx->s.tie_a[i] = cx->s.tie_b[i] = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->neighbors[e], u = cx->s.band_of[q];
         if (u != NOT_IN_BAND) {
@@ -179,12 +179,12 @@ static double tie_band_point(cut_context *cx, size_t i, int a, int b, size_t *ar
             continue;
         }
         int s = ps_bc_group(cx, q);
-        if (s == a) cx->s.tie_source[i] += ps_bc_capacity(cx, p, e), outside |= OUTSIDE_A;
-        else if (s == b) cx->s.tie_sink[i] += ps_bc_capacity(cx, p, e), outside |= OUTSIDE_B;
+        if (s == a) cx->s.tie_a[i] += ps_bc_capacity(cx, p, e), outside |= OUTSIDE_A;
+        else if (s == b) cx->s.tie_b[i] += ps_bc_capacity(cx, p, e), outside |= OUTSIDE_B;
     }
     cx->s.outside[i] = outside;
     *arcs += 2;
-    return cx->s.tie_source[i] + cx->s.tie_sink[i] + inside;
+    return cx->s.tie_a[i] + cx->s.tie_b[i] + inside;
 }
 
 /* Band points (reached within width) in point order, ties to the
@@ -209,37 +209,37 @@ size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, i
     cx->s.net_offsets[nb] = arcs;
     for (size_t i = 0; i < nb; i++) {
         if (!cx->is_sink[cx->s.band[i]]) continue;
-        if (cx->s.old_group[i] == a) cx->s.tie_source[i] += infinite;
-        else cx->s.tie_sink[i] += infinite;
+        if (cx->s.old_group[i] == a) cx->s.tie_a[i] += infinite;
+        else cx->s.tie_b[i] += infinite;
     }
     return nb;
 }
 
-/* The flow network: band nodes 0..nb-1, source nb, sink nb+1; each band
+/* The flow network: band nodes 0..nb-1, terminals s = nb, t = nb+1; each band
  * point's arcs inside the band (from ps_bc_mark_band) move down to close
  * the gaps, its terminal arcs after them.  Returns 0 when a terminal has
  * no tie (nothing to cut). */
-int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net) {
-    uint32_t source = (uint32_t)nb, sink = (uint32_t)nb + 1;
+int ps_bc_build_network(cut_context *cx, size_t nb, ps_maxflow_graph *net) {
+    uint32_t s = (uint32_t)nb, t = (uint32_t)nb + 1;
     size_t arcs = 0;
     for (size_t i = 0; i < nb; i++) {
         size_t from = cx->s.net_offsets[i], end = cx->s.net_offsets[i + 1] - 2;
         cx->s.net_offsets[i] = arcs;
         for (size_t k = from; k < end; k++)
             add_arc(cx, &arcs, cx->s.net_heads[k], cx->s.net_capacity[k]);
-        if (cx->s.tie_source[i] > 0) add_arc(cx, &arcs, source, cx->s.tie_source[i]);
-        if (cx->s.tie_sink[i] > 0) add_arc(cx, &arcs, sink, cx->s.tie_sink[i]);
+        if (cx->s.tie_a[i] > 0) add_arc(cx, &arcs, s, cx->s.tie_a[i]);
+        if (cx->s.tie_b[i] > 0) add_arc(cx, &arcs, t, cx->s.tie_b[i]);
     }
     cx->s.net_offsets[nb] = arcs;
     for (uint32_t i = 0; i < nb; i++)
-        if (cx->s.tie_source[i] > 0) add_arc(cx, &arcs, i, cx->s.tie_source[i]);
+        if (cx->s.tie_a[i] > 0) add_arc(cx, &arcs, i, cx->s.tie_a[i]);
     cx->s.net_offsets[nb + 1] = arcs;
     if (arcs == cx->s.net_offsets[nb]) return 0;
     for (uint32_t i = 0; i < nb; i++)
-        if (cx->s.tie_sink[i] > 0) add_arc(cx, &arcs, i, cx->s.tie_sink[i]);
+        if (cx->s.tie_b[i] > 0) add_arc(cx, &arcs, i, cx->s.tie_b[i]);
     cx->s.net_offsets[nb + 2] = arcs;
     if (arcs == cx->s.net_offsets[nb + 1]) return 0;
-    *net = (ps_flow_graph){.n = nb + 2, .offsets = cx->s.net_offsets, .heads = cx->s.net_heads,
+    *net = (ps_maxflow_graph){.n = nb + 2, .offsets = cx->s.net_offsets, .heads = cx->s.net_heads,
                            .capacity = cx->s.net_capacity};
     return 1;
 }

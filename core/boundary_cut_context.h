@@ -63,8 +63,8 @@ typedef struct cut_scratch {
     uint32_t *band_of;         /* #P band index of each point, or NOT_IN_BAND */
     uint32_t *band;            /* #P band points, increasing */
     int *old_group;            /* #P group of each band point before the cut */
-    double *tie_source;        /* #P */
-    double *tie_sink;          /* #P */
+    double *tie_a;        /* #P */
+    double *tie_b;          /* #P */
     unsigned char *outside;    /* #P OUTSIDE_A | OUTSIDE_B: band point i has neighbours
                                   outside the band in a, in b */
     size_t *net_offsets;       /* #P+3 */
@@ -144,16 +144,16 @@ size_t ps_bc_boundary_points(cut_context *cx, int a, int b);
 size_t ps_bc_boundary_distances(cut_context *cx, int a, int b, double reach, double *width);
 
 /* The reached points within width become band[0..nb) in point order, with
- * band_of, old_group, the terminal ties tie_source / tie_sink (#nb each;
+ * band_of, old_group, the terminal ties tie_a / tie_b (to a's side, s, and b's, t) (#nb each;
  * infinite for a sink point) and outside (#nb); the band's arcs go to the net_*
  * arrays, each band point's from net_offsets[i] on, two slots apart, for
  * ps_bc_build_network.  Returns nb. */
 size_t ps_bc_mark_band(cut_context *cx, size_t n_reached, double width, int a, int b);
 
-/* net: the band's flow network, #nb+2 nodes (band nodes 0..nb-1, source
- * nb, sink nb+1), over cx's net_* arrays (after ps_bc_mark_band).  Returns 0 (net unset) when a
+/* net: the band's flow network, #nb+2 nodes (band nodes 0..nb-1,
+ * terminals s = nb and t = nb+1), over cx's net_* arrays (after ps_bc_mark_band).  Returns 0 (net unset) when a
  * terminal has no tie, so there is nothing to cut; else 1. */
-int ps_bc_build_network(cut_context *cx, size_t nb, ps_flow_graph *net);
+int ps_bc_build_network(cut_context *cx, size_t nb, ps_maxflow_graph *net);
 
 /* boundary_cut_pieces.c */
 

@@ -1,15 +1,16 @@
 /*
  * maxflow.c: maximum flow on a symmetric CSR graph (maxflow.h) by the
- * Boykov-Kolmogorov algorithm: a search tree grows from the source and one
- * from the sink over unsaturated arcs; where they touch, the path through
- * both is augmented; nodes cut off from their tree by a saturated arc
- * (orphans) look for a new parent in the same tree or are freed.  When no
- * tree can grow the flow is maximum, and a breadth-first search from the
- * source over unsaturated arcs gives the cut's source side.  Trees are kept
- * shallow by Boykov and Kolmogorov's own heuristic: each node knows its
- * depth as of a round (a stamp per augmentation), an orphan takes the
- * valid parent nearest its root, and growing reparents a neighbour whose
- * known depth is larger, so paths to augment and to check stay short.
+ * Boykov-Kolmogorov algorithm: a search tree grows from the terminal s (the
+ * S tree) and one from t (the T tree) over unsaturated arcs; where they
+ * touch, the path through both is augmented; nodes cut off from their
+ * tree by a saturated arc (orphans) look for a new parent in the same tree
+ * or are freed.  When no tree can grow the flow is maximum, and a
+ * breadth-first search from s over unsaturated arcs gives the cut's s
+ * side.  Trees are kept shallow by Boykov and Kolmogorov's own heuristic:
+ * each node knows its depth as of a round (a stamp per augmentation), an
+ * orphan takes the valid parent nearest its root, and growing reparents a
+ * neighbour whose known depth is larger, so paths to augment and to check
+ * stay short.
  *
  * Residual capacities live per arc: pushing x along p->q lowers r(p->q) and
  * raises r(q->p) by x, which is exactly an undirected edge of capacity c
@@ -22,20 +23,20 @@
 #include <stdlib.h>
 
 #define FREE 0
-#define SOURCE_TREE 1
-#define SINK_TREE 2
+#define S_TREE 1
+#define T_TREE 2
 #define NO_ARC SIZE_MAX /* parent arc of a root or an orphan */
 
 /* A node's search state, in one place: the searches read and write these
  * fields together. */
 typedef struct flow_node {
-    size_t parent_arc;       /* source tree: the arc parent -> v; sink tree: the
+    size_t parent_arc;       /* S tree: the arc parent -> v; T tree: the
                                 arc v -> parent; NO_ARC */
     uint64_t checked;        /* stamp of the last round v's origin was found to
                                 be its tree's root */
     uint32_t parent;
     uint32_t depth;          /* arcs from v up to its root, as of round checked */
-    unsigned char tree;      /* FREE, SOURCE_TREE or SINK_TREE */
+    unsigned char tree;      /* FREE, S_TREE or T_TREE */
     unsigned char queued;    /* in the active queue */
 } flow_node;
 
@@ -51,9 +52,9 @@ struct ps_maxflow_workspace {
 };
 
 typedef struct flow_state {
-    const ps_flow_graph *g;
+    const ps_maxflow_graph *g;
     ps_maxflow_workspace *w;
-    uint32_t source, sink;
+    uint32_t s, t;           /* the terminals */
     double tolerance;
     size_t head, count;      /* active ring */
     size_t n_orphans;
@@ -64,7 +65,7 @@ typedef struct flow_state {
  * the arcs into q met for increasing p are row q's entries in order, so a
  * cursor per row finds each one.  -1 if the graph is not symmetric. */
 static int find_reverse_arcs(flow_state *st) {
-    const ps_flow_graph *g = st->g;
+    const ps_maxflow_graph *g = st->g;
     size_t *cursor = st->w->cursor;
     for (size_t v = 0; v < g->n; v++) cursor[v] = g->offsets[v];
     for (uint32_t p = 0; p < g->n; p++)
@@ -97,32 +98,32 @@ static uint32_t next_active(flow_state *st) {
     return UINT32_MAX;
 }
 
-/* The arc along which tree t's flow would enter q from p (source tree:
- * p -> q, arc e of row p; sink tree: q -> p, its reverse). */
-static size_t tree_arc(const flow_state *st, unsigned char t, size_t e) {
-    return t == SOURCE_TREE ? e : st->w->reverse[e];
+/* The arc along which tree's flow would enter q from p (S tree: p -> q,
+ * arc e of row p; T tree: q -> p, its reverse). */
+static size_t tree_arc(const flow_state *st, unsigned char tree, size_t e) {
+    return tree == S_TREE ? e : st->w->reverse[e];
 }
 
 /* Grows p's tree by its free neighbours; returns the first arc from the
- * source tree into the sink tree met on the way, or NO_ARC.  p's own state
+ * S tree into the T tree met on the way, or NO_ARC.  p's own state
  * does not change on the way (no arc leads from p to p's tree root through
  * p itself), so it is read once. */
 static size_t grow(flow_state *st, uint32_t p) {
-    const ps_flow_graph *g = st->g;
+    const ps_maxflow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
-    const unsigned char t = w->node[p].tree;
+    const unsigned char tree = w->node[p].tree;
     const uint64_t checked = w->node[p].checked;
     const uint32_t depth = w->node[p].depth + 1; /* of a child of p */
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-        size_t a = tree_arc(st, t, e);
+        size_t a = tree_arc(st, tree, e);
         if (w->residual[a] <= st->tolerance) continue;
         uint32_t q = g->heads[e];
         flow_node *nq = &w->node[q];
         if (nq->tree == FREE) {
-            nq->tree = t, nq->parent = p, nq->parent_arc = a;
+            nq->tree = tree, nq->parent = p, nq->parent_arc = a;
             nq->checked = checked, nq->depth = depth;
             activate(st, q);
-        } else if (nq->tree != t) {
+        } else if (nq->tree != tree) {
             return a;
         } else if (nq->parent_arc != NO_ARC && nq->checked <= checked && nq->depth > depth) {
             nq->parent = p, nq->parent_arc = a;
@@ -158,16 +159,16 @@ static void push_path(flow_state *st, uint32_t v, uint32_t root, double x) {
     }
 }
 
-/* Augments source -> ... -> tail -bridge-> head -> ... -> sink. */
+/* Augments s -> ... -> tail -bridge-> head -> ... -> t. */
 static double augment(flow_state *st, size_t bridge) {
     ps_maxflow_workspace *w = st->w;
     uint32_t head = st->g->heads[bridge], tail = st->g->heads[w->reverse[bridge]];
-    double x = path_bottleneck(st, tail, st->source, w->residual[bridge]);
-    x = path_bottleneck(st, head, st->sink, x);
+    double x = path_bottleneck(st, tail, st->s, w->residual[bridge]);
+    x = path_bottleneck(st, head, st->t, x);
     w->residual[bridge] -= x;
     w->residual[w->reverse[bridge]] += x;
-    push_path(st, tail, st->source, x);
-    push_path(st, head, st->sink, x);
+    push_path(st, tail, st->s, x);
+    push_path(st, head, st->t, x);
     return x;
 }
 
@@ -177,7 +178,7 @@ static double augment(flow_state *st, size_t bridge) {
 static uint32_t rooted_depth(flow_state *st, uint32_t q) {
     ps_maxflow_workspace *w = st->w;
     uint32_t v = q, d = 0;
-    for (; v != st->source && v != st->sink; v = w->node[v].parent, d++) {
+    for (; v != st->s && v != st->t; v = w->node[v].parent, d++) {
         if (w->node[v].checked == st->round) {
             d += w->node[v].depth;
             break;
@@ -185,7 +186,7 @@ static uint32_t rooted_depth(flow_state *st, uint32_t q) {
         if (w->node[v].parent_arc == NO_ARC) return UINT32_MAX;
     }
     uint32_t total = d;
-    for (v = q; v != st->source && v != st->sink && w->node[v].checked != st->round;
+    for (v = q; v != st->s && v != st->t && w->node[v].checked != st->round;
          v = w->node[v].parent)
         w->node[v].checked = st->round, w->node[v].depth = d--;
     return total;
@@ -196,15 +197,15 @@ static uint32_t rooted_depth(flow_state *st, uint32_t q) {
  * is freed, its children become orphans and the neighbours that could
  * reach it become active. */
 static void adopt(flow_state *st, uint32_t p) {
-    const ps_flow_graph *g = st->g;
+    const ps_maxflow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
-    unsigned char t = w->node[p].tree;
+    unsigned char tree = w->node[p].tree;
     uint32_t best = UINT32_MAX, best_depth = UINT32_MAX;
     size_t best_arc = NO_ARC;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->heads[e];
-        if (w->node[q].tree != t) continue;
-        size_t a = t == SOURCE_TREE ? w->reverse[e] : e; /* the arc q's tree would use into p */
+        if (w->node[q].tree != tree) continue;
+        size_t a = tree == S_TREE ? w->reverse[e] : e; /* the arc q's tree would use into p */
         if (w->residual[a] <= st->tolerance) continue;
         uint32_t d = rooted_depth(st, q);
         if (d < best_depth) best = q, best_depth = d, best_arc = a;
@@ -216,8 +217,8 @@ static void adopt(flow_state *st, uint32_t p) {
     }
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         uint32_t q = g->heads[e];
-        if (w->node[q].tree != t) continue;
-        if (w->residual[t == SOURCE_TREE ? w->reverse[e] : e] > st->tolerance) activate(st, q);
+        if (w->node[q].tree != tree) continue;
+        if (w->residual[tree == S_TREE ? w->reverse[e] : e] > st->tolerance) activate(st, q);
         if (w->node[q].parent_arc != NO_ARC && w->node[q].parent == p) make_orphan(st, q);
     }
     w->node[p].tree = FREE;
@@ -226,12 +227,12 @@ static void adopt(flow_state *st, uint32_t p) {
 /* Grows the trees and augments until neither can grow; the flow value. */
 static double max_flow(flow_state *st) {
     double total = 0;
-    activate(st, st->source);
-    activate(st, st->sink);
+    activate(st, st->s);
+    activate(st, st->t);
     for (uint32_t p; (p = next_active(st)) != UINT32_MAX;) {
         for (size_t bridge; st->w->node[p].tree != FREE && (bridge = grow(st, p)) != NO_ARC;) {
             st->round++;
-            st->w->node[st->source].checked = st->w->node[st->sink].checked = st->round;
+            st->w->node[st->s].checked = st->w->node[st->t].checked = st->round;
             total += augment(st, bridge);
             while (st->n_orphans > 0) adopt(st, st->w->orphans[--st->n_orphans]);
         }
@@ -239,15 +240,15 @@ static double max_flow(flow_state *st) {
     return total;
 }
 
-/* source_side: the nodes reachable from the source over unsaturated arcs
+/* s_side: the nodes reachable from s over unsaturated arcs
  * (the active ring serves as the queue). */
-static void source_side_of(flow_state *st, unsigned char *side) {
-    const ps_flow_graph *g = st->g;
+static void s_side_of(flow_state *st, unsigned char *side) {
+    const ps_maxflow_graph *g = st->g;
     uint32_t *queue = st->w->active;
     size_t head = 0, tail = 0;
     for (size_t v = 0; v < g->n; v++) side[v] = 0;
-    side[st->source] = 1;
-    queue[tail++] = st->source;
+    side[st->s] = 1;
+    queue[tail++] = st->s;
     while (head < tail) {
         uint32_t v = queue[head++];
         for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
@@ -265,7 +266,7 @@ static void *fresh_array(void *old, size_t count, size_t size) {
 }
 
 /* Room for g in ws; -1 when out of memory (ws is then empty). */
-static int workspace_reserve(ps_maxflow_workspace *ws, const ps_flow_graph *g) {
+static int workspace_reserve(ps_maxflow_workspace *ws, const ps_maxflow_graph *g) {
     size_t nodes = g->n, arcs = g->offsets[g->n] ? g->offsets[g->n] : 1;
     if (nodes > ws->nodes) {
         ws->nodes = nodes;
@@ -296,43 +297,43 @@ void ps_maxflow_workspace_free(ps_maxflow_workspace *ws) {
     free(ws);
 }
 
-static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_flow_graph *g,
-                       uint32_t source, uint32_t sink) {
+static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_maxflow_graph *g,
+                       uint32_t s, uint32_t t) {
     double largest = 0;
     for (size_t e = 0; e < g->offsets[g->n]; e++) {
         ws->residual[e] = g->capacity[e];
         if (g->capacity[e] > largest) largest = g->capacity[e];
     }
-    *st = (flow_state){.g = g, .w = ws, .source = source, .sink = sink,
+    *st = (flow_state){.g = g, .w = ws, .s = s, .t = t,
                        .tolerance = 1e-12 * largest};
     for (size_t v = 0; v < g->n; v++)
         ws->node[v] = (flow_node){.parent_arc = NO_ARC, .tree = FREE};
-    ws->node[source].tree = SOURCE_TREE;
-    ws->node[sink].tree = SINK_TREE;
+    ws->node[s].tree = S_TREE;
+    ws->node[t].tree = T_TREE;
 }
 
-ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_flow_graph *g, uint32_t source,
-                          uint32_t sink, double *flow, unsigned char *source_side,
+ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_maxflow_graph *g, uint32_t s,
+                          uint32_t t, double *flow, unsigned char *s_side,
                           ps_error *err) {
-    if (source >= g->n || sink >= g->n || source == sink)
-        return ps_fail(err, PS_ERR_INVALID, "max flow: bad source %u or sink %u of %zu nodes",
-                       source, sink, g->n);
+    if (s >= g->n || t >= g->n || s == t)
+        return ps_fail(err, PS_ERR_INVALID, "max flow: bad terminal s %u or t %u of %zu nodes",
+                       s, t, g->n);
     if (workspace_reserve(ws, g) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (max flow)");
     flow_state st;
-    state_init(&st, ws, g, source, sink);
+    state_init(&st, ws, g, s, t);
     if (find_reverse_arcs(&st) != 0)
         return ps_fail(err, PS_ERR_INVALID, "max flow: the graph is not symmetric");
     *flow = max_flow(&st);
-    if (source_side) source_side_of(&st, source_side);
+    if (s_side) s_side_of(&st, s_side);
     return PS_OK;
 }
 
-ps_status ps_maxflow(const ps_flow_graph *g, uint32_t source, uint32_t sink, double *flow,
-                     unsigned char *source_side, ps_error *err) {
+ps_status ps_maxflow(const ps_maxflow_graph *g, uint32_t s, uint32_t t, double *flow,
+                     unsigned char *s_side, ps_error *err) {
     ps_maxflow_workspace *ws = ps_maxflow_workspace_new();
     if (!ws) return ps_fail(err, PS_ERR_NOMEM, "out of memory (max flow)");
-    ps_status st = ps_maxflow_with(ws, g, source, sink, flow, source_side, err);
+    ps_status st = ps_maxflow_with(ws, g, s, t, flow, s_side, err);
     ps_maxflow_workspace_free(ws);
     return st;
 }

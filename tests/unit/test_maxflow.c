@@ -1,7 +1,7 @@
 /*
  * test_maxflow.c: the max flow of maxflow.h on small undirected graphs
  * whose maximum flow and minimum cut are known by hand: a chain, a diamond,
- * a grid with a weak column, a graph the sink cannot be reached in; the same
+ * a grid with a weak column, a graph where t cannot be reached; the same
  * answer on every run; a graph that is not symmetric is refused.  On random
  * grids, random sparse graphs and band-like random geometric graphs the
  * flow and the cut equal those of a plain shortest-augmenting-path
@@ -23,7 +23,7 @@
 
 /* A CSR flow graph built from an undirected edge list. */
 typedef struct csr {
-    ps_flow_graph g;
+    ps_maxflow_graph g;
     size_t offsets[MAX_NODES + 1];
     uint32_t heads[2 * MAX_EDGES];
     double capacity[2 * MAX_EDGES];
@@ -47,7 +47,7 @@ static void build_csr(csr *c, size_t n, const edge *edges, size_t m) {
             if (e->b == head) c->heads[fill[e->a]] = head, c->capacity[fill[e->a]++] = e->capacity;
             if (e->a == head) c->heads[fill[e->b]] = head, c->capacity[fill[e->b]++] = e->capacity;
         }
-    c->g = (ps_flow_graph){.n = n, .offsets = c->offsets, .heads = c->heads,
+    c->g = (ps_maxflow_graph){.n = n, .offsets = c->offsets, .heads = c->heads,
                            .capacity = c->capacity};
 }
 
@@ -82,9 +82,9 @@ static void test_diamond(void) {
     CHECK(side[0] == 1 && side[3] == 0);
 }
 
-/* 4 rows by 6 columns; the source is tied to column 0, the sink to column
+/* 4 rows by 6 columns; s is tied to column 0, t to column
  * 5; edges between columns 2 and 3 are weak (0.1), the rest 1.  The cut is
- * that column of 4 weak edges: 0.4, source side columns 0..2. */
+ * that column of 4 weak edges: 0.4, s side columns 0..2. */
 static void test_grid_weak_column(void) {
     enum { ROWS = 4, COLS = 6, S = ROWS * COLS, T = S + 1 };
     edge edges[MAX_EDGES];
@@ -107,7 +107,7 @@ static void test_grid_weak_column(void) {
     CHECK(memcmp(side, again, sizeof side) == 0);
 }
 
-static void test_unreachable_sink(void) {
+static void test_unreachable_t(void) {
     static const edge edges[] = {{0, 1, 2}, {2, 3, 2}};
     csr c;
     build_csr(&c, 4, edges, 2);
@@ -120,7 +120,7 @@ static void test_rejects_asymmetric_and_bad_terminals(void) {
     static const size_t offsets[] = {0, 1, 1};
     static const uint32_t heads[] = {1};
     static const double capacity[] = {1};
-    ps_flow_graph g = {.n = 2, .offsets = offsets, .heads = heads, .capacity = capacity};
+    ps_maxflow_graph g = {.n = 2, .offsets = offsets, .heads = heads, .capacity = capacity};
     double flow;
     ps_error err = {0};
     CHECK(ps_maxflow(&g, 0, 1, &flow, NULL, &err) == PS_ERR_INVALID);
@@ -134,7 +134,7 @@ static void test_rejects_cycle_without_reverse_arcs(void) {
     static const size_t offsets[] = {0, 1, 2, 3};
     static const uint32_t heads[] = {1, 2, 0};
     static const double capacity[] = {1, 1, 1};
-    ps_flow_graph g = {.n = 3, .offsets = offsets, .heads = heads, .capacity = capacity};
+    ps_maxflow_graph g = {.n = 3, .offsets = offsets, .heads = heads, .capacity = capacity};
     double flow;
     ps_error err = {0};
     CHECK(ps_maxflow(&g, 0, 2, &flow, NULL, &err) == PS_ERR_INVALID);
@@ -142,7 +142,7 @@ static void test_rejects_cycle_without_reverse_arcs(void) {
 }
 
 /* rows x cols grid, capacities from a fixed pseudo-random sequence, the
- * source tied to column 0 and the sink to the last column. */
+ * s tied to column 0 and t to the last column. */
 static void build_random_grid(csr *c, uint32_t rows, uint32_t cols, uint32_t seed) {
     edge edges[MAX_EDGES];
     size_t m = 0;
@@ -183,9 +183,9 @@ static void test_workspace_reuse_matches_fresh_calls(void) {
     ps_maxflow_workspace_free(NULL);
 }
 
-/* Edmonds-Karp on g: the reference flow and source side (#V), with the
+/* Edmonds-Karp on g: the reference flow and s side (#V), with the
  * same saturation tolerance as maxflow.c (1e-12 of the largest capacity). */
-static double reference_flow(const ps_flow_graph *g, uint32_t s, uint32_t t,
+static double reference_flow(const ps_maxflow_graph *g, uint32_t s, uint32_t t,
                              unsigned char *side) {
     size_t n = g->n, arcs = g->offsets[n];
     double *residual = malloc((arcs + 1) * sizeof *residual), total = 0, largest = 0;
@@ -227,7 +227,7 @@ static double reference_flow(const ps_flow_graph *g, uint32_t s, uint32_t t,
     return total;
 }
 
-static void check_against_reference(const ps_flow_graph *g, uint32_t s, uint32_t t,
+static void check_against_reference(const ps_maxflow_graph *g, uint32_t s, uint32_t t,
                                     const char *what) {
     unsigned char *side = malloc(g->n), *expected = malloc(g->n);
     REQUIRE(side && expected);
@@ -274,7 +274,7 @@ static void test_matches_reference_on_random_graphs(void) {
 }
 
 /* Random points in the unit square, each joined to its 6 nearest (both
- * ways), random capacities, the source tied to the left tenth and the sink
+ * ways), random capacities, s tied to the left tenth and t
  * to the right tenth, like the boundary cut's bands: thousands of
  * augmentations and orphans, the same flow and cut as the reference. */
 static void test_matches_reference_on_band_like_graphs(void) {
@@ -320,7 +320,7 @@ static void test_matches_reference_on_band_like_graphs(void) {
             }
         }
         offsets[N + 2] = arcs;
-        ps_flow_graph g = {.n = N + 2, .offsets = offsets, .heads = heads, .capacity = capacity};
+        ps_maxflow_graph g = {.n = N + 2, .offsets = offsets, .heads = heads, .capacity = capacity};
         char what[32];
         snprintf(what, sizeof what, "band-like graph %u", round);
         check_against_reference(&g, N, N + 1, what);
@@ -344,7 +344,7 @@ static void test_long_path_no_stack_overflow(void) {
         if (v + 1 < N) heads[arcs] = v + 1, capacity[arcs++] = v == WEAK ? 0.25 : 2.0;
     }
     offsets[N] = arcs;
-    ps_flow_graph g = {.n = N, .offsets = offsets, .heads = heads, .capacity = capacity};
+    ps_maxflow_graph g = {.n = N, .offsets = offsets, .heads = heads, .capacity = capacity};
     double flow = -1;
     ps_error err = {0};
     CHECK(ps_maxflow(&g, 0, N - 1, &flow, side, &err) == PS_OK);
@@ -359,7 +359,7 @@ static void test_long_path_no_stack_overflow(void) {
 }
 
 PS_TEST_MAIN(TEST(test_chain_bottleneck), TEST(test_diamond), TEST(test_grid_weak_column),
-             TEST(test_unreachable_sink), TEST(test_rejects_asymmetric_and_bad_terminals),
+             TEST(test_unreachable_t), TEST(test_rejects_asymmetric_and_bad_terminals),
              TEST(test_rejects_cycle_without_reverse_arcs),
              TEST(test_workspace_reuse_matches_fresh_calls),
              TEST(test_matches_reference_on_random_graphs),
