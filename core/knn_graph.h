@@ -6,20 +6,15 @@
  * (nearest by exact double distance, ties to the lower index);
  * its weight is the Euclidean distance |p - q| (> 0: the caller removes
  * duplicate points first, see dedup.h).  Each row is sorted by neighbour
- * index, so the graph is the same for any thread count.
+ * index, so the graph is the same for any thread count.  The graph type is
+ * graph.h's.
  */
 #ifndef PS_KNN_GRAPH_H
 #define PS_KNN_GRAPH_H
 
+#include "graph.h"
 #include "parallel.h"
 #include "pointseg.h"
-
-typedef struct ps_graph {
-    size_t n;            /* #P vertices */
-    size_t *offsets;     /* #P+1; row p is [offsets[p], offsets[p+1]) */
-    uint32_t *neighbors; /* #E (= offsets[n]) neighbour indices */
-    double *weights;     /* #E edge lengths */
-} ps_graph;
 
 /* points: #P by dim, distinct; 1 <= k < n.  On success g owns its arrays. */
 ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k,
@@ -30,7 +25,6 @@ ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k,
  * cancel flag is raised. */
 ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, int k, int threads,
                                      const ps_progress_span *span, ps_graph *g, ps_error *err);
-void ps_graph_free(ps_graph *g);
 
 /* What ps_knn_graph_prune needs of a build: its search index and each
  * row's own k nearest (knn_memo.h, private). */
@@ -57,8 +51,5 @@ ps_status ps_knn_graph_prune(ps_graph *g, ps_knn_memo *memo, const double *point
                              const uint32_t *keep_for, int threads, const ps_progress_span *span,
                              int *pruned, ps_error *err);
 
-/* Connected components: component #P gets 0..count-1, numbered in order of
- * their lowest vertex.  Returns count. */
-int ps_graph_components(const ps_graph *g, int *component);
 
 #endif
