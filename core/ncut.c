@@ -224,9 +224,3 @@ ps_status ps_ncut_hierarchy(const ps_graph *g, const ps_supernode_graph *sg,
     free(component);
     return st;
 }
-
-void ps_tree_free(ps_tree_node *tree, int n_tree) {
-    if (!tree) return;
-    for (int i = 0; i < n_tree; i++) free(tree[i].supernodes);
-    free(tree);
-}

@@ -15,6 +15,7 @@
 #define PS_NCUT_H
 
 #include "knn_graph.h"
+#include "ncut_tree.h"
 
 /* sigma of a component = PS_NCUT_SIGMA_SCALE * (mean geodesic distance
  * between two of its sinks), the one knob of W (docs/method.md,
@@ -30,11 +31,10 @@ typedef struct ps_supernode_graph {
 } ps_supernode_graph;
 
 /* tree: malloc'ed #n_tree nodes, tree[0] the root (all supernodes), each
- * node's supernodes increasing; free with ps_tree_free. */
+ * node's supernodes increasing; free with ps_tree_free (ncut_tree.h). */
 ps_status ps_ncut_hierarchy(const ps_graph *g, const ps_supernode_graph *sg,
                             double ncut_threshold, int threads,
                             const ps_control *ctl, ps_tree_node **tree,
                             int *n_tree, ps_error *err);
-void ps_tree_free(ps_tree_node *tree, int n_tree);
 
 #endif

@@ -1,6 +1,6 @@
 /*
  * ncut_tree.c: recursive normalized-cut bisection of supernodes on a dense
- * similarity matrix (contract in ncut_tree.h).
+ * similarity matrix, and the tree's release (ncut_tree.h).
  *
  * The best threshold is found in O(k^2) for a node of k supernodes: the
  * members are sorted by y descending and moved into A one by one, keeping
@@ -12,7 +12,6 @@
 
 #include "control.h"
 #include "eigen.h"
-#include "ncut.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -282,4 +281,10 @@ ps_status ps_ncut_tree_build(const double *W, int m, const int *component,
     *tree = b.nodes;
     *n_tree = b.count;
     return PS_OK;
+}
+
+void ps_tree_free(ps_tree_node *tree, int n_tree) {
+    if (!tree) return;
+    for (int i = 0; i < n_tree; i++) free(tree[i].supernodes);
+    free(tree);
 }

@@ -22,7 +22,7 @@
 #ifndef PS_NCUT_TREE_H
 #define PS_NCUT_TREE_H
 
-#include "ncut.h"
+#include "pointseg.h"
 
 #define PS_NCUT_CANDIDATES 32
 
@@ -30,9 +30,13 @@
  * component: #S component of each supernode.  threshold: largest NCut kept.
  * ctl (may be NULL): cancel is checked between bisections, progress
  * (PS_PHASE_HIERARCHY) counts supernodes that reached a leaf.  tree out as in
- * ps_ncut_hierarchy: #n_tree nodes, free with ps_tree_free (ncut.h). */
+ * ps_ncut_hierarchy (ncut.h): #n_tree nodes, free with ps_tree_free. */
 ps_status ps_ncut_tree_build(const double *W, int m, const int *component,
                              double threshold, const ps_control *ctl,
                              ps_tree_node **tree, int *n_tree, ps_error *err);
+
+/* Frees the #n_tree nodes of tree and their supernode lists; tree may be
+ * NULL. */
+void ps_tree_free(ps_tree_node *tree, int n_tree);
 
 #endif
