@@ -70,14 +70,13 @@ static ps_status component_ranges(const double *f, const int *component, size_t 
 
 /* threshold #n_tree out: feature_threshold x the range of f over the
  * component of each leaf's points (0 for a leaf without points). */
-static ps_status thresholds(const ps_graph *g, const double *f, const int *component,
-                            const int *seg_of_point, double feature_threshold, int n_tree,
+static ps_status thresholds(const ps_refine_input *in, const int *seg_of_point,
                             double *threshold, ps_error *err) {
     double *range = NULL;
-    ps_status st = component_ranges(f, component, g->n, &range, err);
-    for (int i = 0; st == PS_OK && i < n_tree; i++) threshold[i] = 0;
-    for (size_t p = 0; st == PS_OK && p < g->n; p++)
-        threshold[seg_of_point[p]] = feature_threshold * range[component[p]];
+    ps_status st = component_ranges(in->f, in->component, in->graph->n, &range, err);
+    for (int i = 0; st == PS_OK && i < in->n_tree; i++) threshold[i] = 0;
+    for (size_t p = 0; st == PS_OK && p < in->graph->n; p++)
+        threshold[seg_of_point[p]] = in->feature_threshold * range[in->component[p]];
     free(range);
     return st;
 }
@@ -131,40 +130,35 @@ static void final_groups(const segments *s, const ps_tree_node *tree, int n_tree
 
 /* A segment holding a minimum's supernode is a central region, not a
  * feature: its f is flat by nature, so it never merges away. */
-static void protect_cores(double *threshold, const int *supernode_of, const int *is_minimum,
-                          const int *seg_of_point, size_t n) {
-    for (size_t p = 0; is_minimum && p < n; p++)
-        if (is_minimum[supernode_of[p]]) threshold[seg_of_point[p]] = 0;
+static void protect_cores(const ps_refine_input *in, const int *seg_of_point,
+                          double *threshold) {
+    for (size_t p = 0; in->is_minimum && p < in->graph->n; p++)
+        if (in->is_minimum[in->supernode_of[p]]) threshold[seg_of_point[p]] = 0;
 }
 
-static ps_status refine_with(segments *s, const ps_graph *g, const double *f,
-                             const int *component, const ps_tree_node *tree, int n_tree,
-                             const int *seg_of_point, const int *supernode_of,
-                             const int *is_minimum, double feature_threshold,
+static ps_status refine_with(segments *s, const ps_refine_input *in, const int *seg_of_point,
                              int *group_of_leaf, ps_merge **merges, int *n_merges,
                              ps_error *err) {
-    ps_status st = thresholds(g, f, component, seg_of_point, feature_threshold, n_tree,
-                              s->threshold, err);
-    if (st == PS_OK) protect_cores(s->threshold, supernode_of, is_minimum, seg_of_point, g->n);
-    ps_segment_graph_input sgi = {.graph = g, .f = f, .group = seg_of_point, .n_groups = n_tree,
-                                  .threads = 1};
+    ps_status st = thresholds(in, seg_of_point, s->threshold, err);
+    if (st == PS_OK) protect_cores(in, seg_of_point, s->threshold);
+    ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .group = seg_of_point,
+                                  .n_groups = in->n_tree, .threads = 1};
     if (st == PS_OK) st = ps_segment_graph_build(&s->graph, &sgi, err);
     if (st == PS_OK) st = merge_all(s, merges, n_merges, err);
-    if (st == PS_OK) final_groups(s, tree, n_tree, group_of_leaf);
+    if (st == PS_OK) final_groups(s, in->tree, in->n_tree, group_of_leaf);
     return st;
 }
 
 /* seg_of_point #P: the leaf of each point's supernode. */
-static ps_status point_leaves(const ps_tree_node *tree, int n_tree, const int *supernode_of,
-                              size_t n, int *seg_of_point, ps_error *err) {
-    int m = supernode_count(tree, n_tree);
+static ps_status point_leaves(const ps_refine_input *in, int *seg_of_point, ps_error *err) {
+    int m = supernode_count(in->tree, in->n_tree);
     int *leaf_of = m > 0 ? malloc((size_t)m * sizeof *leaf_of) : NULL;
     if (!leaf_of) return ps_fail(err, m > 0 ? PS_ERR_NOMEM : PS_ERR_INVALID,
                                  "refine: no supernodes in the tree (or out of memory)");
-    fill_leaf_of(tree, n_tree, leaf_of, m);
+    fill_leaf_of(in->tree, in->n_tree, leaf_of, m);
     ps_status st = PS_OK;
-    for (size_t p = 0; p < n && st == PS_OK; p++) {
-        int u = supernode_of[p];
+    for (size_t p = 0; p < in->graph->n && st == PS_OK; p++) {
+        int u = in->supernode_of[p];
         seg_of_point[p] = u >= 0 && u < m ? leaf_of[u] : -1;
         if (seg_of_point[p] < 0)
             st = ps_fail(err, PS_ERR_INVALID, "refine: point %zu has supernode %d, in no leaf",
@@ -174,24 +168,21 @@ static ps_status point_leaves(const ps_tree_node *tree, int n_tree, const int *s
     return st;
 }
 
-ps_status ps_refine(const ps_graph *g, const double *f, const int *supernode_of,
-                    const int *is_minimum, const int *component,
-                    const ps_tree_node *tree, int n_tree,
-                    double feature_threshold, int *group_of_leaf,
-                    ps_merge **merges, int *n_merges, ps_error *err) {
+ps_status ps_refine(const ps_refine_input *in, int *group_of_leaf, ps_merge **merges,
+                    int *n_merges, ps_error *err) {
     *merges = NULL;
     *n_merges = 0;
+    int n_tree = in->n_tree;
+    size_t n = in->graph->n;
     if (n_tree < 1) return ps_fail(err, PS_ERR_INVALID, "refine: empty tree");
     segments s = {.threshold = malloc((size_t)n_tree * sizeof(double)),
                   .has_border = malloc((size_t)n_tree * sizeof(int))};
-    int *seg_of_point = malloc((g->n ? g->n : 1) * sizeof *seg_of_point);
+    int *seg_of_point = malloc((n ? n : 1) * sizeof *seg_of_point);
     ps_merge *list = malloc((size_t)n_tree * sizeof *list);
     ps_status st = s.threshold && s.has_border && seg_of_point && list
-                       ? point_leaves(tree, n_tree, supernode_of, g->n, seg_of_point, err)
+                       ? point_leaves(in, seg_of_point, err)
                        : ps_fail(err, PS_ERR_NOMEM, "refine: out of memory");
-    if (st == PS_OK)
-        st = refine_with(&s, g, f, component, tree, n_tree, seg_of_point, supernode_of,
-                         is_minimum, feature_threshold, group_of_leaf, &list, n_merges, err);
+    if (st == PS_OK) st = refine_with(&s, in, seg_of_point, group_of_leaf, &list, n_merges, err);
     segments_free(&s);
     free(seg_of_point);
     if (st != PS_OK) {

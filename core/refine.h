@@ -14,12 +14,22 @@
 
 #include "knn_graph.h"
 
-/* supernode_of #P, is_minimum #S (or NULL), f #P, component #P.  group_of_leaf #n_tree out: for each
- * leaf, the tree id of the leaf whose segment it ends in (itself when not
- * merged); -1 for inner nodes.  merges: malloc'ed, #n_merges, in order. */
-ps_status ps_refine(const ps_graph *g, const double *f, const int *supernode_of,
-                    const int *is_minimum, const int *component, const ps_tree_node *tree, int n_tree,
-                    double feature_threshold, int *group_of_leaf,
-                    ps_merge **merges, int *n_merges, ps_error *err);
+typedef struct ps_refine_input {
+    const ps_graph *graph;      /* kNN graph on #P points (weights not used) */
+    const double *f;            /* #P centrality */
+    const int *supernode_of;    /* #P each point's supernode, in [0, #S) */
+    const int *is_minimum;      /* #S 1 for a minimum's supernode (supernodes.h), or NULL */
+    const int *component;       /* #P each point's connected component */
+    const ps_tree_node *tree;   /* #n_tree the hierarchy; its leaves hold the supernodes */
+    int n_tree;
+    double feature_threshold;   /* a segment merges below this x the range of f over its
+                                   component */
+} ps_refine_input;
+
+/* group_of_leaf #n_tree out: for each leaf, the tree id of the leaf whose
+ * segment it ends in (itself when not merged); -1 for inner nodes.
+ * merges: malloc'ed, #n_merges, in order. */
+ps_status ps_refine(const ps_refine_input *in, int *group_of_leaf, ps_merge **merges,
+                    int *n_merges, ps_error *err);
 
 #endif

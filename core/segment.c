@@ -361,9 +361,11 @@ static ps_status merge_segments(ps_pipeline *pl, ps_error *err) {
 static ps_status phase_refine(ps_pipeline *pl, ps_error *err) {
     pl->group_of_leaf = malloc((size_t)pl->n_tree * sizeof *pl->group_of_leaf);
     if (!pl->group_of_leaf) return ps_fail(err, PS_ERR_NOMEM, "out of memory (refine)");
-    ps_status st = ps_refine(&pl->graph, pl->f, pl->sn.supernode_of, pl->sn.is_minimum,
-                             pl->component, pl->tree, pl->n_tree, pl->params.feature_threshold,
-                             pl->group_of_leaf, &pl->merges, &pl->n_merges, err);
+    ps_refine_input in = {.graph = &pl->graph, .f = pl->f, .supernode_of = pl->sn.supernode_of,
+                          .is_minimum = pl->sn.is_minimum, .component = pl->component,
+                          .tree = pl->tree, .n_tree = pl->n_tree,
+                          .feature_threshold = pl->params.feature_threshold};
+    ps_status st = ps_refine(&in, pl->group_of_leaf, &pl->merges, &pl->n_merges, err);
     if (st == PS_OK) st = point_groups(pl, err);
     if (st == PS_OK) ps_control_progress(pl->ctl, PS_PHASE_REFINE, REFINE_GROUPS_DONE);
     if (st == PS_OK && pl->normals) st = boundary_cut(pl, err);

@@ -43,8 +43,10 @@ static void test_merges_into_longer_border(void) {
     int group[7];
     ps_merge *merges;
     int n_merges;
-    REQUIRE(ps_refine(&h.g, f, supernode_of, NULL, component, tree, 7, 0.1, group, &merges,
-                      &n_merges, NULL) == PS_OK);
+    ps_refine_input in = {.graph = &h.g, .f = f, .supernode_of = supernode_of,
+                          .component = component, .tree = tree, .n_tree = 7,
+                          .feature_threshold = 0.1};
+    REQUIRE(ps_refine(&in, group, &merges, &n_merges, NULL) == PS_OK);
     REQUIRE(n_merges == 1);
     CHECK(merges[0].segment == 4 && merges[0].into == 2);
     CHECK_NEAR(merges[0].feature_size, 0.1, 1e-12);
@@ -71,8 +73,10 @@ static void test_merge_order_and_borders_move(void) {
     int group[5];
     ps_merge *merges;
     int n_merges;
-    REQUIRE(ps_refine(&h.g, f, supernode_of, NULL, component, tree5, 5, 0.5, group, &merges,
-                      &n_merges, NULL) == PS_OK);
+    ps_refine_input in = {.graph = &h.g, .f = f, .supernode_of = supernode_of,
+                          .component = component, .tree = tree5, .n_tree = 5,
+                          .feature_threshold = 0.5};
+    REQUIRE(ps_refine(&in, group, &merges, &n_merges, NULL) == PS_OK);
     REQUIRE(n_merges == 2);
     CHECK(merges[0].segment == 3 && merges[0].into == 1);
     CHECK_NEAR(merges[0].feature_size, 1, 1e-12);
@@ -83,8 +87,8 @@ static void test_merge_order_and_borders_move(void) {
     free(merges);
 
     /* threshold 0: every leaf stays */
-    REQUIRE(ps_refine(&h.g, f, supernode_of, NULL, component, tree5, 5, 0, group, &merges,
-                      &n_merges, NULL) == PS_OK);
+    in.feature_threshold = 0;
+    REQUIRE(ps_refine(&in, group, &merges, &n_merges, NULL) == PS_OK);
     CHECK(n_merges == 0);
     CHECK(group[1] == 1 && group[3] == 3 && group[4] == 4 && group[0] == -1);
     free(merges);
@@ -105,8 +109,10 @@ static void test_large_feature_outweighs_border(void) {
     int group[5];
     ps_merge *merges;
     int n_merges;
-    REQUIRE(ps_refine(&h.g, f, supernode_of, NULL, component, tree5, 5, 0.15, group, &merges,
-                      &n_merges, NULL) == PS_OK);
+    ps_refine_input in = {.graph = &h.g, .f = f, .supernode_of = supernode_of,
+                          .component = component, .tree = tree5, .n_tree = 5,
+                          .feature_threshold = 0.15};
+    REQUIRE(ps_refine(&in, group, &merges, &n_merges, NULL) == PS_OK);
     /* threshold 1.5: leaf 3 (0) into 4 (1 * 6 > 2 * 1), then leaf 1 (1) into 4 */
     REQUIRE(n_merges == 2);
     CHECK(merges[0].segment == 3 && merges[0].into == 4 && merges[0].feature_size == 0);
@@ -126,8 +132,10 @@ static void test_bad_supernode(void) {
     ps_merge *merges;
     int n_merges;
     ps_error err = {0};
-    CHECK(ps_refine(&h.g, f, supernode_of, NULL, component, tree5, 5, 0.1, group, &merges,
-                    &n_merges, &err) == PS_ERR_INVALID);
+    ps_refine_input in = {.graph = &h.g, .f = f, .supernode_of = supernode_of,
+                          .component = component, .tree = tree5, .n_tree = 5,
+                          .feature_threshold = 0.1};
+    CHECK(ps_refine(&in, group, &merges, &n_merges, &err) == PS_ERR_INVALID);
     CHECK(merges == NULL && n_merges == 0);
 }
 
