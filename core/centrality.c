@@ -244,44 +244,51 @@ static ps_status check_mode(ps_centrality_mode mode, int samples, uint32_t **sam
     return PS_OK;
 }
 
-/* f on the breadth-first order o of the graph. */
-static ps_status centrality_on(const ps_bfs_order *o, const int *component, int n_components,
-                               ps_centrality_mode mode, int samples, int threads,
-                               size_t coarse_min, const ps_control *ctl, double *f,
+/* f on the breadth-first order o of in->graph (which it does not read). */
+static ps_status centrality_on(const ps_bfs_order *o, const ps_centrality_input *in, double *f,
                                uint32_t **sample_ids, int *samples_used, ps_error *err) {
-    if (o->n_components != n_components)
+    if (o->n_components != in->n_components)
         return ps_fail(err, PS_ERR_INVALID, "centrality: %d components given, the graph has %d",
-                       n_components, o->n_components);
-    int exact = mode == PS_CENTRALITY_EXACT;
-    size_t count = samples ? (size_t)samples : (size_t)ps_centrality_default_samples(o->g.n);
-    if (!exact && o->g.n >= coarse_min)
-        return coarse_centrality(o, count, threads, ctl, f, sample_ids, samples_used, err);
-    return fine_centrality(o, component, exact, count, threads, ctl, f, sample_ids, samples_used,
-                           err);
+                       in->n_components, o->n_components);
+    int exact = in->mode == PS_CENTRALITY_EXACT;
+    size_t count = in->samples ? (size_t)in->samples
+                               : (size_t)ps_centrality_default_samples(o->g.n);
+    if (!exact && o->g.n >= in->coarse_min)
+        return coarse_centrality(o, count, in->threads, in->ctl, f, sample_ids, samples_used,
+                                 err);
+    return fine_centrality(o, in->component, exact, count, in->threads, in->ctl, f, sample_ids,
+                           samples_used, err);
 }
 
-ps_status ps_centrality_with_threshold(const ps_graph *g, const int *component, int n_components,
-                                       ps_centrality_mode mode, int samples, int threads,
-                                       size_t coarse_min, const ps_control *ctl, double *f,
+ps_status ps_centrality_with_threshold(const ps_centrality_input *in, double *f,
                                        uint32_t **sample_ids, int *samples_used, ps_error *err) {
-    ps_status st = check_mode(mode, samples, sample_ids, samples_used, err);
-    if (st != PS_OK || g->n == 0) return st;
+    ps_status st = check_mode(in->mode, in->samples, sample_ids, samples_used, err);
+    if (st != PS_OK || in->graph->n == 0) return st;
     ps_bfs_order o;
-    st = ps_bfs_order_build(g, &o, err);
+    st = ps_bfs_order_build(in->graph, &o, err);
     if (st != PS_OK) return st;
-    st = centrality_on(&o, component, n_components, mode, samples, threads, coarse_min, ctl, f,
-                       sample_ids, samples_used, err);
+    st = centrality_on(&o, in, f, sample_ids, samples_used, err);
     ps_bfs_order_free(&o);
     return st;
+}
+
+/* ps_centrality's arguments, with the default two-level threshold. */
+static ps_centrality_input default_input(const ps_graph *g, const int *component,
+                                         int n_components, ps_centrality_mode mode, int samples,
+                                         int threads, const ps_control *ctl) {
+    return (ps_centrality_input){.graph = g, .component = component,
+                                 .n_components = n_components, .mode = mode,
+                                 .samples = samples, .threads = threads,
+                                 .coarse_min = PS_COARSE_MIN_POINTS, .ctl = ctl};
 }
 
 ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
                         ps_centrality_mode mode, int samples, int threads,
                         const ps_control *ctl, double *f, uint32_t **sample_ids,
                         int *samples_used, ps_error *err) {
-    return ps_centrality_with_threshold(g, component, n_components, mode, samples, threads,
-                                        PS_COARSE_MIN_POINTS, ctl, f, sample_ids, samples_used,
-                                        err);
+    ps_centrality_input in = default_input(g, component, n_components, mode, samples, threads,
+                                           ctl);
+    return ps_centrality_with_threshold(&in, f, sample_ids, samples_used, err);
 }
 
 ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_components,
@@ -293,8 +300,9 @@ ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_compo
     ps_bfs_order o;
     st = ps_bfs_order_take(g, threads, &o, err);
     if (st != PS_OK) return st;
-    st = centrality_on(&o, component, n_components, mode, samples, threads,
-                       PS_COARSE_MIN_POINTS, ctl, f, sample_ids, samples_used, err);
+    ps_centrality_input in = default_input(g, component, n_components, mode, samples, threads,
+                                           ctl);
+    st = centrality_on(&o, &in, f, sample_ids, samples_used, err);
     ps_error back_err;
     ps_status back = ps_bfs_order_give_back(&o, threads, g, &back_err);
     if (st == PS_OK && back != PS_OK) {

@@ -57,12 +57,22 @@ ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_compo
                                   const ps_control *ctl, double *f, uint32_t **sample_ids,
                                   int *samples_used, ps_error *err);
 
-/* As ps_centrality, with the two-level scheme in approx mode when the graph
- * has at least coarse_min vertices (ps_centrality: PS_COARSE_MIN_POINTS);
- * 0 forces it, SIZE_MAX never uses it.  For tests and tuning. */
-ps_status ps_centrality_with_threshold(const ps_graph *g, const int *component, int n_components,
-                                       ps_centrality_mode mode, int samples, int threads,
-                                       size_t coarse_min, const ps_control *ctl, double *f,
+typedef struct ps_centrality_input {
+    const ps_graph *graph;     /* #P vertices; its weights are the edge lengths */
+    const int *component;      /* #P from ps_graph_components */
+    int n_components;
+    ps_centrality_mode mode;   /* EXACT or APPROX (the caller resolves AUTO) */
+    int samples;               /* approx: S in total (0: ps_centrality_default_samples) */
+    int threads;               /* ps_parallel_threads; f is the same for any count */
+    size_t coarse_min;         /* approx takes the two-level scheme from this many
+                                  vertices on (ps_centrality: PS_COARSE_MIN_POINTS);
+                                  0 always, SIZE_MAX never */
+    const ps_control *ctl;     /* progress and cancel; may be NULL */
+} ps_centrality_input;
+
+/* As ps_centrality (the same outputs), with the two-level threshold
+ * in->coarse_min.  For tests and tuning. */
+ps_status ps_centrality_with_threshold(const ps_centrality_input *in, double *f,
                                        uint32_t **sample_ids, int *samples_used, ps_error *err);
 
 #endif

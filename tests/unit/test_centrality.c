@@ -98,6 +98,14 @@ static void shape_graph_free(shape_graph *s) {
     free(s->comp);
 }
 
+/* The centrality input on s, on 2 threads without a control. */
+static ps_centrality_input shape_input(const shape_graph *s, ps_centrality_mode mode,
+                                       int samples, size_t coarse_min) {
+    return (ps_centrality_input){.graph = &s->g, .component = s->comp,
+                                 .n_components = s->n_comp, .mode = mode, .samples = samples,
+                                 .threads = 2, .coarse_min = coarse_min};
+}
+
 /* RMS difference of f and h, each normalized to [0, 1] per component. */
 static double normalized_rms(const shape_graph *s, const double *f, const double *h) {
     double lo[2][64], hi[2][64], sq = 0.0;
@@ -126,8 +134,8 @@ static void check_approx_close(double *pts, size_t n, size_t coarse_min, const c
     REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_EXACT, 0, 2, NULL, exact, NULL,
                           NULL, NULL) == PS_OK);
     uint32_t *ids = NULL;
-    REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2,
-                                         coarse_min, NULL, approx, &ids, &used, NULL) == PS_OK);
+    ps_centrality_input in = shape_input(&s, PS_CENTRALITY_APPROX, 0, coarse_min);
+    REQUIRE(ps_centrality_with_threshold(&in, approx, &ids, &used, NULL) == PS_OK);
     CHECK(used >= (int)ceil(sqrt((double)n)) && used <= (int)ceil(sqrt((double)n)) + s.n_comp);
     CHECK(ids && ids[0] == 0); /* the first component's lowest vertex */
     double rms = normalized_rms(&s, exact, approx);
@@ -157,11 +165,12 @@ static void check_threads_identical(ps_centrality_mode mode, size_t coarse_min) 
     double *pts = ps_shape_hand(30.0, &n, NULL);
     REQUIRE(shape_graph_make(pts, n, &s));
     double *f[3];
+    ps_centrality_input in = shape_input(&s, mode, 50, coarse_min);
     for (int t = 0; t < 3; t++) {
         f[t] = malloc(n * sizeof *f[t]);
         REQUIRE(f[t]);
-        REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 50, t + 1, coarse_min,
-                                             NULL, f[t], NULL, NULL, NULL) == PS_OK);
+        in.threads = t + 1;
+        REQUIRE(ps_centrality_with_threshold(&in, f[t], NULL, NULL, NULL) == PS_OK);
     }
     CHECK(memcmp(f[0], f[1], n * sizeof *f[0]) == 0);
     CHECK(memcmp(f[0], f[2], n * sizeof *f[0]) == 0);
@@ -203,11 +212,12 @@ static void check_progress_and_cancel(ps_centrality_mode mode, size_t coarse_min
     REQUIRE(shape_graph_make(pts, n, &s));
     double *f = malloc(n * sizeof *f);
     REQUIRE(f);
+    ps_centrality_input in = shape_input(&s, mode, 40, coarse_min);
     for (int threads = 1; threads <= 2; threads++) {
         progress_log log = {0, 1, 0, 0.0, 0.0, NULL};
         ps_control ctl = {on_progress, &log, NULL};
-        REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 40, threads, coarse_min,
-                                             &ctl, f, NULL, NULL, NULL) == PS_OK);
+        in.threads = threads, in.ctl = &ctl;
+        REQUIRE(ps_centrality_with_threshold(&in, f, NULL, NULL, NULL) == PS_OK);
         CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
         /* where progress starts is pinned on one thread only: with two, the
          * other worker may run many items before the reporting one ends
@@ -219,8 +229,8 @@ static void check_progress_and_cancel(ps_centrality_mode mode, size_t coarse_min
     progress_log stop = {0, 1, 0, 0.0, 0.0, &cancel};
     ps_control cctl = {on_progress, &stop, &cancel};
     ps_error err = {0};
-    CHECK(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, mode, 40, 2, coarse_min, &cctl, f,
-                                       NULL, NULL, &err) == PS_ERR_CANCELLED);
+    in.threads = 2, in.ctl = &cctl;
+    CHECK(ps_centrality_with_threshold(&in, f, NULL, NULL, &err) == PS_ERR_CANCELLED);
     CHECK(err.status == PS_ERR_CANCELLED && stop.last < 1.0);
     free(f);
     shape_graph_free(&s);
@@ -246,8 +256,8 @@ static void test_default_threshold(void) {
     REQUIRE(f && h);
     REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2, NULL, f, NULL, NULL,
                           NULL) == PS_OK);
-    REQUIRE(ps_centrality_with_threshold(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2, 0,
-                                         NULL, h, NULL, NULL, NULL) == PS_OK);
+    ps_centrality_input in = shape_input(&s, PS_CENTRALITY_APPROX, 0, 0);
+    REQUIRE(ps_centrality_with_threshold(&in, h, NULL, NULL, NULL) == PS_OK);
     CHECK(memcmp(f, h, n * sizeof *f) == 0);
     free(f), free(h);
     shape_graph_free(&s);
