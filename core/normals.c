@@ -257,41 +257,49 @@ static ps_status unit_normals(const ps_graph *g, const double *points, const dou
     return st;
 }
 
-ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
-                           const int *component, int n_components, int smooth,
-                           double *normals, ps_normals_report *report, ps_error *err) {
-    ps_progress_span untracked = {NULL, PS_PHASE_KNN, 0.0, 0.0};
-    return ps_normals_build_tracked(g, points, given, component, n_components, smooth, 1,
-                                    &untracked, normals, report, err);
-}
-
-ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, const double *given,
-                                   const int *component, int n_components, int smooth,
-                                   int threads, const ps_progress_span *span, double *normals,
-                                   ps_normals_report *report, ps_error *err) {
-    size_t n = g->n;
-    ps_noise_estimate noise;
-    ps_progress_span pca = {span->ctl, span->phase, span->lo, ps_progress_span_at(span, PCA_SHARE)};
-    ps_status pca_status = unit_normals(g, points, given, ps_parallel_threads(threads), &pca,
-                                        normals, &noise);
-    if (pca_status == PS_ERR_CANCELLED) return ps_fail(err, pca_status, "normals: cancelled");
-    if (pca_status != PS_OK) return ps_fail(err, pca_status, "normals: out of memory");
+/* The unit normals made consistent (PCA normals along each component's
+ * tree, progress over span) and outward per component. */
+static ps_status orient_outward(const ps_normals_input *in, const ps_progress_span *span,
+                                double *normals, ps_error *err) {
+    size_t n = in->graph->n;
+    int n_components = in->n_components;
     double *centroid = calloc(4 * (size_t)n_components, sizeof *centroid); /* then the votes */
     uint32_t *root = malloc((size_t)n_components * sizeof *root);
     ps_status st = centroid && root &&
-                           component_centers(n, points, component, n_components, centroid, root) == 0
+                           component_centers(n, in->points, in->component, n_components,
+                                             centroid, root) == 0
                        ? PS_OK
                        : ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
-    ps_progress_span orient = {span->ctl, span->phase, pca.hi, span->hi};
-    if (st == PS_OK && !given) st = orient_components(g, root, n_components, &orient, normals, err);
+    if (st == PS_OK && !in->given)
+        st = orient_components(in->graph, root, n_components, span, normals, err);
     if (st == PS_OK)
-        point_outward(n, points, component, n_components, centroid,
+        point_outward(n, in->points, in->component, n_components, centroid,
                       centroid + 3 * (size_t)n_components, normals);
-    double median = ps_noise_median(&noise);
-    int iterations = given || !smooth ? 0 : ps_noise_iterations(median);
-    if (report) report->smoothing = iterations, report->noise = median;
-    if (st == PS_OK) st = ps_normals_smooth(g, normals, iterations, threads, err);
     free(centroid), free(root);
+    return st;
+}
+
+ps_status ps_normals_build(const ps_normals_input *in, double *normals,
+                           ps_normals_report *report, ps_error *err) {
+    ps_progress_span untracked = {NULL, PS_PHASE_KNN, 0.0, 0.0};
+    return ps_normals_build_tracked(in, 1, &untracked, normals, report, err);
+}
+
+ps_status ps_normals_build_tracked(const ps_normals_input *in, int threads,
+                                   const ps_progress_span *span, double *normals,
+                                   ps_normals_report *report, ps_error *err) {
+    ps_noise_estimate noise;
+    ps_progress_span pca = {span->ctl, span->phase, span->lo, ps_progress_span_at(span, PCA_SHARE)};
+    ps_status pca_status = unit_normals(in->graph, in->points, in->given,
+                                        ps_parallel_threads(threads), &pca, normals, &noise);
+    if (pca_status == PS_ERR_CANCELLED) return ps_fail(err, pca_status, "normals: cancelled");
+    if (pca_status != PS_OK) return ps_fail(err, pca_status, "normals: out of memory");
+    ps_progress_span orient = {span->ctl, span->phase, pca.hi, span->hi};
+    ps_status st = orient_outward(in, &orient, normals, err);
+    double median = ps_noise_median(&noise);
+    int iterations = in->given || !in->smooth ? 0 : ps_noise_iterations(median);
+    if (report) report->smoothing = iterations, report->noise = median;
+    if (st == PS_OK) st = ps_normals_smooth(in->graph, normals, iterations, threads, err);
     if (st == PS_OK) ps_control_progress(span->ctl, span->phase, span->hi);
     return st;
 }

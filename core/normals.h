@@ -27,21 +27,26 @@ typedef struct ps_normals_report {
                       normals */
 } ps_normals_report;
 
-/* points #P by 3; given #P by 3 or NULL; component #P; g's weights are the
- * Euclidean edge lengths (the noise is measured against them).  smooth:
- * smooth estimated normals by the measured noise.  normals #P by 3 out.
- * report out (may be NULL). */
-ps_status ps_normals_build(const ps_graph *g, const double *points, const double *given,
-                           const int *component, int n_components, int smooth,
-                           double *normals, ps_normals_report *report, ps_error *err);
+typedef struct ps_normals_input {
+    const ps_graph *graph;   /* kNN graph on #P points; its weights are the Euclidean
+                                edge lengths (the noise is measured against them) */
+    const double *points;    /* #P by 3 */
+    const double *given;     /* #P by 3 normals from the input file, or NULL: PCA */
+    const int *component;    /* #P from ps_graph_components */
+    int n_components;
+    int smooth;              /* smooth estimated normals by the measured noise */
+} ps_normals_input;
+
+/* normals #P by 3 out.  report out (may be NULL). */
+ps_status ps_normals_build(const ps_normals_input *in, double *normals,
+                           ps_normals_report *report, ps_error *err);
 
 /* The same with the PCA on threads (ps_parallel_threads), reporting
  * progress from span->lo to span->hi (span->ctl may be NULL) and stopping
  * with PS_ERR_CANCELLED when its cancel flag is raised.  The normals do
  * not depend on threads. */
-ps_status ps_normals_build_tracked(const ps_graph *g, const double *points, const double *given,
-                                   const int *component, int n_components, int smooth,
-                                   int threads, const ps_progress_span *span, double *normals,
+ps_status ps_normals_build_tracked(const ps_normals_input *in, int threads,
+                                   const ps_progress_span *span, double *normals,
                                    ps_normals_report *report, ps_error *err);
 
 #endif

@@ -158,9 +158,10 @@ static ps_status crease_metric(ps_pipeline *pl, ps_error *err) {
                    3 * sizeof *given);
     }
     ps_progress_span span = {pl->ctl, PS_PHASE_KNN, KNN_OUTLIERS_DONE, KNN_NORMALS_DONE};
-    ps_status st = ps_normals_build_tracked(&pl->graph, pl->points, given, pl->component,
-                                            pl->n_components, pl->params.smooth_normals,
-                                            pl->threads, &span, pl->normals,
+    ps_normals_input in = {.graph = &pl->graph, .points = pl->points, .given = given,
+                           .component = pl->component, .n_components = pl->n_components,
+                           .smooth = pl->params.smooth_normals};
+    ps_status st = ps_normals_build_tracked(&in, pl->threads, &span, pl->normals,
                                             &pl->normals_report, err);
     free(given); /* now, so that the smoothings below reuse its pages */
     if (st == PS_OK)

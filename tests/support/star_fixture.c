@@ -26,8 +26,9 @@ int ps_star_build_dense(ps_star *s, double density) {
     ps_error err = {0};
     int ok = component && ps_knn_graph_build(s->points, s->n, 3, 7, 1, &s->graph, &err) == PS_OK;
     int nc = ok ? ps_graph_components(&s->graph, component) : 0;
-    ok = ok && ps_normals_build(&s->graph, s->points, NULL, component, nc, 0, s->normals, NULL, &err) ==
-                   PS_OK;
+    ps_normals_input in = {.graph = &s->graph, .points = s->points, .component = component,
+                           .n_components = nc};
+    ok = ok && ps_normals_build(&in, s->normals, NULL, &err) == PS_OK;
     free(component);
     return ok;
 }

@@ -99,7 +99,9 @@ static void test_sphere_stays_whole(void) {
     ps_error err = {0};
     REQUIRE(points && normals && component);
     REQUIRE(ps_knn_graph_build(points, n, 3, 7, 1, &g, &err) == PS_OK);
-    REQUIRE(ps_normals_build(&g, points, NULL, component, 1, 0, normals, NULL, &err) == PS_OK);
+    ps_normals_input in = {.graph = &g, .points = points, .component = component,
+                           .n_components = 1};
+    REQUIRE(ps_normals_build(&in, normals, NULL, &err) == PS_OK);
     ps_supernodes sn = {0};
     double *f = NULL;
     REQUIRE(whole_supernode(n, points, &sn, &f));

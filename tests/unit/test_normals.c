@@ -37,7 +37,9 @@ static void check_sphere(double shift, double angle) {
     int nc = ps_graph_components(&g, comp);
     double *nrm = malloc(n * 3 * sizeof *nrm);
     ps_normals_report report = {-1, -1};
-    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, 1, nrm, &report, NULL) == PS_OK);
+    ps_normals_input in = {.graph = &g, .points = pts, .component = comp, .n_components = nc,
+                           .smooth = 1};
+    REQUIRE(ps_normals_build(&in, nrm, &report, NULL) == PS_OK);
     CHECK(report.smoothing == 0); /* a clean sphere is left as PCA made it */
     CHECK(report.noise >= 0 && report.noise <= PS_NOISE_FLOOR); /* and measures clean */
     for (size_t p = 0; p < n; p++)
@@ -83,7 +85,8 @@ static void test_fin_does_not_decide_the_sign(void) {
         double *nrm = malloc(n * 3 * sizeof *nrm);
         REQUIRE(comp && nrm);
         int nc = ps_graph_components(&g, comp);
-        REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, 0, nrm, NULL, NULL) == PS_OK);
+        ps_normals_input in = {.graph = &g, .points = pts, .component = comp, .n_components = nc};
+        REQUIRE(ps_normals_build(&in, nrm, NULL, NULL) == PS_OK);
         double share = outward_share(pts, nrm, n_sphere, t);
         CHECK_MSG(share > 0.99, "angle %g: only %.3f of the sphere outward", angle, share);
         ps_graph_free(&g);
@@ -100,7 +103,9 @@ static void test_given_inward_flipped(void) {
     REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
     int *comp = calloc(n, sizeof *comp);
     ps_normals_report report = {-1, -1};
-    REQUIRE(ps_normals_build(&g, pts, inward, comp, 1, 1, nrm, &report, NULL) == PS_OK);
+    ps_normals_input in = {.graph = &g, .points = pts, .given = inward, .component = comp,
+                           .n_components = 1, .smooth = 1};
+    REQUIRE(ps_normals_build(&in, nrm, &report, NULL) == PS_OK);
     CHECK(report.smoothing == 0 && report.noise == 0); /* given normals: nothing measured */
     const double c[3] = {0, 0, 0};
     CHECK(outward_share(pts, nrm, n, c) == 1.0);
@@ -148,7 +153,9 @@ static void test_noisy_sphere_smoothed(void) {
     const double c[3] = {0, 0, 0};
     for (int smooth = 0; smooth <= 1; smooth++) {
         ps_normals_report report = {-1, -1};
-        REQUIRE(ps_normals_build(&g, pts, NULL, comp, 1, smooth, nrm, &report, NULL) == PS_OK);
+        ps_normals_input in = {.graph = &g, .points = pts, .component = comp, .n_components = 1,
+                               .smooth = smooth};
+        REQUIRE(ps_normals_build(&in, nrm, &report, NULL) == PS_OK);
         int smoothing = report.smoothing;
         CHECK(report.noise > PS_NOISE_FLOOR); /* measured noisy either way */
         CHECK(outward_share(pts, nrm, n, c) > 0.99);
@@ -175,17 +182,17 @@ static void test_threads_identical_with_progress(void) {
     ps_progress_seen seen = {{0}, {0}, {0}, 0};
     ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
     ps_progress_span span = {&ctl, PS_PHASE_KNN, 0.5, 0.9};
-    REQUIRE(ps_normals_build(&g, pts, NULL, comp, nc, 1, one, NULL, NULL) == PS_OK);
-    REQUIRE(ps_normals_build_tracked(&g, pts, NULL, comp, nc, 1, 3, &span, three, NULL, NULL) ==
-            PS_OK);
+    ps_normals_input in = {.graph = &g, .points = pts, .component = comp, .n_components = nc,
+                           .smooth = 1};
+    REQUIRE(ps_normals_build(&in, one, NULL, NULL) == PS_OK);
+    REQUIRE(ps_normals_build_tracked(&in, 3, &span, three, NULL, NULL) == PS_OK);
     CHECK(memcmp(one, three, n * 3 * sizeof *one) == 0);
     CHECK_MSG(seen.calls[PS_PHASE_KNN] >= 2 && !seen.went_back && seen.last[PS_PHASE_KNN] == 0.9,
               "%d calls, last %g", seen.calls[PS_PHASE_KNN], seen.last[PS_PHASE_KNN]);
     volatile int cancel = 1;
     ctl.cancel = &cancel;
     ps_error err = {0};
-    CHECK(ps_normals_build_tracked(&g, pts, NULL, comp, nc, 1, 2, &span, three, NULL, &err) ==
-          PS_ERR_CANCELLED);
+    CHECK(ps_normals_build_tracked(&in, 2, &span, three, NULL, &err) == PS_ERR_CANCELLED);
     ps_graph_free(&g);
     free(pts), free(comp), free(one), free(three);
 }
