@@ -15,7 +15,7 @@
 #include "control.h"
 #include "morton.h"
 #include "nearest.h"
-#include "normals_smooth.h"
+#include "reference_density.h"
 #include "parallel.h"
 #include "sort_util.h"
 

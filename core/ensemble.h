@@ -1,6 +1,6 @@
 /*
  * ensemble.h: method auto on an input at least three times the reference
- * sampling (PS_DENSITY_REFERENCE_POINTS, normals_smooth.h) segments as
+ * sampling (PS_DENSITY_REFERENCE_POINTS, reference_density.h) segments as
  * many disjoint random draws of its points as keep the reference density
  * each (an odd number from 3 to PS_ENSEMBLE_MAX_DRAWS), and keeps the
  * draw whose partition the others agree with most: the medoid under the

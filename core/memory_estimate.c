@@ -17,7 +17,7 @@
 #include "centrality.h"
 #include "coarse_graph.h"
 #include "ensemble.h"
-#include "normals_smooth.h"
+#include "reference_density.h"
 #include "parallel.h"
 #include "surface_fill.h"
 

@@ -30,14 +30,13 @@
 #define PS_NORMALS_SMOOTH_H
 
 #include "knn_graph.h"
+#include "reference_density.h"
 
 /* The constants (docs/method.md, "Constants", has their sweeps): */
 #define PS_NOISE_FLOOR 0.12 /* noise ratio above which normals are smoothed */
 #define PS_NOISE_STEP 0.02  /* one iteration per this much of the ratio above it */
 #define PS_SMOOTH_MAX 8     /* iterations at most */
 #define PS_NOISE_BINS 1024 /* histogram of the ratio over [0, 1) */
-/* Points of the sampling whose normal scale the crease steps use. */
-#define PS_DENSITY_REFERENCE_POINTS 40000
 
 typedef struct ps_noise_estimate {
     size_t counts[PS_NOISE_BINS]; /* ratios >= 1 go to the last bin */

@@ -10,7 +10,7 @@
  */
 #include "surface_fill.h"
 
-#include "normals_smooth.h"
+#include "reference_density.h"
 #include "sort_util.h"
 
 #include <math.h>
