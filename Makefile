@@ -9,8 +9,9 @@
 #   make bench-scale                     1M to 10M points: times, peak RSS
 #   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
 #
-# Sources are found by wildcard: a new core/*.c or api/*.c joins its library,
-# a new tests/unit/test_*.c becomes a test binary, with no edit here.
+# Sources are found by wildcard: a new .c in core/, a folder of core/ or api/
+# joins its library, a new tests/unit/test_*.c (tests/unit/FOLDER/test_*.c
+# for a module of core/FOLDER/) becomes a test binary, with no edit here.
 
 BUILD ?= build
 SAN ?= 0
@@ -37,13 +38,13 @@ ALL_CFLAGS += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize
 LDFLAGS += -fsanitize=address,undefined
 endif
 
-CORE_SRC := $(wildcard core/*.c)
+CORE_SRC := $(wildcard core/*.c core/*/*.c)
 API_SRC := $(wildcard api/*.c)
 SERVER_SRC := $(wildcard server/*.c)
 CLI_SRC := $(wildcard clients/cli/*.c)
 CCLIENT_SRC := $(wildcard clients/c/*.c)
 TESTLIB_SRC := $(wildcard tests/support/*.c)
-UNIT_SRC := $(wildcard tests/unit/test_*.c)
+UNIT_SRC := $(wildcard tests/unit/test_*.c tests/unit/*/test_*.c)
 INTEG_SRC := $(wildcard tests/integration/test_*.c)
 BENCH_SRC := $(wildcard tests/bench/*.c)
 

@@ -11,13 +11,13 @@
  */
 #include "ensemble.h"
 
-#include "centrality.h"
-#include "control.h"
-#include "morton.h"
-#include "nearest.h"
-#include "reference_density.h"
-#include "parallel.h"
-#include "sort_util.h"
+#include "features/centrality.h"
+#include "graph/nearest.h"
+#include "graph/reference_density.h"
+#include "util/control.h"
+#include "util/morton.h"
+#include "util/parallel.h"
+#include "util/sort_util.h"
 
 #include <math.h>
 #include <stdlib.h>

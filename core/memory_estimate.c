@@ -13,13 +13,13 @@
  */
 #include "pointseg.h"
 
-#include "boundary_cut.h"
-#include "centrality.h"
-#include "coarse_graph.h"
 #include "ensemble.h"
-#include "reference_density.h"
-#include "parallel.h"
-#include "surface_fill.h"
+#include "features/centrality.h"
+#include "features/coarse_graph.h"
+#include "graph/reference_density.h"
+#include "graph/surface_fill.h"
+#include "refine/boundary_cut.h"
+#include "util/parallel.h"
 
 /* Fitted 2026-11-24 to the peaks of the horse sampled at 300,000 to 10M
  * points, k = 7, 14 and 28 (bench_scale and a progress probe of VmHWM):

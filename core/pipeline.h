@@ -6,13 +6,13 @@
 #ifndef PS_PIPELINE_H
 #define PS_PIPELINE_H
 
-#include "crease.h"
-#include "dedup.h"
-#include "knn_graph.h"
-#include "normals.h"
+#include "features/crease.h"
+#include "features/normals.h"
+#include "features/supernodes.h"
+#include "graph/dedup.h"
+#include "graph/knn_graph.h"
 #include "pointseg.h"
 #include "result.h"
-#include "supernodes.h"
 
 /* Everything the phases produce for the distinct points. */
 typedef struct ps_pipeline {

@@ -38,13 +38,14 @@ run_one() { # label command...
     passed=$((passed + p)) failed=$((failed + f)) skipped=$((skipped + s))
 }
 
-run_dir() { # title dir sources: the binaries of dir whose source is in sources
+run_dir() { # title dir sources: the binaries of dir and its folders whose source is in sources
     [ -d "$2" ] || return 0
     echo "== $1"
-    for t in "$2"/*; do
+    for t in "$2"/* "$2"/*/*; do
+        name=${t#"$2"/}
         # a binary left by a test since deleted is not this checkout's test
-        [ -f "$3/$(basename "$t").c" ] || continue
-        [ -x "$t" ] && [ -f "$t" ] && run_one "$1/$(basename "$t")" "$t"
+        [ -f "$3/$name.c" ] || continue
+        [ -x "$t" ] && [ -f "$t" ] && run_one "$1/$name" "$t"
     done
 }
 

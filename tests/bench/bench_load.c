@@ -43,8 +43,8 @@
 
 #include "daemon_proc.h"
 #include "decode.h"
-#include "load_soak.h"
 #include "encode.h"
+#include "load_soak.h"
 #include "params_table.h"
 #include "pointseg.h"
 #include "psb_data.h"

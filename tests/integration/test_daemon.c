@@ -7,13 +7,13 @@
  * token, CORS, static files, and SIGTERM draining.  Each test starts
  * pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
  */
+#include "daemon_run.h"
+#include "gzip_body.h"
 #include "params_table.h"
 #include "pointseg.h"
 #include "pointseg_client.h"
 #include "progress_seen.h"
 #include "shapes.h"
-#include "daemon_run.h"
-#include "gzip_body.h"
 #include "testlib.h"
 
 #include <arpa/inet.h>

@@ -7,8 +7,8 @@
  * an empty one is a 400.
  * Starts BUILD/pointsegd (beside BUILD/itests/) on a free port.
  */
-#include "pointseg_client.h"
 #include "daemon_proc.h"
+#include "pointseg_client.h"
 #include "testlib.h"
 
 #include <arpa/inet.h>

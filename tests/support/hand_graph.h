@@ -6,7 +6,7 @@
 #ifndef PS_HAND_GRAPH_H
 #define PS_HAND_GRAPH_H
 
-#include "knn_graph.h"
+#include "graph/knn_graph.h"
 
 #include <stddef.h>
 #include <stdint.h>

@@ -5,7 +5,7 @@
 #ifndef PS_TEST_RANDOM_GRAPH_H
 #define PS_TEST_RANDOM_GRAPH_H
 
-#include "knn_graph.h"
+#include "graph/knn_graph.h"
 
 /* A seeded xorshift generator. */
 typedef struct test_rng {

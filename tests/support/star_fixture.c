@@ -3,7 +3,7 @@
  */
 #include "star_fixture.h"
 
-#include "normals.h"
+#include "features/normals.h"
 #include "shapes.h"
 
 #include <stdlib.h>

@@ -6,7 +6,7 @@
 #ifndef PS_STAR_FIXTURE_H
 #define PS_STAR_FIXTURE_H
 
-#include "knn_graph.h"
+#include "graph/knn_graph.h"
 
 #define PS_STAR_PARTS 7      /* sphere 0, arms 1..6 */
 #define PS_STAR_CREASE 1.1475 /* sqrt(1.2^2 - 0.35^2): where an arm meets the sphere */

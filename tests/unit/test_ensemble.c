@@ -7,7 +7,7 @@
  * never goes back.
  */
 #include "ensemble.h"
-#include "reference_density.h"
+#include "graph/reference_density.h"
 #include "pointseg.h"
 #include "progress_seen.h"
 #include "result_checks.h"

@@ -4,9 +4,9 @@
  * the third loss fails a job, Redis going away gives 503s and coming back
  * heals by itself, shutdown hands running jobs back, kept results stay
  * within their byte budget. */
+#include "daemon_proc.h"
 #include "job_runner.h"
 #include "jobstore_redis.h"
-#include "daemon_proc.h"
 #include "redis_proc.h"
 #include "testlib.h"
 

@@ -4,7 +4,7 @@
  * scaling, permutation and any thread count, the result is self-consistent,
  * and bad input fails cleanly.
  */
-#include "centrality.h"
+#include "features/centrality.h"
 #include "pointseg.h"
 #include "progress_seen.h"
 #include "result_checks.h"

@@ -1,0 +1,55 @@
+/*
+ * convex_merge.h: two adjacent segments whose union is convex are one part
+ * (method auto, 3-D; runs after the crease merge, before the patch merge).
+ *
+ * People cut a shape into nearly convex pieces (Hoffman and Richards' minima
+ * rule cuts at concavities; approximate convex decomposition, e.g. Kaick et
+ * al., "Shape segmentation by approximate convexity analysis", 2014, uses
+ * convexity as the test of a part).  A creased boundary alone does not make
+ * two parts: a face's features crease the head of a bust everywhere.  Two
+ * segments A and B together are convex when each lies behind the other's
+ * tangent planes: for points p of A and q of B, (q - p) . n_p <= 0 and
+ * (p - q) . n_q <= 0, with n the outward normals.  A limb fails it against
+ * its body (it stands above the body's tangent planes near its root), as do
+ * a table's legs against its top and a wing against its fuselage.
+ *
+ * Each segment keeps a sample of at most PS_CONVEX_MERGE_SAMPLES of its
+ * points: evenly spaced through its points in index order at the start;
+ * a merged segment's sample is taken from the two samples in proportion to
+ * the segments' sizes.  A pair's convexity is the fraction of the sample
+ * pairs (p, q) that pass.  A pair is judged on two kinds of evidence
+ * together: a boundary creased nearly all along (more than
+ * PS_CONVEX_MERGE_OPEN_CREASED of its edges, by the crease merge's test)
+ * needs a convexity of PS_CONVEX_MERGE_FRACTION to merge; a boundary that
+ * crosses smooth surface for part of its length only
+ * PS_CONVEX_MERGE_OPEN (a fuselage cut into nose, middle and tail around
+ * the wing roots, a bird's body cut behind its wings: nearly convex
+ * across the cut, but creased just over the crease merge's half).  While
+ * some adjacent pair reaches its threshold, the most convex of them (ties:
+ * the first in (a, b) order) merges, the smaller segment into the larger
+ * (ties: the higher id into the lower); the creased edges add up.
+ * Rotation and scale invariant; deterministic; no threads; O(points) to
+ * set up, then O(pairs x samples^2) per merge.  A flat surface (crease.h, PS_CREASE_FLAT) is convex
+ * everywhere and is left alone.
+ */
+#ifndef PS_CONVEX_MERGE_H
+#define PS_CONVEX_MERGE_H
+
+#include "refine/segment_graph.h"
+
+/* Sample points per segment. */
+#define PS_CONVEX_MERGE_SAMPLES 48
+/* Convexity at which a pair merges.  Chosen on the 228 development models
+ * (docs/method.md). */
+#define PS_CONVEX_MERGE_FRACTION 0.95
+/* ... and the lower convexity at which a pair merges when at most
+ * PS_CONVEX_MERGE_OPEN_CREASED of its boundary is creased (the crease
+ * merge's test, crease_merge.h).  Chosen on the 228 development models
+ * (docs/method.md). */
+#define PS_CONVEX_MERGE_OPEN 0.85
+#define PS_CONVEX_MERGE_OPEN_CREASED 0.85
+
+/* A ps_merge_fn (segment_graph.h). */
+ps_merge_fn ps_convex_merge;
+
+#endif

@@ -1,0 +1,250 @@
+/*
+ * test_surface_fill.c: a tube meshed in rings farther apart than the
+ * spacing along each ring (a turned CAD part's mesh).  The fill adds
+ * exactly the points the target asks for, on the tube's triangles, evenly
+ * (every band between two rings gets its area's share), with each host a
+ * corner of the point's triangle and interpolated unit normals; it moves
+ * with the mesh under rotation and scaling, and adds nothing to a dense
+ * mesh, to faces without area or to a noisy mesh.  End to end, a bare point set of rings
+ * falls apart into its rings, the same points with their faces come out
+ * whole (but with exact centrality, which runs on the input as given),
+ * and the answers cover the caller's points only; a face pointing past
+ * the points is refused.
+ */
+#include "graph/surface_fill.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RING 64    /* points per ring of radius 1: 0.098 apart */
+#define RINGS 11   /* rings 1 apart along z */
+#define N_TUBE (RING * RINGS)
+#define N_BAND_FACES (2 * RING * (RINGS - 1))
+#define TARGET 20000
+
+typedef struct tube {
+    double points[3 * N_TUBE];
+    double normals[3 * N_TUBE];
+    uint32_t faces[3 * N_BAND_FACES];
+} tube;
+
+static uint32_t at(int ring, int i) { return (uint32_t)(ring * RING + (i % RING)); }
+
+/* Points in rings with radial normals; each band between two rings in two
+ * triangles per step. */
+static void tube_make(tube *t) {
+    for (int r = 0; r < RINGS; r++)
+        for (int i = 0; i < RING; i++) {
+            double a = 2 * acos(-1.0) * i / RING;
+            double *p = t->points + 3 * at(r, i), *n = t->normals + 3 * at(r, i);
+            p[0] = cos(a), p[1] = sin(a), p[2] = r;
+            n[0] = cos(a), n[1] = sin(a), n[2] = 0;
+        }
+    uint32_t *f = t->faces;
+    for (int r = 0; r + 1 < RINGS; r++)
+        for (int i = 0; i < RING; i++) {
+            f[0] = at(r, i), f[1] = at(r, i + 1), f[2] = at(r + 1, i), f += 3;
+            f[0] = at(r, i + 1), f[1] = at(r + 1, i + 1), f[2] = at(r + 1, i), f += 3;
+        }
+}
+
+static ps_input tube_input(const tube *t) {
+    return (ps_input){.points = t->points, .n = N_TUBE, .dim = 3, .faces = t->faces,
+                      .n_faces = N_BAND_FACES};
+}
+
+static void test_fills_the_tube_evenly(void) {
+    static tube t;
+    tube_make(&t);
+    ps_input in = tube_input(&t);
+    ps_surface_fill s;
+    ps_error err;
+    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    /* the dither's rounding: 1,280 triangles of 15.1 points each */
+    REQUIRE(s.n_added > TARGET - N_TUBE - 100 && s.n_added < TARGET - N_TUBE + 100);
+    CHECK(s.normals == NULL);
+    CHECK(memcmp(s.points, t.points, sizeof t.points) == 0);
+    size_t per_band[RINGS - 1] = {0};
+    double chord = cos(acos(-1.0) / RING);  /* a flat triangle's nearest to the axis */
+    for (size_t a = 0; a < s.n_added; a++) {
+        const double *p = s.points + 3 * (N_TUBE + a), *h = t.points + 3 * (size_t)s.host[a];
+        double radius = hypot(p[0], p[1]);
+        CHECK(radius <= 1 + 1e-12 && radius >= chord - 1e-12);
+        CHECK(p[2] >= 0 && p[2] <= RINGS - 1);
+        /* the host is a corner of the point's triangle: within one band, one step */
+        CHECK(fabs(h[2] - p[2]) <= 0.5 + 1e-12);
+        CHECK(hypot(h[0] - p[0], h[1] - p[1]) <= 2 * acos(-1.0) / RING + 1e-12);
+        per_band[p[2] >= RINGS - 1 ? RINGS - 2 : (int)p[2]]++;
+    }
+    double share = (double)s.n_added / (RINGS - 1);
+    for (int b = 0; b < RINGS - 1; b++)
+        CHECK_MSG(fabs((double)per_band[b] - share) <= 12, "band %d: %zu points, share %.1f", b,
+                  per_band[b], share);
+    ps_surface_fill_free(&s);
+}
+
+static void test_normals_interpolated(void) {
+    static tube t;
+    tube_make(&t);
+    ps_input in = tube_input(&t);
+    in.normals = t.normals;
+    ps_surface_fill s;
+    ps_error err;
+    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    REQUIRE(s.normals != NULL);
+    for (size_t a = 0; a < s.n_added; a++) {
+        const double *p = s.points + 3 * (N_TUBE + a), *n = s.normals + 3 * (N_TUBE + a);
+        double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double radius = hypot(p[0], p[1]);
+        CHECK(fabs(length - 1) < 1e-12);
+        CHECK((n[0] * p[0] + n[1] * p[1]) / radius > 0.998);
+    }
+    ps_surface_fill_free(&s);
+}
+
+/* x -> scale * R x + shift, R a rotation about z then x. */
+static void move(const double *p, double scale, double *out) {
+    double c = cos(0.7), s = sin(0.7), c2 = cos(1.1), s2 = sin(1.1);
+    double x = c * p[0] - s * p[1], y = s * p[0] + c * p[1], z = p[2];
+    out[0] = scale * x + 3;
+    out[1] = scale * (c2 * y - s2 * z) - 2;
+    out[2] = scale * (s2 * y + c2 * z) + 5;
+}
+
+static void test_moves_with_the_mesh(void) {
+    static tube t, moved;
+    tube_make(&t);
+    moved = t;
+    for (size_t i = 0; i < N_TUBE; i++) move(t.points + 3 * i, 250.0, moved.points + 3 * i);
+    ps_input a = tube_input(&t), b = tube_input(&moved);
+    ps_surface_fill sa, sb;
+    ps_error err;
+    REQUIRE(ps_surface_fill_build(&a, TARGET, &sa, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&b, TARGET, &sb, &err) == PS_OK);
+    REQUIRE(sa.n_added == sb.n_added);
+    size_t same = 0;
+    for (size_t i = 0; i < sa.n_added; i++) {
+        double expect[3];
+        move(sa.points + 3 * (N_TUBE + i), 250.0, expect);
+        const double *got = sb.points + 3 * (N_TUBE + i);
+        double d = fabs(expect[0] - got[0]) + fabs(expect[1] - got[1]) + fabs(expect[2] - got[2]);
+        same += d < 1e-9 * 250 && sa.host[i] == sb.host[i];
+    }
+    CHECK_MSG(same == sa.n_added, "%zu of %zu moved with the mesh", same,
+              sa.n_added);
+    ps_surface_fill_free(&sa);
+    ps_surface_fill_free(&sb);
+}
+
+static void test_nothing_to_add(void) {
+    static tube t;
+    tube_make(&t);
+    ps_input in = tube_input(&t);
+    ps_surface_fill s;
+    ps_error err;
+    REQUIRE(ps_surface_fill_build(&in, N_TUBE, &s, &err) == PS_OK);
+    CHECK(s.n_added == 0 && s.points == NULL && s.host == NULL);
+    uint32_t flat[6] = {0, 0, 1, 2, 2, 2}; /* two triangles without area */
+    in.faces = flat, in.n_faces = 2;
+    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    CHECK(s.n_added == 0 && s.points == NULL);
+    in = tube_input(&t);
+    in.faces = NULL, in.n_faces = 0;
+    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    CHECK(s.n_added == 0);
+}
+
+/* A mesh whose vertices are jittered by up to half their spacing along a
+ * ring is noise on its triangles, and is not filled; the clean tube is
+ * smooth. */
+static void test_noisy_mesh_not_filled(void) {
+    static tube t;
+    tube_make(&t);
+    ps_input in = tube_input(&t);
+    CHECK(ps_surface_fill_roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
+    uint64_t state = 88172645463325252ull;
+    for (size_t i = 0; i < 3 * N_TUBE; i++) {
+        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+        t.points[i] += 0.1 * ((double)(state >> 11) / 9007199254740992.0 - 0.5);
+    }
+    CHECK(ps_surface_fill_roughness(&in) > PS_FILL_MAX_ROUGHNESS);
+    ps_surface_fill s;
+    ps_error err;
+    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    CHECK(s.n_added == 0 && s.points == NULL);
+}
+
+/* Segments of the tube's points, with or without its faces; checks that the
+ * answers cover the caller's points and that every sink is one of them. */
+static int segments_of(const tube *t, int with_faces, ps_centrality_mode centrality,
+                       int *components) {
+    ps_input in = tube_input(t);
+    if (!with_faces) in.faces = NULL, in.n_faces = 0;
+    ps_params p;
+    ps_params_default(&p);
+    p.centrality = centrality;
+    ps_result *r = NULL;
+    ps_error err;
+    if (ps_segment(&in, &p, NULL, &r, &err) != PS_OK) {
+        CHECK_MSG(0, "ps_segment: %s", err.message);
+        return -1;
+    }
+    CHECK(r->n_points == N_TUBE);
+    if (with_faces && centrality != PS_CENTRALITY_EXACT) CHECK(r->n_filled > 10000);
+    else CHECK(r->n_filled == 0);
+    size_t total = 0;
+    for (int g = 0; g < r->n_segments; g++) total += r->segments[g].size;
+    CHECK(total == N_TUBE);
+    for (int s = 0; s < r->n_supernodes; s++) {
+        CHECK(r->supernodes[s].sink < N_TUBE);
+        CHECK(r->supernodes[s].segment >= 0 && r->supernodes[s].segment < r->n_segments);
+    }
+    for (size_t i = 0; i < N_TUBE; i++)
+        CHECK(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
+    int n = r->n_segments;
+    *components = r->n_components;
+    ps_result_free(r);
+    return n;
+}
+
+static void test_segment_fills_the_faces(void) {
+    static tube t;
+    tube_make(&t);
+    int components = 0;
+    CHECK(segments_of(&t, 0, PS_CENTRALITY_AUTO, &components) >= RINGS);
+    CHECK(components == RINGS);
+    CHECK(segments_of(&t, 1, PS_CENTRALITY_AUTO, &components) <= 3);
+    CHECK(components == 1);
+}
+
+/* Exact centrality is quadratic in the points: it runs on the input as
+ * given, and the rings stay apart. */
+static void test_exact_centrality_not_filled(void) {
+    static tube t;
+    tube_make(&t);
+    int components = 0;
+    CHECK(segments_of(&t, 1, PS_CENTRALITY_EXACT, &components) >= RINGS);
+    CHECK(components == RINGS);
+}
+
+static void test_face_past_the_points_refused(void) {
+    static tube t;
+    tube_make(&t);
+    t.faces[3 * 5 + 1] = N_TUBE;
+    ps_input in = tube_input(&t);
+    ps_params p;
+    ps_params_default(&p);
+    ps_result *r = NULL;
+    ps_error err = {0};
+    CHECK(ps_segment(&in, &p, NULL, &r, &err) == PS_ERR_INVALID);
+    CHECK(r == NULL);
+    CHECK_MSG(strstr(err.message, "face 5") != NULL, "message: %s", err.message);
+}
+
+PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
+             TEST(test_moves_with_the_mesh), TEST(test_nothing_to_add),
+             TEST(test_noisy_mesh_not_filled),
+             TEST(test_segment_fills_the_faces), TEST(test_exact_centrality_not_filled),
+             TEST(test_face_past_the_points_refused))
