@@ -124,7 +124,7 @@ typedef struct ps_input {
                               centrality not exact: a mesh of fewer than
                               40,000 points is filled with points on its
                               triangles up to that many (an even sampling,
-                              core/surface_fill.h; not a noisy mesh); only
+                              core/graph/surface_fill.h; not a noisy mesh); only
                               the input points get answers */
     size_t n_faces;        /* #F */
 } ps_input;
