@@ -53,7 +53,7 @@ run_dir "unit" "$BUILD/tests" tests/unit
 if [ "$unit_only" = 0 ]; then
     run_dir "unit (asan+ubsan)" "$BUILD/san/tests" tests/unit
     run_dir "integration" "$BUILD/itests" tests/integration
-    for suite in tests/integration/*.sh tests/fuzz/run.sh; do
+    for suite in tests/layout.sh tests/integration/*.sh tests/fuzz/run.sh; do
         [ -x "$suite" ] || continue
         echo "== $suite"
         run_one "$suite" "$suite" "$BUILD"
