@@ -162,12 +162,18 @@ static int add_params(cJSON *doc, const ps_params *p) {
                : 0;
 }
 
+/* timings_ms: each phase's, the total, and "steps": each step's (0 for a
+ * step the method or input did not call for). */
 static int add_timings(cJSON *doc, const ps_timings *t) {
     cJSON *o = cJSON_AddObjectToObject(doc, "timings_ms");
     if (!o) return -1;
     for (int ph = 0; ph < PS_PHASE_COUNT; ph++)
         if (add_number(o, ps_phase_name((ps_phase)ph), t->ms[ph])) return -1;
-    return add_number(o, "total", t->total_ms);
+    cJSON *steps = add_number(o, "total", t->total_ms) ? NULL : cJSON_AddObjectToObject(o, "steps");
+    if (!steps) return -1;
+    for (int s = 0; s < PS_STEP_COUNT; s++)
+        if (add_number(steps, ps_step_name((ps_step)s), t->step_ms[s])) return -1;
+    return 0;
 }
 
 static int add_warnings(cJSON *doc, const ps_pointset *in) {

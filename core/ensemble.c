@@ -14,6 +14,7 @@
 #include "features/centrality.h"
 #include "graph/nearest.h"
 #include "graph/reference_density.h"
+#include "segment.h"
 #include "util/control.h"
 #include "util/morton.h"
 #include "util/parallel.h"
@@ -229,6 +230,13 @@ static void drop_copy(draw *d) {
     d->in.points = d->in.normals = NULL;
 }
 
+/* Phase ph's times and its steps' in from, added to to. */
+static void add_phase_timings(ps_timings *to, const ps_timings *from, ps_phase ph) {
+    to->ms[ph] += from->ms[ph];
+    for (int s = 0; s < PS_STEP_COUNT; s++)
+        if (ps_step_phase((ps_step)s) == ph) to->step_ms[s] += from->step_ms[s];
+}
+
 /* The phases, each over every draw before the next; phase times summed;
  * then each draw keeps only what its answers need. */
 static ps_status run(ensemble *e, ps_pipeline *whole, ps_error *err) {
@@ -239,8 +247,8 @@ static ps_status run(ensemble *e, ps_pipeline *whole, ps_error *err) {
     }
     for (int ph = 0; st == PS_OK && ph < PS_PHASE_COUNT; ph++)
         for (int j = 0; st == PS_OK && j < e->count; j++) {
-            st = ps_pipeline_phase(&e->d[j].pl, (ps_phase)ph, err);
-            whole->timings.ms[ph] += e->d[j].pl.timings.ms[ph];
+            st = ps_segment_phase(&e->d[j].pl, (ps_phase)ph, err);
+            add_phase_timings(&whole->timings, &e->d[j].pl.timings, (ps_phase)ph);
             if (ph == PS_PHASE_KNN) drop_copy(&e->d[j]);
         }
     for (int j = 0; st == PS_OK && j < e->count; j++) ps_pipeline_shed(&e->d[j].pl);

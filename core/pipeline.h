@@ -1,7 +1,9 @@
 /*
- * pipeline.h: PRIVATE to segment.c and ensemble.c, not part of the public
- * API: one run of the phases over a point set, what each phase leaves for
- * the next, and the result's parts taken from it.
+ * pipeline.h: PRIVATE to the top of core/ (segment.c, pipeline.c,
+ * ensemble.c), not part of the public API: one run of the method over a
+ * point set, what each step leaves for the next, the steps themselves
+ * (pipeline.c; which run, in what order, is segment.c's table), and the
+ * result's parts taken from it.
  */
 #ifndef PS_PIPELINE_H
 #define PS_PIPELINE_H
@@ -11,8 +13,11 @@
 #include "features/supernodes.h"
 #include "graph/dedup.h"
 #include "graph/knn_graph.h"
+#include "hierarchy/ncut.h"
 #include "pointseg.h"
+#include "refine/segment_graph.h"
 #include "result.h"
+#include "util/parallel.h"
 
 /* Everything the phases produce for the distinct points. */
 typedef struct ps_pipeline {
@@ -46,6 +51,7 @@ typedef struct ps_pipeline {
     int *group_of_point;   /* #U final group (surviving leaf id) of each point */
     ps_merge *merges;
     int n_merges;
+    ps_edge_list boundary; /* the boundary edges one merge hands the next */
     ps_timings timings;
 } ps_pipeline;
 
@@ -56,10 +62,17 @@ double ps_now_ms(void);
  * scan, dedup.h); fails when fewer than k + 1 remain. */
 ps_status ps_pipeline_dedup(ps_pipeline *pl, ps_error *err);
 
-/* Phase ph on pl (after ps_pipeline_dedup and the phases before it),
- * progress 0 and 1 around it, its wall time in pl->timings; fails with
- * PS_ERR_CANCELLED when pl->ctl asks to cancel before it starts. */
-ps_status ps_pipeline_phase(ps_pipeline *pl, ps_phase ph, ps_error *err);
+/* A step of the method (ps_step, pointseg.h) on pl, after the steps
+ * before it: span is its share of its phase's progress.  One per step, in
+ * the order they run: */
+typedef ps_status ps_pipeline_step_fn(ps_pipeline *pl, const ps_progress_span *span,
+                                      ps_error *err);
+ps_pipeline_step_fn ps_pipeline_knn_graph, ps_pipeline_outliers, ps_pipeline_components,
+    ps_pipeline_normals, ps_pipeline_crease_metric, ps_pipeline_centrality,
+    ps_pipeline_supernodes, ps_pipeline_f2_split, ps_pipeline_crease_split,
+    ps_pipeline_profile_split, ps_pipeline_ncut, ps_pipeline_feature_merge,
+    ps_pipeline_boundary_cut, ps_pipeline_crease_merge, ps_pipeline_convex_merge,
+    ps_pipeline_patch_merge;
 
 /* Frees what only the phases read (the kNN graph, components, normals,
  * crease strengths), keeping what the result and the distinct points

@@ -142,6 +142,33 @@ typedef enum ps_phase {
 
 const char *ps_phase_name(ps_phase phase); /* "knn", "centrality", ... */
 
+/* The method's steps, in the order they run, each within a phase
+ * (docs/method.md has a section on each).  Some run for every method,
+ * some for method auto, some for auto in 3-D only (the crease-aware
+ * steps), the f2 split when asked for. */
+typedef enum ps_step {
+    PS_STEP_KNN_GRAPH = 0,   /* knn: the kNN graph */
+    PS_STEP_OUTLIERS,        /* knn: stray points left out (auto) */
+    PS_STEP_COMPONENTS,      /* knn: connected components */
+    PS_STEP_NORMALS,         /* knn: outward normals (auto, 3-D) */
+    PS_STEP_CREASE_METRIC,   /* knn: crease strengths and the crease metric (auto, 3-D) */
+    PS_STEP_CENTRALITY,      /* centrality */
+    PS_STEP_SUPERNODES,      /* supernodes: flow to sinks, persistence, minima */
+    PS_STEP_F2_SPLIT,        /* supernodes: split at maxima of f2 (when asked) */
+    PS_STEP_CREASE_SPLIT,    /* supernodes: split along closed creases (auto, 3-D) */
+    PS_STEP_PROFILE_SPLIT,   /* supernodes: a thin limb cut off a wide part (auto, 3-D) */
+    PS_STEP_NCUT,            /* hierarchy: normalized-cut bisection */
+    PS_STEP_FEATURE_MERGE,   /* refine: segments of small feature size merge */
+    PS_STEP_BOUNDARY_CUT,    /* refine: boundaries onto concave creases (auto, 3-D) */
+    PS_STEP_CREASE_MERGE,    /* refine: an uncreased boundary is no part boundary (auto, 3-D) */
+    PS_STEP_CONVEX_MERGE,    /* refine: convex unions merge (auto, 3-D) */
+    PS_STEP_PATCH_MERGE,     /* refine: flat patches and crumbs merge (auto, 3-D) */
+    PS_STEP_COUNT
+} ps_step;
+
+const char *ps_step_name(ps_step step); /* "knn_graph", "outliers", ... */
+ps_phase ps_step_phase(ps_step step);
+
 /* Called from the calling thread or a worker of the call, never concurrently
  * with itself; fraction in [0, 1] within the phase, nondecreasing.  Every
  * phase reports 0, then fractions as its steps go (the kNN queries, the
@@ -191,7 +218,8 @@ typedef struct ps_merge {
 } ps_merge;
 
 typedef struct ps_timings {
-    double ms[PS_PHASE_COUNT]; /* wall time per phase, milliseconds */
+    double ms[PS_PHASE_COUNT];     /* wall time per phase, milliseconds */
+    double step_ms[PS_STEP_COUNT]; /* ... per step (0 for a step that did not run) */
     double total_ms;
 } ps_timings;
 

@@ -60,6 +60,7 @@ static ps_result small_result(void) {
     r.params.use_f2 = 1;
     r.params.use_minima = 0;
     for (int ph = 0; ph < PS_PHASE_COUNT; ph++) r.timings.ms[ph] = ph + 0.5;
+    for (int s = 0; s < PS_STEP_COUNT; s++) r.timings.step_ms[s] = s + 0.25;
     r.timings.total_ms = 12.5;
     return r;
 }
@@ -186,7 +187,11 @@ static void test_json_params_and_timings(void) {
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(doc, "timings_ms");
     CHECK(num(t, "knn") == 0.5 && num(t, "centrality") == 1.5 && num(t, "supernodes") == 2.5);
     CHECK(num(t, "hierarchy") == 3.5 && num(t, "refine") == 4.5 && num(t, "total") == 12.5);
-    CHECK(cJSON_GetArraySize(t) == 6);
+    CHECK(cJSON_GetArraySize(t) == 7);
+    const cJSON *steps = cJSON_GetObjectItemCaseSensitive(t, "steps");
+    CHECK(cJSON_GetArraySize(steps) == PS_STEP_COUNT);
+    CHECK(num(steps, "knn_graph") == 0.25 && num(steps, "boundary_cut") == 12.25);
+    CHECK(num(steps, "patch_merge") == PS_STEP_COUNT - 0.75);
     cJSON_Delete(doc);
 }
 

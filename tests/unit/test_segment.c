@@ -482,16 +482,24 @@ static void on_progress(void *user, ps_phase phase, double fraction) {
     progress_calls++;
 }
 
+/* The hand segmented with the default parameters (*a) and with method
+ * paper (*paper, its parameters left in *p); the points. */
+static double *hand_both_methods(size_t *n, ps_params *p, ps_result **a, ps_result **paper) {
+    double *pts = ps_shape_hand(0, n, NULL);
+    ps_params_default(p);
+    *a = segment_with(pts, *n, p);
+    p->method = PS_METHOD_PAPER;
+    *paper = segment_with(pts, *n, p);
+    return pts;
+}
+
 /* ncut_threshold 0 is the method's own: auto bisects down to single
  * supernodes, paper stops at PS_NCUT_PAPER exactly as when that is given. */
 static void test_ncut_threshold_method_default(void) {
     size_t n;
-    double *pts = ps_shape_hand(0, &n, NULL);
     ps_params p;
-    ps_params_default(&p);
-    ps_result *a = segment_with(pts, n, &p);
-    p.method = PS_METHOD_PAPER;
-    ps_result *paper = segment_with(pts, n, &p);
+    ps_result *a, *paper;
+    double *pts = hand_both_methods(&n, &p, &a, &paper);
     p.ncut_threshold = PS_NCUT_PAPER;
     ps_result *paper_given = segment_with(pts, n, &p);
     REQUIRE(a && paper && paper_given);
@@ -548,6 +556,42 @@ static void test_progress_moves_within_phases(void) {
     free(pts);
 }
 
+/* The steps in the order they run, each with a name of its own, phases
+ * nondecreasing; a run times the steps its method calls for and only
+ * those (auto in 3-D: the crease-aware ones; paper: the paper's), and a
+ * phase's steps take no longer than the phase. */
+static void test_steps_named_and_timed(void) {
+    for (int s = 0; s < PS_STEP_COUNT; s++) {
+        CHECK(strcmp(ps_step_name((ps_step)s), "unknown") != 0);
+        for (int t = 0; t < s; t++)
+            CHECK(strcmp(ps_step_name((ps_step)s), ps_step_name((ps_step)t)) != 0);
+        if (s > 0) CHECK(ps_step_phase((ps_step)s) >= ps_step_phase((ps_step)(s - 1)));
+    }
+    CHECK(ps_step_phase(PS_STEP_BOUNDARY_CUT) == PS_PHASE_REFINE);
+    size_t n;
+    ps_params p;
+    ps_result *a, *paper;
+    double *pts = hand_both_methods(&n, &p, &a, &paper);
+    REQUIRE(a && paper);
+    CHECK(a->timings.step_ms[PS_STEP_BOUNDARY_CUT] > 0 && a->timings.step_ms[PS_STEP_NORMALS] > 0);
+    CHECK(a->timings.step_ms[PS_STEP_PATCH_MERGE] > 0 && a->timings.step_ms[PS_STEP_F2_SPLIT] == 0);
+    CHECK(paper->timings.step_ms[PS_STEP_KNN_GRAPH] > 0);
+    CHECK(paper->timings.step_ms[PS_STEP_NCUT] > 0);
+    CHECK(paper->timings.step_ms[PS_STEP_OUTLIERS] == 0);
+    CHECK(paper->timings.step_ms[PS_STEP_CREASE_SPLIT] == 0);
+    CHECK(paper->timings.step_ms[PS_STEP_BOUNDARY_CUT] == 0);
+    for (int ph = 0; ph < PS_PHASE_COUNT; ph++) {
+        double sum = 0;
+        for (int s = 0; s < PS_STEP_COUNT; s++)
+            if ((int)ps_step_phase((ps_step)s) == ph) sum += a->timings.step_ms[s];
+        CHECK_MSG(sum <= a->timings.ms[ph] + 1e-9, "phase %d: steps %g ms, phase %g ms", ph, sum,
+                  a->timings.ms[ph]);
+    }
+    ps_result_free(a);
+    ps_result_free(paper);
+    free(pts);
+}
+
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d),
              TEST(test_rotation_translation), TEST(test_scale_small),
@@ -556,4 +600,4 @@ PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
              TEST(test_disconnected_scans), TEST(test_bad_input), TEST(test_status_names),
              TEST(test_ncut_threshold_method_default), TEST(test_progress_and_cancel),
-             TEST(test_progress_moves_within_phases))
+             TEST(test_progress_moves_within_phases), TEST(test_steps_named_and_timed))
