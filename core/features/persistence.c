@@ -128,9 +128,10 @@ void ps_persistence_merge(ps_flow *flow, int *parent, int *new_id, size_t n) {
     flow->n_sinks = kept;
 }
 
-ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *component,
-                                 int n_components, double fraction, size_t min_size,
-                                 ps_saddle *s, size_t *count, ps_flow *flow, ps_error *err) {
+ps_status ps_persistence_simplify_along(const ps_graph *g, const double *f,
+                                        const int *component, int n_components,
+                                        double fraction, size_t min_size, ps_saddle *s,
+                                        size_t *count, ps_flow *flow, ps_error *err) {
     if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     double *threshold = ps_component_thresholds(f, component, g->n, n_components, fraction);
     int m = flow->n_sinks;
@@ -157,8 +158,8 @@ ps_status ps_persistence_simplify(const ps_graph *g, const double *f, const int 
     if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     size_t count = 0;
     ps_saddle *s = ps_flow_border_saddles(g, f, flow, &count);
-    ps_status st = s ? ps_flow_simplify_along(g, f, component, n_components, fraction, min_size,
-                                              s, &count, flow, err)
+    ps_status st = s ? ps_persistence_simplify_along(g, f, component, n_components, fraction,
+                                                     min_size, s, &count, flow, err)
                      : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
     free(s);
     return st;

@@ -48,9 +48,10 @@ void ps_saddles_keep_borders(const ps_flow *flow, ps_saddle *s, size_t *count);
 /* ps_persistence_simplify on flow's border saddles s (#*count, as
  * ps_flow_border_saddles gives them), which become the simplified flow's
  * (*count updated; untouched when nothing merges). */
-ps_status ps_flow_simplify_along(const ps_graph *g, const double *f, const int *component,
-                                 int n_components, double fraction, size_t min_size,
-                                 ps_saddle *s, size_t *count, ps_flow *flow, ps_error *err);
+ps_status ps_persistence_simplify_along(const ps_graph *g, const double *f,
+                                        const int *component, int n_components,
+                                        double fraction, size_t min_size, ps_saddle *s,
+                                        size_t *count, ps_flow *flow, ps_error *err);
 
 /* Merges the basins as the union-find forest parent (#S) says: each tree
  * becomes its root's basin; surviving sinks keep increasing order and

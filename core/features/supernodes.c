@@ -54,8 +54,8 @@ static ps_status simplified_ascent(const ps_graph *g, const double *f, const int
                                        PS_PERSISTENCE_MIN_BASIN, flow, err);
     *s = ps_flow_border_saddles(g, f, flow, count);
     if (!*s) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
-    return ps_flow_simplify_along(g, f, component, n_components, persistence,
-                                  PS_PERSISTENCE_MIN_BASIN, *s, count, flow, err);
+    return ps_persistence_simplify_along(g, f, component, n_components, persistence,
+                                         PS_PERSISTENCE_MIN_BASIN, *s, count, flow, err);
 }
 
 /* level #S out: each basin's highest saddle, min(f(p), f(q)) over edges to

@@ -29,7 +29,7 @@
 
 /* A node's search state, in one place: the searches read and write these
  * fields together. */
-typedef struct flow_node {
+typedef struct maxflow_node {
     size_t parent_arc;       /* S tree: the arc parent -> v; T tree: the
                                 arc v -> parent; NO_ARC */
     uint64_t checked;        /* stamp of the last round v's origin was found to
@@ -38,20 +38,20 @@ typedef struct flow_node {
     uint32_t depth;          /* arcs from v up to its root, as of round checked */
     unsigned char tree;      /* FREE, S_TREE or T_TREE */
     unsigned char queued;    /* in the active queue */
-} flow_node;
+} maxflow_node;
 
 struct ps_maxflow_workspace {
     size_t nodes, arcs;      /* sizes the arrays below hold */
     size_t *reverse;         /* arcs: index of the reverse arc (pairs up: the
                                 reverse of reverse[e] is e) */
     double *residual;        /* arcs */
-    flow_node *node;         /* nodes */
+    maxflow_node *node;      /* nodes */
     size_t *cursor;          /* nodes: the reverse arcs' search */
     uint32_t *active;        /* nodes: FIFO ring of active nodes */
     uint32_t *orphans;       /* nodes: stack */
 };
 
-typedef struct flow_state {
+typedef struct maxflow_state {
     const ps_maxflow_graph *g;
     ps_maxflow_workspace *w;
     uint32_t s, t;           /* the terminals */
@@ -59,12 +59,12 @@ typedef struct flow_state {
     size_t head, count;      /* active ring */
     size_t n_orphans;
     uint64_t round;          /* one per augmentation */
-} flow_state;
+} maxflow_state;
 
 /* Reverse arcs in one pass over the rows in order: as the rows are sorted,
  * the arcs into q met for increasing p are row q's entries in order, so a
  * cursor per row finds each one.  -1 if the graph is not symmetric. */
-static int find_reverse_arcs(flow_state *st) {
+static int find_reverse_arcs(maxflow_state *st) {
     const ps_maxflow_graph *g = st->g;
     size_t *cursor = st->w->cursor;
     for (size_t v = 0; v < g->n; v++) cursor[v] = g->offsets[v];
@@ -78,7 +78,7 @@ static int find_reverse_arcs(flow_state *st) {
     return 0;
 }
 
-static void activate(flow_state *st, uint32_t v) {
+static void activate(maxflow_state *st, uint32_t v) {
     ps_maxflow_workspace *w = st->w;
     if (w->node[v].queued) return;
     w->node[v].queued = 1;
@@ -87,7 +87,7 @@ static void activate(flow_state *st, uint32_t v) {
 }
 
 /* The next active node still in a tree, or UINT32_MAX. */
-static uint32_t next_active(flow_state *st) {
+static uint32_t next_active(maxflow_state *st) {
     ps_maxflow_workspace *w = st->w;
     while (st->count > 0) {
         uint32_t v = w->active[st->head];
@@ -100,7 +100,7 @@ static uint32_t next_active(flow_state *st) {
 
 /* The arc along which tree's flow would enter q from p (S tree: p -> q,
  * arc e of row p; T tree: q -> p, its reverse). */
-static size_t tree_arc(const flow_state *st, unsigned char tree, size_t e) {
+static size_t tree_arc(const maxflow_state *st, unsigned char tree, size_t e) {
     return tree == S_TREE ? e : st->w->reverse[e];
 }
 
@@ -108,7 +108,7 @@ static size_t tree_arc(const flow_state *st, unsigned char tree, size_t e) {
  * S tree into the T tree met on the way, or NO_ARC.  p's own state
  * does not change on the way (no arc leads from p to p's tree root through
  * p itself), so it is read once. */
-static size_t grow(flow_state *st, uint32_t p) {
+static size_t grow(maxflow_state *st, uint32_t p) {
     const ps_maxflow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
     const unsigned char tree = w->node[p].tree;
@@ -118,7 +118,7 @@ static size_t grow(flow_state *st, uint32_t p) {
         size_t a = tree_arc(st, tree, e);
         if (w->residual[a] <= st->tolerance) continue;
         uint32_t q = g->heads[e];
-        flow_node *nq = &w->node[q];
+        maxflow_node *nq = &w->node[q];
         if (nq->tree == FREE) {
             nq->tree = tree, nq->parent = p, nq->parent_arc = a;
             nq->checked = checked, nq->depth = depth;
@@ -133,12 +133,12 @@ static size_t grow(flow_state *st, uint32_t p) {
     return NO_ARC;
 }
 
-static void make_orphan(flow_state *st, uint32_t v) {
+static void make_orphan(maxflow_state *st, uint32_t v) {
     st->w->node[v].parent_arc = NO_ARC;
     st->w->orphans[st->n_orphans++] = v;
 }
 
-static double path_bottleneck(const flow_state *st, uint32_t v, uint32_t root, double least) {
+static double path_bottleneck(const maxflow_state *st, uint32_t v, uint32_t root, double least) {
     const ps_maxflow_workspace *w = st->w;
     for (; v != root; v = w->node[v].parent)
         if (w->residual[w->node[v].parent_arc] < least) least = w->residual[w->node[v].parent_arc];
@@ -147,7 +147,7 @@ static double path_bottleneck(const flow_state *st, uint32_t v, uint32_t root, d
 
 /* Pushes x along the tree path from v to root; the nodes whose parent arc
  * it saturates become orphans. */
-static void push_path(flow_state *st, uint32_t v, uint32_t root, double x) {
+static void push_path(maxflow_state *st, uint32_t v, uint32_t root, double x) {
     ps_maxflow_workspace *w = st->w;
     while (v != root) {
         size_t a = w->node[v].parent_arc;
@@ -160,7 +160,7 @@ static void push_path(flow_state *st, uint32_t v, uint32_t root, double x) {
 }
 
 /* Augments s -> ... -> tail -bridge-> head -> ... -> t. */
-static double augment(flow_state *st, size_t bridge) {
+static double augment(maxflow_state *st, size_t bridge) {
     ps_maxflow_workspace *w = st->w;
     uint32_t head = st->g->heads[bridge], tail = st->g->heads[w->reverse[bridge]];
     double x = path_bottleneck(st, tail, st->s, w->residual[bridge]);
@@ -175,7 +175,7 @@ static double augment(flow_state *st, size_t bridge) {
 /* q's depth when its parent chain reaches its tree's root, else
  * UINT32_MAX; the nodes on the chain are then stamped with this round and
  * their depths, which ends later walks early. */
-static uint32_t rooted_depth(flow_state *st, uint32_t q) {
+static uint32_t rooted_depth(maxflow_state *st, uint32_t q) {
     ps_maxflow_workspace *w = st->w;
     uint32_t v = q, d = 0;
     for (; v != st->s && v != st->t; v = w->node[v].parent, d++) {
@@ -196,7 +196,7 @@ static uint32_t rooted_depth(flow_state *st, uint32_t q) {
  * first of those) that reaches it along an unsaturated arc; failing that it
  * is freed, its children become orphans and the neighbours that could
  * reach it become active. */
-static void adopt(flow_state *st, uint32_t p) {
+static void adopt(maxflow_state *st, uint32_t p) {
     const ps_maxflow_graph *g = st->g;
     ps_maxflow_workspace *w = st->w;
     unsigned char tree = w->node[p].tree;
@@ -225,7 +225,7 @@ static void adopt(flow_state *st, uint32_t p) {
 }
 
 /* Grows the trees and augments until neither can grow; the flow value. */
-static double max_flow(flow_state *st) {
+static double max_flow(maxflow_state *st) {
     double total = 0;
     activate(st, st->s);
     activate(st, st->t);
@@ -242,7 +242,7 @@ static double max_flow(flow_state *st) {
 
 /* s_side: the nodes reachable from s over unsaturated arcs
  * (the active ring serves as the queue). */
-static void s_side_of(flow_state *st, unsigned char *side) {
+static void s_side_of(maxflow_state *st, unsigned char *side) {
     const ps_maxflow_graph *g = st->g;
     uint32_t *queue = st->w->active;
     size_t head = 0, tail = 0;
@@ -297,17 +297,17 @@ void ps_maxflow_workspace_free(ps_maxflow_workspace *ws) {
     free(ws);
 }
 
-static void state_init(flow_state *st, ps_maxflow_workspace *ws, const ps_maxflow_graph *g,
+static void state_init(maxflow_state *st, ps_maxflow_workspace *ws, const ps_maxflow_graph *g,
                        uint32_t s, uint32_t t) {
     double largest = 0;
     for (size_t e = 0; e < g->offsets[g->n]; e++) {
         ws->residual[e] = g->capacity[e];
         if (g->capacity[e] > largest) largest = g->capacity[e];
     }
-    *st = (flow_state){.g = g, .w = ws, .s = s, .t = t,
+    *st = (maxflow_state){.g = g, .w = ws, .s = s, .t = t,
                        .tolerance = 1e-12 * largest};
     for (size_t v = 0; v < g->n; v++)
-        ws->node[v] = (flow_node){.parent_arc = NO_ARC, .tree = FREE};
+        ws->node[v] = (maxflow_node){.parent_arc = NO_ARC, .tree = FREE};
     ws->node[s].tree = S_TREE;
     ws->node[t].tree = T_TREE;
 }
@@ -320,7 +320,7 @@ ps_status ps_maxflow_with(ps_maxflow_workspace *ws, const ps_maxflow_graph *g, u
                        s, t, g->n);
     if (workspace_reserve(ws, g) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (max flow)");
-    flow_state st;
+    maxflow_state st;
     state_init(&st, ws, g, s, t);
     if (find_reverse_arcs(&st) != 0)
         return ps_fail(err, PS_ERR_INVALID, "max flow: the graph is not symmetric");
