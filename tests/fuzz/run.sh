@@ -30,7 +30,7 @@ fi
 DECODER_SOURCES="api/api_error.c api/pointset.c $(ls api/decode*.c)"
 DECODER_LIBS="$(pkg-config --cflags --libs libcjson) -lm"
 # multipart, head: the daemon's HTTP layer in-process, so everything but its main.
-DAEMON_SOURCES="$(ls core/*.c api/*.c server/*.c | grep -v '^server/main\.c$') tests/fuzz/daemon_harness.c"
+DAEMON_SOURCES="$(ls core/*.c core/*/*.c api/*.c server/*.c | grep -v '^server/main\.c$') tests/fuzz/daemon_harness.c"
 DAEMON_LIBS="-lflann $(pkg-config --cflags --libs lapacke libmicrohttpd libcjson zlib hiredis) -lopenblas -lm -pthread"
 # redis_url: the URL parser and the connection code it lives with.
 REDIS_SOURCES="server/redis_link.c"
