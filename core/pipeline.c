@@ -214,10 +214,12 @@ ps_status ps_pipeline_centrality(ps_pipeline *pl, const ps_progress_span *span, 
         p->samples = ps_centrality_default_samples(u);
     pl->f = malloc(u * sizeof *pl->f);
     if (!pl->f) return ps_fail(err, PS_ERR_NOMEM, "out of memory (centrality)");
+    ps_centrality_input in = {.graph = &pl->graph, .component = pl->component,
+                              .n_components = pl->n_components, .mode = p->centrality,
+                              .samples = p->samples, .threads = pl->threads,
+                              .coarse_min = PS_COARSE_MIN_POINTS, .ctl = pl->ctl};
     int used = 0;
-    ps_status st = ps_centrality_borrowing(&pl->graph, pl->component, pl->n_components,
-                                           p->centrality, p->samples, pl->threads, pl->ctl,
-                                           pl->f, NULL, &used, err);
+    ps_status st = ps_centrality_borrowing(&in, &pl->graph, pl->f, NULL, &used, err);
     if (st == PS_OK && p->centrality == PS_CENTRALITY_APPROX) p->samples = used;
     return st;
 }

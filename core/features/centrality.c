@@ -260,8 +260,8 @@ static ps_status centrality_on(const ps_bfs_order *o, const ps_centrality_input 
                            samples_used, err);
 }
 
-ps_status ps_centrality_with_threshold(const ps_centrality_input *in, double *f,
-                                       uint32_t **sample_ids, int *samples_used, ps_error *err) {
+ps_status ps_centrality(const ps_centrality_input *in, double *f, uint32_t **sample_ids,
+                        int *samples_used, ps_error *err) {
     ps_status st = check_mode(in->mode, in->samples, sample_ids, samples_used, err);
     if (st != PS_OK || in->graph->n == 0) return st;
     ps_bfs_order o;
@@ -272,39 +272,18 @@ ps_status ps_centrality_with_threshold(const ps_centrality_input *in, double *f,
     return st;
 }
 
-/* ps_centrality's arguments, with the default two-level threshold. */
-static ps_centrality_input default_input(const ps_graph *g, const int *component,
-                                         int n_components, ps_centrality_mode mode, int samples,
-                                         int threads, const ps_control *ctl) {
-    return (ps_centrality_input){.graph = g, .component = component,
-                                 .n_components = n_components, .mode = mode,
-                                 .samples = samples, .threads = threads,
-                                 .coarse_min = PS_COARSE_MIN_POINTS, .ctl = ctl};
-}
-
-ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
-                        ps_centrality_mode mode, int samples, int threads,
-                        const ps_control *ctl, double *f, uint32_t **sample_ids,
-                        int *samples_used, ps_error *err) {
-    ps_centrality_input in = default_input(g, component, n_components, mode, samples, threads,
-                                           ctl);
-    return ps_centrality_with_threshold(&in, f, sample_ids, samples_used, err);
-}
-
-ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_components,
-                                  ps_centrality_mode mode, int samples, int threads,
-                                  const ps_control *ctl, double *f, uint32_t **sample_ids,
-                                  int *samples_used, ps_error *err) {
-    ps_status st = check_mode(mode, samples, sample_ids, samples_used, err);
+ps_status ps_centrality_borrowing(const ps_centrality_input *in, ps_graph *g, double *f,
+                                  uint32_t **sample_ids, int *samples_used, ps_error *err) {
+    if (in->graph != g)
+        return ps_fail(err, PS_ERR_INVALID, "centrality: the borrowed graph is not in->graph");
+    ps_status st = check_mode(in->mode, in->samples, sample_ids, samples_used, err);
     if (st != PS_OK || g->n == 0) return st;
     ps_bfs_order o;
-    st = ps_bfs_order_take(g, threads, &o, err);
+    st = ps_bfs_order_take(g, in->threads, &o, err);
     if (st != PS_OK) return st;
-    ps_centrality_input in = default_input(g, component, n_components, mode, samples, threads,
-                                           ctl);
-    st = centrality_on(&o, &in, f, sample_ids, samples_used, err);
+    st = centrality_on(&o, in, f, sample_ids, samples_used, err);
     ps_error back_err;
-    ps_status back = ps_bfs_order_give_back(&o, threads, g, &back_err);
+    ps_status back = ps_bfs_order_give_back(&o, in->threads, g, &back_err);
     if (st == PS_OK && back != PS_OK) {
         st = back;
         if (err) *err = back_err;

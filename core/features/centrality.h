@@ -37,26 +37,6 @@
  * better f. */
 int ps_centrality_default_samples(size_t n);
 
-/* component #P from ps_graph_components.  mode is EXACT or APPROX (the
- * caller resolves AUTO).  f #P out.  sample_ids, if not NULL, receives a
- * malloc'ed list of the sample vertices (#samples_used).  In exact mode no
- * samples are drawn: *samples_used = 0 and *sample_ids = NULL.  Checks
- * ctl->cancel between Dijkstra runs (PS_ERR_CANCELLED) and reports progress
- * through ctl from one thread at a time, with nondecreasing fractions. */
-ps_status ps_centrality(const ps_graph *g, const int *component, int n_components,
-                        ps_centrality_mode mode, int samples, int threads,
-                        const ps_control *ctl, double *f, uint32_t **sample_ids,
-                        int *samples_used, ps_error *err);
-
-/* ps_centrality on a graph it borrows: g's arrays move into the
- * breadth-first copy (bfs_order.h) while the centrality runs and move back,
- * byte-identical, before it returns, so the peak holds one copy of the
- * graph instead of two.  Out of memory, g may come back freed. */
-ps_status ps_centrality_borrowing(ps_graph *g, const int *component, int n_components,
-                                  ps_centrality_mode mode, int samples, int threads,
-                                  const ps_control *ctl, double *f, uint32_t **sample_ids,
-                                  int *samples_used, ps_error *err);
-
 typedef struct ps_centrality_input {
     const ps_graph *graph;     /* #P vertices; its weights are the edge lengths */
     const int *component;      /* #P from ps_graph_components */
@@ -65,14 +45,25 @@ typedef struct ps_centrality_input {
     int samples;               /* approx: S in total (0: ps_centrality_default_samples) */
     int threads;               /* ps_parallel_threads; f is the same for any count */
     size_t coarse_min;         /* approx takes the two-level scheme from this many
-                                  vertices on (ps_centrality: PS_COARSE_MIN_POINTS);
-                                  0 always, SIZE_MAX never */
+                                  vertices on: PS_COARSE_MIN_POINTS (tests and tuning:
+                                  0 always, SIZE_MAX never) */
     const ps_control *ctl;     /* progress and cancel; may be NULL */
 } ps_centrality_input;
 
-/* As ps_centrality (the same outputs), with the two-level threshold
- * in->coarse_min.  For tests and tuning. */
-ps_status ps_centrality_with_threshold(const ps_centrality_input *in, double *f,
-                                       uint32_t **sample_ids, int *samples_used, ps_error *err);
+/* f #P out.  sample_ids, if not NULL, receives a malloc'ed list of the
+ * sample vertices (#samples_used).  In exact mode no samples are drawn:
+ * *samples_used = 0 and *sample_ids = NULL.  Checks in->ctl's cancel flag
+ * between Dijkstra runs (PS_ERR_CANCELLED) and reports progress through it
+ * from one thread at a time, with nondecreasing fractions. */
+ps_status ps_centrality(const ps_centrality_input *in, double *f, uint32_t **sample_ids,
+                        int *samples_used, ps_error *err);
+
+/* ps_centrality (the same outputs) on a graph it borrows: g, which must be
+ * in->graph (PS_ERR_INVALID otherwise).  g's arrays move into the
+ * breadth-first copy (bfs_order.h) while the centrality runs and move back,
+ * byte-identical, before it returns, so the peak holds one copy of the
+ * graph instead of two.  Out of memory, g may come back freed. */
+ps_status ps_centrality_borrowing(const ps_centrality_input *in, ps_graph *g, double *f,
+                                  uint32_t **sample_ids, int *samples_used, ps_error *err);
 
 #endif

@@ -29,6 +29,14 @@ static void two_paths(size_t a, size_t n, ps_graph *g) {
     g->offsets[n] = m;
 }
 
+/* The centrality input on two_paths's g, with the default threshold. */
+static ps_centrality_input paths_input(const ps_graph *g, const int *comp,
+                                       ps_centrality_mode mode, int samples, int threads) {
+    return (ps_centrality_input){.graph = g, .component = comp, .n_components = 3,
+                                 .mode = mode, .samples = samples, .threads = threads,
+                                 .coarse_min = PS_COARSE_MIN_POINTS};
+}
+
 /* sum_j |i - j| / len on a path of len vertices */
 static double path_mean(size_t i, size_t len) {
     double left = (double)i * (double)(i + 1) / 2.0;
@@ -45,8 +53,8 @@ static void test_exact_path_closed_form(void) {
     double f[51];
     int used = -1;
     uint32_t *ids = (uint32_t *)1;
-    REQUIRE(ps_centrality(&g, comp, 3, PS_CENTRALITY_EXACT, 0, 2, NULL, f, &ids, &used, NULL) ==
-            PS_OK);
+    ps_centrality_input in = paths_input(&g, comp, PS_CENTRALITY_EXACT, 0, 2);
+    REQUIRE(ps_centrality(&in, f, &ids, &used, NULL) == PS_OK);
     CHECK(used == 0 && ids == NULL);
     for (size_t i = 0; i < a; i++) CHECK_NEAR(f[i], path_mean(i, a), 1e-12);
     for (size_t i = a; i < n - 1; i++) CHECK_NEAR(f[i], path_mean(i - a, n - 1 - a), 1e-12);
@@ -64,8 +72,8 @@ static void test_approx_all_samples_is_exact(void) {
     double f[51];
     int used = 0;
     uint32_t *ids = NULL;
-    REQUIRE(ps_centrality(&g, comp, 3, PS_CENTRALITY_APPROX, 51, 3, NULL, f, &ids, &used, NULL) ==
-            PS_OK);
+    ps_centrality_input in = paths_input(&g, comp, PS_CENTRALITY_APPROX, 51, 3);
+    REQUIRE(ps_centrality(&in, f, &ids, &used, NULL) == PS_OK);
     CHECK(used == 51);
     REQUIRE(ids);
     CHECK(ids[0] == 0 && ids[1] == a - 1); /* lowest vertex, then the far end */
@@ -131,11 +139,11 @@ static void check_approx_close(double *pts, size_t n, size_t coarse_min, const c
     double *exact = malloc(n * sizeof *exact), *approx = malloc(n * sizeof *approx);
     REQUIRE(exact && approx);
     int used = 0;
-    REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_EXACT, 0, 2, NULL, exact, NULL,
-                          NULL, NULL) == PS_OK);
+    ps_centrality_input in = shape_input(&s, PS_CENTRALITY_EXACT, 0, PS_COARSE_MIN_POINTS);
+    REQUIRE(ps_centrality(&in, exact, NULL, NULL, NULL) == PS_OK);
     uint32_t *ids = NULL;
-    ps_centrality_input in = shape_input(&s, PS_CENTRALITY_APPROX, 0, coarse_min);
-    REQUIRE(ps_centrality_with_threshold(&in, approx, &ids, &used, NULL) == PS_OK);
+    in = shape_input(&s, PS_CENTRALITY_APPROX, 0, coarse_min);
+    REQUIRE(ps_centrality(&in, approx, &ids, &used, NULL) == PS_OK);
     CHECK(used >= (int)ceil(sqrt((double)n)) && used <= (int)ceil(sqrt((double)n)) + s.n_comp);
     CHECK(ids && ids[0] == 0); /* the first component's lowest vertex */
     double rms = normalized_rms(&s, exact, approx);
@@ -170,7 +178,7 @@ static void check_threads_identical(ps_centrality_mode mode, size_t coarse_min) 
         f[t] = malloc(n * sizeof *f[t]);
         REQUIRE(f[t]);
         in.threads = t + 1;
-        REQUIRE(ps_centrality_with_threshold(&in, f[t], NULL, NULL, NULL) == PS_OK);
+        REQUIRE(ps_centrality(&in, f[t], NULL, NULL, NULL) == PS_OK);
     }
     CHECK(memcmp(f[0], f[1], n * sizeof *f[0]) == 0);
     CHECK(memcmp(f[0], f[2], n * sizeof *f[0]) == 0);
@@ -217,7 +225,7 @@ static void check_progress_and_cancel(ps_centrality_mode mode, size_t coarse_min
         progress_log log = {0, 1, 0, 0.0, 0.0, NULL};
         ps_control ctl = {on_progress, &log, NULL};
         in.threads = threads, in.ctl = &ctl;
-        REQUIRE(ps_centrality_with_threshold(&in, f, NULL, NULL, NULL) == PS_OK);
+        REQUIRE(ps_centrality(&in, f, NULL, NULL, NULL) == PS_OK);
         CHECK(log.calls > 10 && log.monotone && log.wrong_phase == 0 && log.last == 1.0);
         /* where progress starts is pinned on one thread only: with two, the
          * other worker may run many items before the reporting one ends
@@ -230,7 +238,7 @@ static void check_progress_and_cancel(ps_centrality_mode mode, size_t coarse_min
     ps_control cctl = {on_progress, &stop, &cancel};
     ps_error err = {0};
     in.threads = 2, in.ctl = &cctl;
-    CHECK(ps_centrality_with_threshold(&in, f, NULL, NULL, &err) == PS_ERR_CANCELLED);
+    CHECK(ps_centrality(&in, f, NULL, NULL, &err) == PS_ERR_CANCELLED);
     CHECK(err.status == PS_ERR_CANCELLED && stop.last < 1.0);
     free(f);
     shape_graph_free(&s);
@@ -245,7 +253,8 @@ static void test_progress_and_cancel_two_level(void) {
     check_progress_and_cancel(PS_CENTRALITY_APPROX, 0);
 }
 
-/* Above the threshold ps_centrality takes the two-level path by itself. */
+/* Above the default threshold, PS_COARSE_MIN_POINTS, approx takes the
+ * two-level path. */
 static void test_default_threshold(void) {
     size_t n;
     shape_graph s;
@@ -254,10 +263,10 @@ static void test_default_threshold(void) {
     REQUIRE(shape_graph_make(pts, n, &s));
     double *f = malloc(n * sizeof *f), *h = malloc(n * sizeof *h);
     REQUIRE(f && h);
-    REQUIRE(ps_centrality(&s.g, s.comp, s.n_comp, PS_CENTRALITY_APPROX, 0, 2, NULL, f, NULL, NULL,
-                          NULL) == PS_OK);
-    ps_centrality_input in = shape_input(&s, PS_CENTRALITY_APPROX, 0, 0);
-    REQUIRE(ps_centrality_with_threshold(&in, h, NULL, NULL, NULL) == PS_OK);
+    ps_centrality_input in = shape_input(&s, PS_CENTRALITY_APPROX, 0, PS_COARSE_MIN_POINTS);
+    REQUIRE(ps_centrality(&in, f, NULL, NULL, NULL) == PS_OK);
+    in.coarse_min = 0;
+    REQUIRE(ps_centrality(&in, h, NULL, NULL, NULL) == PS_OK);
     CHECK(memcmp(f, h, n * sizeof *f) == 0);
     free(f), free(h);
     shape_graph_free(&s);
@@ -273,7 +282,8 @@ static void test_default_samples_capped(void) {
 
 /* Borrowing the graph gives the same f, bit for bit, as a copy does (the
  * two-level scheme on a star over PS_COARSE_MIN_POINTS), and the graph
- * comes back with every byte as it was. */
+ * comes back with every byte as it was; a graph other than in->graph is
+ * refused. */
 static void test_borrowing_same_f_and_graph(void) {
     size_t n;
     double *pts = ps_shape_star(780.0, &n, NULL);
@@ -285,10 +295,13 @@ static void test_borrowing_same_f_and_graph(void) {
     double *copied = malloc(n * sizeof *copied), *borrowed = malloc(n * sizeof *borrowed);
     REQUIRE(comp && copied && borrowed);
     int nc = ps_graph_components(&g, comp);
-    REQUIRE(ps_centrality(&kept, comp, nc, PS_CENTRALITY_APPROX, 0, 2, NULL, copied, NULL, NULL,
-                          NULL) == PS_OK);
-    REQUIRE(ps_centrality_borrowing(&g, comp, nc, PS_CENTRALITY_APPROX, 0, 2, NULL, borrowed,
-                                    NULL, NULL, NULL) == PS_OK);
+    ps_centrality_input in = {.graph = &kept, .component = comp, .n_components = nc,
+                              .mode = PS_CENTRALITY_APPROX, .threads = 2,
+                              .coarse_min = PS_COARSE_MIN_POINTS};
+    REQUIRE(ps_centrality(&in, copied, NULL, NULL, NULL) == PS_OK);
+    CHECK(ps_centrality_borrowing(&in, &g, borrowed, NULL, NULL, NULL) == PS_ERR_INVALID);
+    in.graph = &g;
+    REQUIRE(ps_centrality_borrowing(&in, &g, borrowed, NULL, NULL, NULL) == PS_OK);
     CHECK(memcmp(copied, borrowed, n * sizeof *copied) == 0);
     size_t edges = kept.offsets[n];
     CHECK(g.n == n && g.offsets[n] == edges &&

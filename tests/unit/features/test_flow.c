@@ -70,8 +70,10 @@ static int flow_case_make(double *pts, size_t n, int direction, flow_case *c) {
     int *comp = malloc(n * sizeof *comp);
     int ok = pts && c->f && comp && ps_knn_graph_build(pts, n, 3, 7, 2, &c->g, NULL) == PS_OK;
     int nc = ok ? ps_graph_components(&c->g, comp) : 0;
-    ok = ok && ps_centrality(&c->g, comp, nc, PS_CENTRALITY_EXACT, 0, 2, NULL, c->f, NULL, NULL,
-                             NULL) == PS_OK;
+    ps_centrality_input in = {.graph = &c->g, .component = comp, .n_components = nc,
+                              .mode = PS_CENTRALITY_EXACT, .threads = 2,
+                              .coarse_min = PS_COARSE_MIN_POINTS};
+    ok = ok && ps_centrality(&in, c->f, NULL, NULL, NULL) == PS_OK;
     ok = ok && ps_flow_build(&c->g, c->f, direction, &c->fl, NULL) == PS_OK;
     free(comp);
     return ok;

@@ -28,9 +28,11 @@ static int star_setup(star_case *c) {
     c->f = malloc(c->n * sizeof *c->f);
     if (ps_knn_graph_build(c->pts, c->n, 3, 7, 2, &c->g, NULL) != PS_OK) return -1;
     int nc = ps_graph_components(&c->g, c->comp);
+    ps_centrality_input in = {.graph = &c->g, .component = c->comp, .n_components = nc,
+                              .mode = PS_CENTRALITY_APPROX, .threads = 2,
+                              .coarse_min = PS_COARSE_MIN_POINTS};
     int used;
-    return ps_centrality(&c->g, c->comp, nc, PS_CENTRALITY_APPROX, 0, 2, NULL, c->f, NULL,
-                         &used, NULL) == PS_OK ? nc : -1;
+    return ps_centrality(&in, c->f, NULL, &used, NULL) == PS_OK ? nc : -1;
 }
 
 static void star_free(star_case *c) {
