@@ -67,9 +67,10 @@ ps_status ps_f2_split(const ps_graph *g, const double *f, double persistence, ps
         ps_dijkstra_run(w, &h, src, (size_t)n_pieces, f2, NULL);
         st = ps_flow_build(&h, f2, +1, &basins, err);
     }
-    if (st == PS_OK)
-        st = ps_persistence_simplify(&h, f2, piece, n_pieces, persistence, PS_PERSISTENCE_MIN_BASIN,
-                                     &basins, err);
+    ps_persistence_input basins_in = {.graph = &h, .f = f2, .component = piece,
+                                      .n_components = n_pieces, .fraction = persistence,
+                                      .min_size = PS_PERSISTENCE_MIN_BASIN};
+    if (st == PS_OK) st = ps_persistence_simplify(&basins_in, &basins, err);
     if (st == PS_OK)
         st = ps_supernodes_relabel(sn, basins.sink_of, basins.n_sinks, f, g->n, err);
     ps_flow_free(&basins);

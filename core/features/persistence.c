@@ -100,16 +100,18 @@ static int peak_below(const ps_flow *flow, const double *f, int a, int b) {
     return fa < fb || (fa == fb && flow->sinks[a] > flow->sinks[b]);
 }
 
-static void merge_sweep(const ps_saddle *s, size_t count, const double *f, const int *component,
+static void merge_sweep(const ps_persistence_input *in, const ps_saddle *s, size_t count,
                         const double *threshold, const ps_flow *flow, int *parent,
-                        size_t *size, size_t min_size) {
+                        size_t *size) {
+    const double *f = in->f;
+    size_t min_size = in->min_size;
     for (size_t i = 0; i < count; i++) {
         int a = ps_union_find_root(parent, flow->sink_of[s[i].p]);
         int b = ps_union_find_root(parent, flow->sink_of[s[i].q]);
         if (a == b) continue;
         int low = peak_below(flow, f, a, b) ? a : b, high = low == a ? b : a;
         double persistence = f[flow->sinks[low]] - s[i].height;
-        if (persistence < threshold[component[s[i].p]] || size[low] < min_size ||
+        if (persistence < threshold[in->component[s[i].p]] || size[low] < min_size ||
             size[high] < min_size) {
             int keep = size[high] < min_size && size[low] >= min_size ? low : high;
             int gone = keep == high ? low : high;
@@ -128,12 +130,12 @@ void ps_persistence_merge(ps_flow *flow, int *parent, int *new_id, size_t n) {
     flow->n_sinks = kept;
 }
 
-ps_status ps_persistence_simplify_along(const ps_graph *g, const double *f,
-                                        const int *component, int n_components,
-                                        double fraction, size_t min_size, ps_saddle *s,
+ps_status ps_persistence_simplify_along(const ps_persistence_input *in, ps_saddle *s,
                                         size_t *count, ps_flow *flow, ps_error *err) {
-    if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
-    double *threshold = ps_component_thresholds(f, component, g->n, n_components, fraction);
+    if (in->fraction <= 0 || flow->n_sinks < 2) return PS_OK;
+    const ps_graph *g = in->graph;
+    double *threshold = ps_component_thresholds(in->f, in->component, g->n, in->n_components,
+                                                in->fraction);
     int m = flow->n_sinks;
     int *parent = malloc((size_t)m * sizeof *parent), *new_id = malloc((size_t)m * sizeof *new_id);
     size_t *size = calloc((size_t)m, sizeof *size);
@@ -141,7 +143,7 @@ ps_status ps_persistence_simplify_along(const ps_graph *g, const double *f,
     if (ok) {
         for (int k = 0; k < m; k++) parent[k] = k;
         for (size_t p = 0; p < g->n; p++) size[flow->sink_of[p]]++;
-        merge_sweep(s, *count, f, component, threshold, flow, parent, size, min_size);
+        merge_sweep(in, s, *count, threshold, flow, parent, size);
         ps_persistence_merge(flow, parent, new_id, g->n);
         ps_saddles_keep_borders(flow, s, count);
     }
@@ -152,14 +154,11 @@ ps_status ps_persistence_simplify_along(const ps_graph *g, const double *f,
     return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
 }
 
-ps_status ps_persistence_simplify(const ps_graph *g, const double *f, const int *component,
-                                  int n_components, double fraction, size_t min_size,
-                                  ps_flow *flow, ps_error *err) {
-    if (fraction <= 0 || flow->n_sinks < 2) return PS_OK;
+ps_status ps_persistence_simplify(const ps_persistence_input *in, ps_flow *flow, ps_error *err) {
+    if (in->fraction <= 0 || flow->n_sinks < 2) return PS_OK;
     size_t count = 0;
-    ps_saddle *s = ps_flow_border_saddles(g, f, flow, &count);
-    ps_status st = s ? ps_persistence_simplify_along(g, f, component, n_components, fraction,
-                                                     min_size, s, &count, flow, err)
+    ps_saddle *s = ps_flow_border_saddles(in->graph, in->f, flow, &count);
+    ps_status st = s ? ps_persistence_simplify_along(in, s, &count, flow, err)
                      : ps_fail(err, PS_ERR_NOMEM, "persistence: out of memory");
     free(s);
     return st;

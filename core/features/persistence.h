@@ -20,13 +20,20 @@
 
 #include "features/flow.h"
 
-/* f #P, component #P (n_components of them).  flow is updated in place:
- * fewer sinks (still increasing vertex ids), sink_of remapped.  Basins of
- * fewer than min_size points merge whatever their persistence (pass
- * PS_PERSISTENCE_MIN_BASIN, or 0 for none).  fraction 0 changes nothing. */
-ps_status ps_persistence_simplify(const ps_graph *g, const double *f, const int *component,
-                                  int n_components, double fraction, size_t min_size,
-                                  ps_flow *flow, ps_error *err);
+typedef struct ps_persistence_input {
+    const ps_graph *graph;   /* kNN graph on #P points (weights not used) */
+    const double *f;         /* #P the function whose flow is simplified */
+    const int *component;    /* #P each point's connected component */
+    int n_components;
+    double fraction;         /* a basin merges below this x the range of f in its
+                                component (0 changes nothing) */
+    size_t min_size;         /* basins of fewer points merge whatever their persistence
+                                (PS_PERSISTENCE_MIN_BASIN, or 0 for none) */
+} ps_persistence_input;
+
+/* flow: in->f's flow (#S sinks) on in->graph, updated in place: fewer
+ * sinks (still increasing vertex ids), sink_of #P remapped. */
+ps_status ps_persistence_simplify(const ps_persistence_input *in, ps_flow *flow, ps_error *err);
 
 /* A kNN edge joining two basins, at the height where they meet there. */
 typedef struct ps_saddle {
@@ -48,9 +55,7 @@ void ps_saddles_keep_borders(const ps_flow *flow, ps_saddle *s, size_t *count);
 /* ps_persistence_simplify on flow's border saddles s (#*count, as
  * ps_flow_border_saddles gives them), which become the simplified flow's
  * (*count updated; untouched when nothing merges). */
-ps_status ps_persistence_simplify_along(const ps_graph *g, const double *f,
-                                        const int *component, int n_components,
-                                        double fraction, size_t min_size, ps_saddle *s,
+ps_status ps_persistence_simplify_along(const ps_persistence_input *in, ps_saddle *s,
                                         size_t *count, ps_flow *flow, ps_error *err);
 
 /* Merges the basins as the union-find forest parent (#S) says: each tree

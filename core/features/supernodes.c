@@ -34,10 +34,11 @@ static ps_status simplified_descent(const ps_graph *g, const double *f, const in
     double *minus_f = malloc((g->n ? g->n : 1) * sizeof *minus_f);
     if (!minus_f) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     for (size_t p = 0; p < g->n; p++) minus_f[p] = -f[p];
+    ps_persistence_input in = {.graph = g, .f = minus_f, .component = component,
+                               .n_components = n_components, .fraction = persistence,
+                               .min_size = PS_PERSISTENCE_MIN_BASIN};
     ps_status st = ps_flow_build(g, minus_f, +1, flow, err);
-    if (st == PS_OK)
-        st = ps_persistence_simplify(g, minus_f, component, n_components, persistence,
-                                     PS_PERSISTENCE_MIN_BASIN, flow, err);
+    if (st == PS_OK) st = ps_persistence_simplify(&in, flow, err);
     free(minus_f);
     return st;
 }
@@ -47,15 +48,15 @@ static ps_status simplified_descent(const ps_graph *g, const double *f, const in
 static ps_status simplified_ascent(const ps_graph *g, const double *f, const int *component,
                                    int n_components, double persistence, int want_saddles,
                                    ps_flow *flow, ps_saddle **s, size_t *count, ps_error *err) {
+    ps_persistence_input in = {.graph = g, .f = f, .component = component,
+                               .n_components = n_components, .fraction = persistence,
+                               .min_size = PS_PERSISTENCE_MIN_BASIN};
     ps_status st = ps_flow_build(g, f, +1, flow, err);
     if (st != PS_OK) return st;
-    if (!want_saddles)
-        return ps_persistence_simplify(g, f, component, n_components, persistence,
-                                       PS_PERSISTENCE_MIN_BASIN, flow, err);
+    if (!want_saddles) return ps_persistence_simplify(&in, flow, err);
     *s = ps_flow_border_saddles(g, f, flow, count);
     if (!*s) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
-    return ps_persistence_simplify_along(g, f, component, n_components, persistence,
-                                         PS_PERSISTENCE_MIN_BASIN, *s, count, flow, err);
+    return ps_persistence_simplify_along(&in, *s, count, flow, err);
 }
 
 /* level #S out: each basin's highest saddle, min(f(p), f(q)) over edges to

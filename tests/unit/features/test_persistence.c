@@ -23,16 +23,20 @@ static void test_ripple_merges(void) {
     ps_flow fl;
     REQUIRE(ps_flow_build(&g, f, +1, &fl, NULL) == PS_OK);
     REQUIRE(fl.n_sinks == 3);
-    REQUIRE(ps_persistence_simplify(&g, f, zero, 1, 0.0, 0, &fl, NULL) == PS_OK);
+    ps_persistence_input in = {.graph = &g, .f = f, .component = zero, .n_components = 1};
+    REQUIRE(ps_persistence_simplify(&in, &fl, NULL) == PS_OK); /* fraction 0 */
     CHECK(fl.n_sinks == 3);
-    REQUIRE(ps_persistence_simplify(&g, f, zero, 1, 0.1, 0, &fl, NULL) == PS_OK);
+    in.fraction = 0.1;
+    REQUIRE(ps_persistence_simplify(&in, &fl, NULL) == PS_OK);
     REQUIRE(fl.n_sinks == 2);
     CHECK(fl.sinks[0] == 1 && fl.sinks[1] == 8);
     CHECK(fl.sink_of[4] == fl.sink_of[8]); /* the ripple joined the peak at 8 */
     CHECK(fl.sink_of[2] == 0 && fl.sink_of[3] != fl.sink_of[4]);
-    REQUIRE(ps_persistence_simplify(&g, f, zero, 1, 0.75, 0, &fl, NULL) == PS_OK);
+    in.fraction = 0.75;
+    REQUIRE(ps_persistence_simplify(&in, &fl, NULL) == PS_OK);
     CHECK(fl.n_sinks == 2);
-    REQUIRE(ps_persistence_simplify(&g, f, zero, 1, 0.85, 0, &fl, NULL) == PS_OK);
+    in.fraction = 0.85;
+    REQUIRE(ps_persistence_simplify(&in, &fl, NULL) == PS_OK);
     CHECK(fl.n_sinks == 1 && fl.sinks[0] == 1);
     for (int v = 0; v < 9; v++) CHECK(fl.sink_of[v] == 0);
     ps_flow_free(&fl);
@@ -49,7 +53,9 @@ static void test_threshold_per_component(void) {
     ps_flow fl;
     REQUIRE(ps_flow_build(&cut, f, +1, &fl, NULL) == PS_OK);
     int before = fl.n_sinks;
-    REQUIRE(ps_persistence_simplify(&cut, f, comp, 2, 0.1, 0, &fl, NULL) == PS_OK);
+    ps_persistence_input in = {.graph = &cut, .f = f, .component = comp, .n_components = 2,
+                               .fraction = 0.1};
+    REQUIRE(ps_persistence_simplify(&in, &fl, NULL) == PS_OK);
     /* component 0: the peak at 2 (persistence 1 of range 100) merges;
      * component 1: peaks 6 (1) and 8 (0.9 - 0.5 = 0.4 of range 0.99) stay */
     CHECK(fl.n_sinks == before - 1);
@@ -70,9 +76,12 @@ static void test_tiny_basin_merges(void) {
     ps_flow fl;
     REQUIRE(ps_flow_build(&g, f, +1, &fl, NULL) == PS_OK);
     REQUIRE(fl.n_sinks == 2); /* 4 (vertices 0..4) and 6 (5..8) */
-    REQUIRE(ps_persistence_simplify(&g, f, zero, 1, 0.01, 0, &fl, NULL) == PS_OK);
+    ps_persistence_input in = {.graph = &g, .f = f, .component = zero, .n_components = 1,
+                               .fraction = 0.01};
+    REQUIRE(ps_persistence_simplify(&in, &fl, NULL) == PS_OK); /* min_size 0 */
     CHECK(fl.n_sinks == 2);
-    REQUIRE(ps_persistence_simplify(&g, f, zero, 1, 0.01, 5, &fl, NULL) == PS_OK);
+    in.min_size = 5;
+    REQUIRE(ps_persistence_simplify(&in, &fl, NULL) == PS_OK);
     CHECK(fl.n_sinks == 1 && fl.sinks[0] == 4);
     for (int v = 0; v < 9; v++) CHECK(fl.sink_of[v] == 0);
     ps_flow_free(&fl);
