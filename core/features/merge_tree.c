@@ -56,17 +56,19 @@ static int tree_alloc(tree *t, int n_leaves) {
 
 static double life(const tree *t, int v) { return t->birth[v] - t->death[v]; }
 
-/* Leaves are the basins, born at their peaks; each saddle joining two
- * groups makes a node.  group #S scratch (union-find), node_of #S scratch. */
-static void tree_sweep(tree *t, const ps_saddle *s, size_t count, const double *f,
-                       const int *component, const ps_flow *up, int *group, int *node_of) {
+/* Leaves are in->up's basins, born at their peaks; each of in->saddles
+ * joining two groups makes a node.  group #S scratch (union-find), node_of
+ * #S scratch. */
+static void tree_sweep(tree *t, const ps_merge_tree_input *in, int *group, int *node_of) {
+    const ps_flow *up = in->up;
+    const ps_saddle *s = in->saddles;
     int m = t->n_leaves, n = m;
     for (int b = 0; b < m; b++) {
         group[b] = b, node_of[b] = b, t->parent[b] = NO_NODE;
-        t->birth[b] = f[up->sinks[b]], t->death[b] = NEVER;
-        t->component[b] = component[up->sinks[b]];
+        t->birth[b] = in->f[up->sinks[b]], t->death[b] = NEVER;
+        t->component[b] = in->component[up->sinks[b]];
     }
-    for (size_t i = 0; i < count; i++) {
+    for (size_t i = 0; i < in->n_saddles; i++) {
         int a = ps_union_find_root(group, up->sink_of[s[i].p]);
         int b = ps_union_find_root(group, up->sink_of[s[i].q]);
         if (a == b) continue;
@@ -132,26 +134,27 @@ static int part_of_point(const tree *t, int leaf, double h) {
     return t->part[top];
 }
 
-ps_status ps_merge_tree_parts(const ps_graph *g, const double *f, const int *component,
-                              int n_components, double persistence, const ps_flow *up,
-                              const ps_saddle *s, size_t count, int *part_of, int *n_parts,
+ps_status ps_merge_tree_parts(const ps_merge_tree_input *in, int *part_of, int *n_parts,
                               ps_error *err) {
-    for (size_t p = 0; p < g->n; p++) part_of[p] = -1;
+    size_t n = in->graph->n;
+    const ps_flow *up = in->up;
+    for (size_t p = 0; p < n; p++) part_of[p] = -1;
     *n_parts = 0;
-    if (persistence <= 0 || up->n_sinks < 2) return PS_OK;
+    if (in->persistence <= 0 || up->n_sinks < 2) return PS_OK;
     int m = up->n_sinks;
     tree t;
     int alloc_failed = tree_alloc(&t, m);
     int *group = malloc((size_t)m * sizeof *group), *node_of = malloc((size_t)m * sizeof *node_of);
-    double *threshold = ps_component_thresholds(f, component, g->n, n_components, persistence);
+    double *threshold = ps_component_thresholds(in->f, in->component, n, in->n_components,
+                                                in->persistence);
     int ok = !alloc_failed && group && node_of && threshold;
     if (ok) {
-        tree_sweep(&t, s, count, f, component, up, group, node_of);
+        tree_sweep(&t, in, group, node_of);
         *n_parts = tree_parts(&t, threshold);
     }
     if (ok && *n_parts) {
         tree_jumps(&t);
-        for (size_t p = 0; p < g->n; p++) part_of[p] = part_of_point(&t, up->sink_of[p], f[p]);
+        for (size_t p = 0; p < n; p++) part_of[p] = part_of_point(&t, up->sink_of[p], in->f[p]);
     }
     tree_free(&t);
     free(group), free(node_of), free(threshold);

@@ -28,15 +28,23 @@
  * longest child: further down its group is body, not part. */
 #define PS_PART_REACH 1.0
 
-/* g, f #P, component #P (n_components of them), up the simplified ascent
- * flow (#S basins), s (#count) its border saddles in
- * ps_flow_border_saddles's order (persistence.h), persistence the fraction
- * of f's range below which peaks merged (0: no parts).  part_of #P out:
- * the part each point belongs to, in [0, *n_parts), or -1 (its basin above
- * the basin's highest saddle, or the central region below). */
-ps_status ps_merge_tree_parts(const ps_graph *g, const double *f, const int *component,
-                              int n_components, double persistence, const ps_flow *up,
-                              const ps_saddle *s, size_t count, int *part_of, int *n_parts,
+typedef struct ps_merge_tree_input {
+    const ps_graph *graph;     /* kNN graph on #P points (weights not used) */
+    const double *f;           /* #P the centrality, whose ascent flow up is */
+    const int *component;      /* #P each point's connected component */
+    int n_components;
+    double persistence;        /* the fraction of f's range in a component below
+                                  which peaks merged (0: no parts) */
+    const ps_flow *up;         /* the simplified ascent flow: #S basins */
+    const ps_saddle *saddles;  /* #n_saddles up's border saddles, in
+                                  ps_flow_border_saddles's order (persistence.h) */
+    size_t n_saddles;
+} ps_merge_tree_input;
+
+/* part_of #P out: the part each point belongs to, in [0, *n_parts), or -1
+ * (its basin above the basin's highest saddle, or the central region
+ * below). */
+ps_status ps_merge_tree_parts(const ps_merge_tree_input *in, int *part_of, int *n_parts,
                               ps_error *err);
 
 #endif

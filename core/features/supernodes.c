@@ -275,9 +275,11 @@ static ps_status build_once(const ps_graph *g, const double *f, const int *compo
     report(span, FLOWS_DONE);
     int *part_of = st == PS_OK && use_minima ? malloc(g->n * sizeof *part_of) : NULL;
     int n_parts = 0;
+    ps_merge_tree_input parts_in = {.graph = g, .f = f, .component = component,
+                                    .n_components = n_components, .persistence = persistence,
+                                    .up = up, .saddles = t.saddles, .n_saddles = t.n_saddles};
     if (st == PS_OK && use_minima)
-        st = part_of ? ps_merge_tree_parts(g, f, component, n_components, persistence, up,
-                                           t.saddles, t.n_saddles, part_of, &n_parts, err)
+        st = part_of ? ps_merge_tree_parts(&parts_in, part_of, &n_parts, err)
                      : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
     report(span, PARTS_DONE);
     size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;

@@ -50,9 +50,9 @@ static int parts_of(animal *a, int *part_of) {
     size_t count = 0;
     if (ps_flow_build(&a->h.g, a->f, +1, &up, NULL) != PS_OK) return -1;
     ps_saddle *s = ps_flow_border_saddles(&a->h.g, a->f, &up, &count);
-    ps_status st = s ? ps_merge_tree_parts(&a->h.g, a->f, zero, 1, 0.1, &up, s, count, part_of,
-                                           &n_parts, NULL)
-                     : PS_ERR_NOMEM;
+    ps_merge_tree_input in = {.graph = &a->h.g, .f = a->f, .component = zero, .n_components = 1,
+                              .persistence = 0.1, .up = &up, .saddles = s, .n_saddles = count};
+    ps_status st = s ? ps_merge_tree_parts(&in, part_of, &n_parts, NULL) : PS_ERR_NOMEM;
     free(s);
     ps_flow_free(&up);
     return st == PS_OK ? n_parts : -1;
@@ -100,8 +100,9 @@ static void test_no_persistence_no_parts(void) {
     animal_make(&a, 8, 2);
     ps_flow up;
     REQUIRE(ps_flow_build(&a.h.g, a.f, +1, &up, NULL) == PS_OK);
-    CHECK(ps_merge_tree_parts(&a.h.g, a.f, zero, 1, 0, &up, NULL, 0, part_of, &n_parts, NULL) ==
-          PS_OK);
+    ps_merge_tree_input in = {.graph = &a.h.g, .f = a.f, .component = zero, .n_components = 1,
+                              .up = &up}; /* persistence 0, no saddles */
+    CHECK(ps_merge_tree_parts(&in, part_of, &n_parts, NULL) == PS_OK);
     CHECK(n_parts == 0 && part_of[a.stem_top] == -1);
     ps_flow_free(&up);
 }
