@@ -226,9 +226,10 @@ ps_status ps_pipeline_centrality(ps_pipeline *pl, const ps_progress_span *span, 
 
 ps_status ps_pipeline_supernodes(ps_pipeline *pl, const ps_progress_span *span, ps_error *err) {
     ps_params *p = &pl->params;
-    return ps_supernodes_build_tracked(&pl->graph, pl->f, pl->component, pl->n_components,
-                                       &p->persistence, p->use_minima, pl->threads, span,
-                                       &pl->sn, err);
+    ps_supernodes_input in = {.graph = &pl->graph, .f = pl->f, .component = pl->component,
+                              .n_components = pl->n_components, .persistence = p->persistence,
+                              .use_minima = p->use_minima, .threads = pl->threads};
+    return ps_supernodes_build_tracked(&in, span, &pl->sn, &p->persistence, err);
 }
 
 ps_status ps_pipeline_f2_split(ps_pipeline *pl, const ps_progress_span *span, ps_error *err) {

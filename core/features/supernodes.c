@@ -27,36 +27,40 @@ static void report(const ps_progress_span *span, double share) {
     if (span) ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, share));
 }
 
+/* The simplification of a flow of f (in->f or its negative) on in's graph
+ * and components, at the given persistence. */
+static ps_persistence_input persistence_input(const ps_supernodes_input *in, const double *f,
+                                              double persistence) {
+    return (ps_persistence_input){.graph = in->graph, .f = f, .component = in->component,
+                                  .n_components = in->n_components, .fraction = persistence,
+                                  .min_size = PS_PERSISTENCE_MIN_BASIN};
+}
+
 /* The descent flow, simplified. */
-static ps_status simplified_descent(const ps_graph *g, const double *f, const int *component,
-                                    int n_components, double persistence, ps_flow *flow,
-                                    ps_error *err) {
+static ps_status simplified_descent(const ps_supernodes_input *in, double persistence,
+                                    ps_flow *flow, ps_error *err) {
+    const ps_graph *g = in->graph;
     double *minus_f = malloc((g->n ? g->n : 1) * sizeof *minus_f);
     if (!minus_f) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
-    for (size_t p = 0; p < g->n; p++) minus_f[p] = -f[p];
-    ps_persistence_input in = {.graph = g, .f = minus_f, .component = component,
-                               .n_components = n_components, .fraction = persistence,
-                               .min_size = PS_PERSISTENCE_MIN_BASIN};
+    for (size_t p = 0; p < g->n; p++) minus_f[p] = -in->f[p];
+    ps_persistence_input simplify = persistence_input(in, minus_f, persistence);
     ps_status st = ps_flow_build(g, minus_f, +1, flow, err);
-    if (st == PS_OK) st = ps_persistence_simplify(&in, flow, err);
+    if (st == PS_OK) st = ps_persistence_simplify(&simplify, flow, err);
     free(minus_f);
     return st;
 }
 
-/* The ascent flow, simplified, and its border saddles (*s, #*count, the
- * caller frees) when they are wanted. */
-static ps_status simplified_ascent(const ps_graph *g, const double *f, const int *component,
-                                   int n_components, double persistence, int want_saddles,
+/* The ascent flow, simplified, and with minima its border saddles (*s,
+ * #*count, the caller frees). */
+static ps_status simplified_ascent(const ps_supernodes_input *in, double persistence,
                                    ps_flow *flow, ps_saddle **s, size_t *count, ps_error *err) {
-    ps_persistence_input in = {.graph = g, .f = f, .component = component,
-                               .n_components = n_components, .fraction = persistence,
-                               .min_size = PS_PERSISTENCE_MIN_BASIN};
-    ps_status st = ps_flow_build(g, f, +1, flow, err);
+    ps_persistence_input simplify = persistence_input(in, in->f, persistence);
+    ps_status st = ps_flow_build(in->graph, in->f, +1, flow, err);
     if (st != PS_OK) return st;
-    if (!want_saddles) return ps_persistence_simplify(&in, flow, err);
-    *s = ps_flow_border_saddles(g, f, flow, count);
+    if (!in->use_minima) return ps_persistence_simplify(&simplify, flow, err);
+    *s = ps_flow_border_saddles(in->graph, in->f, flow, count);
     if (!*s) return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
-    return ps_persistence_simplify_along(&in, *s, count, flow, err);
+    return ps_persistence_simplify_along(&simplify, *s, count, flow, err);
 }
 
 /* level #S out: each basin's highest saddle, min(f(p), f(q)) over edges to
@@ -218,13 +222,9 @@ static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
  * saddles (item 0) and, with minima, the descent flow (item 1).  Each item
  * has its own status and error. */
 typedef struct flows_task {
-    const ps_graph *g;
-    const double *f;
-    const int *component;
-    int n_components;
-    double persistence;
-    int use_minima;
-    ps_flow flow[2];  /* up, down */
+    const ps_supernodes_input *in;
+    double persistence; /* in->persistence, or as raised */
+    ps_flow flow[2];    /* up, down */
     ps_saddle *saddles; /* #n_saddles up's border saddles (with minima) */
     size_t n_saddles;
     ps_status status[2];
@@ -234,17 +234,17 @@ typedef struct flows_task {
 static void flow_items(void *context, size_t begin, size_t end, int worker) {
     (void)worker;
     flows_task *t = context;
+    const ps_supernodes_input *in = t->in;
     for (size_t i = begin; i < end; i++) {
         ps_error *err = &t->error[i];
         ps_status st;
         if (i == 1) {
-            st = simplified_descent(t->g, t->f, t->component, t->n_components, t->persistence,
-                                    &t->flow[1], err);
+            st = simplified_descent(in, t->persistence, &t->flow[1], err);
         } else {
-            st = simplified_ascent(t->g, t->f, t->component, t->n_components, t->persistence,
-                                   t->use_minima, &t->flow[0], &t->saddles, &t->n_saddles, err);
-            if (st == PS_OK && t->use_minima && t->persistence > 0)
-                st = merge_shallow_tops(t->g, t->f, &t->flow[0], PS_PERSISTENCE_MIN_BASIN,
+            st = simplified_ascent(in, t->persistence, &t->flow[0], &t->saddles, &t->n_saddles,
+                                   err);
+            if (st == PS_OK && in->use_minima && t->persistence > 0)
+                st = merge_shallow_tops(in->graph, in->f, &t->flow[0], PS_PERSISTENCE_MIN_BASIN,
                                         t->saddles, &t->n_saddles, err);
         }
         t->status[i] = st;
@@ -253,9 +253,9 @@ static void flow_items(void *context, size_t begin, size_t end, int worker) {
 
 /* Both flows, side by side (one alone runs inline); the first failure is
  * copied to err. */
-static ps_status both_flows(flows_task *t, int threads, ps_error *err) {
-    int count = t->use_minima ? 2 : 1;
-    ps_parallel_for(ps_parallel_threads(threads), (size_t)count, 1, flow_items, t);
+static ps_status both_flows(flows_task *t, ps_error *err) {
+    int count = t->in->use_minima ? 2 : 1;
+    ps_parallel_for(ps_parallel_threads(t->in->threads), (size_t)count, 1, flow_items, t);
     for (int i = 0; i < count; i++)
         if (t->status[i] != PS_OK) {
             if (err) *err = t->error[i];
@@ -264,28 +264,36 @@ static ps_status both_flows(flows_task *t, int threads, ps_error *err) {
     return PS_OK;
 }
 
-static ps_status build_once(const ps_graph *g, const double *f, const int *component,
-                            int n_components, double persistence, int use_minima, int threads,
+/* With minima, the merge tree's parts of t's ascent flow: part_of #P out,
+ * or NULL when its allocation failed (PS_ERR_NOMEM); *n_parts out. */
+static ps_status merge_tree_parts(const flows_task *t, int *part_of, int *n_parts,
+                                  ps_error *err) {
+    const ps_supernodes_input *in = t->in;
+    ps_merge_tree_input parts = {.graph = in->graph, .f = in->f, .component = in->component,
+                                 .n_components = in->n_components,
+                                 .persistence = t->persistence, .up = &t->flow[0],
+                                 .saddles = t->saddles, .n_saddles = t->n_saddles};
+    return part_of ? ps_merge_tree_parts(&parts, part_of, n_parts, err)
+                   : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+}
+
+static ps_status build_once(const ps_supernodes_input *in, double persistence,
                             const ps_progress_span *span, ps_supernodes *out, ps_error *err) {
+    const ps_graph *g = in->graph;
+    int use_minima = in->use_minima;
     memset(out, 0, sizeof *out);
-    flows_task t = {.g = g, .f = f, .component = component, .n_components = n_components,
-                    .persistence = persistence, .use_minima = use_minima};
+    flows_task t = {.in = in, .persistence = persistence};
     ps_flow *up = &t.flow[0], *down = &t.flow[1];
-    ps_status st = both_flows(&t, threads, err);
+    ps_status st = both_flows(&t, err);
     report(span, FLOWS_DONE);
     int *part_of = st == PS_OK && use_minima ? malloc(g->n * sizeof *part_of) : NULL;
     int n_parts = 0;
-    ps_merge_tree_input parts_in = {.graph = g, .f = f, .component = component,
-                                    .n_components = n_components, .persistence = persistence,
-                                    .up = up, .saddles = t.saddles, .n_saddles = t.n_saddles};
-    if (st == PS_OK && use_minima)
-        st = part_of ? ps_merge_tree_parts(&parts_in, part_of, &n_parts, err)
-                     : ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    if (st == PS_OK && use_minima) st = merge_tree_parts(&t, part_of, &n_parts, err);
     report(span, PARTS_DONE);
     size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;
     if (st == PS_OK)
-        st = combine(g, f, up, use_minima ? down : NULL, t.saddles, t.n_saddles, part_of, n_parts,
-                     min_size, out, err);
+        st = combine(g, in->f, up, use_minima ? down : NULL, t.saddles, t.n_saddles, part_of,
+                     n_parts, min_size, out, err);
     report(span, COMBINED);
     free(part_of);
     free(t.saddles);
@@ -294,24 +302,22 @@ static ps_status build_once(const ps_graph *g, const double *f, const int *compo
     return st;
 }
 
-ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
-                              int n_components, double *persistence, int use_minima, int threads,
-                              ps_supernodes *out, ps_error *err) {
-    return ps_supernodes_build_tracked(g, f, component, n_components, persistence, use_minima,
-                                       threads, NULL, out, err);
+ps_status ps_supernodes_build(const ps_supernodes_input *in, ps_supernodes *out,
+                              double *persistence_used, ps_error *err) {
+    return ps_supernodes_build_tracked(in, NULL, out, persistence_used, err);
 }
 
-ps_status ps_supernodes_build_tracked(const ps_graph *g, const double *f, const int *component,
-                                      int n_components, double *persistence, int use_minima,
-                                      int threads, const ps_progress_span *span,
-                                      ps_supernodes *out, ps_error *err) {
+ps_status ps_supernodes_build_tracked(const ps_supernodes_input *in,
+                                      const ps_progress_span *span, ps_supernodes *out,
+                                      double *persistence_used, ps_error *err) {
+    double persistence = in->persistence;
     for (int first = 1;; first = 0) {
-        ps_status st = build_once(g, f, component, n_components, *persistence, use_minima,
-                                  threads, first ? span : NULL, out, err);
+        *persistence_used = persistence;
+        ps_status st = build_once(in, persistence, first ? span : NULL, out, err);
         report(span, 1.0);
-        if (st != PS_OK || out->m <= PS_MAX_SUPERNODES || *persistence >= 1) return st;
+        if (st != PS_OK || out->m <= PS_MAX_SUPERNODES || persistence >= 1) return st;
         ps_supernodes_free(out);
-        *persistence = *persistence > 0 ? fmin(1.0, *persistence * 2) : 0.01;
+        persistence = persistence > 0 ? fmin(1.0, persistence * 2) : 0.01;
     }
 }
 

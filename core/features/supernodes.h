@@ -29,21 +29,30 @@ typedef struct ps_supernodes {
     int *supernode_of;   /* #P */
 } ps_supernodes;
 
-/* f #P, component #P.  *persistence: fraction of each component's f range
- * under which sinks merge (0 keeps every sink); raised (see
- * PS_MAX_SUPERNODES) when needed, and the value used is written back.
- * threads (ps_parallel_threads): with use_minima the ascent and descent
- * flows run side by side; the result is the same for any count. */
-ps_status ps_supernodes_build(const ps_graph *g, const double *f, const int *component,
-                              int n_components, double *persistence, int use_minima, int threads,
-                              ps_supernodes *out, ps_error *err);
+typedef struct ps_supernodes_input {
+    const ps_graph *graph;   /* kNN graph on #P points; its weights are the edge lengths */
+    const double *f;         /* #P centrality */
+    const int *component;    /* #P from ps_graph_components */
+    int n_components;
+    double persistence;      /* fraction of each component's f range under which sinks
+                                merge (0 keeps every sink); raised when needed (see
+                                PS_MAX_SUPERNODES) */
+    int use_minima;          /* supernodes around the minima of f as well (above) */
+    int threads;             /* ps_parallel_threads: with use_minima the ascent and descent
+                                flows run side by side; the result is the same for any
+                                count */
+} ps_supernodes_input;
+
+/* out: the supernodes of the #P points (ps_supernodes_free).
+ * *persistence_used out: in->persistence, or the value it was raised to. */
+ps_status ps_supernodes_build(const ps_supernodes_input *in, ps_supernodes *out,
+                              double *persistence_used, ps_error *err);
 
 /* The same, reporting progress over span (span->ctl may be NULL) after
  * each flow and merge step of the first try. */
-ps_status ps_supernodes_build_tracked(const ps_graph *g, const double *f, const int *component,
-                                      int n_components, double *persistence, int use_minima,
-                                      int threads, const ps_progress_span *span,
-                                      ps_supernodes *out, ps_error *err);
+ps_status ps_supernodes_build_tracked(const ps_supernodes_input *in,
+                                      const ps_progress_span *span, ps_supernodes *out,
+                                      double *persistence_used, ps_error *err);
 void ps_supernodes_free(ps_supernodes *s);
 
 /* Replaces sn by a refinement of it: label #P gives each point its new

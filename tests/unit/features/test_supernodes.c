@@ -35,6 +35,14 @@ static int star_setup(star_case *c) {
     return ps_centrality(&in, c->f, NULL, &used, NULL) == PS_OK ? nc : -1;
 }
 
+/* The supernodes input on c's star at persistence 0.1, on one thread,
+ * without minima. */
+static ps_supernodes_input star_input(const star_case *c, int n_components) {
+    return (ps_supernodes_input){.graph = &c->g, .f = c->f, .component = c->comp,
+                                 .n_components = n_components, .persistence = 0.1,
+                                 .threads = 1};
+}
+
 static void star_free(star_case *c) {
     ps_graph_free(&c->g);
     free(c->pts), free(c->part), free(c->comp), free(c->f);
@@ -52,11 +60,11 @@ static void test_star_centre_is_a_minimum(void) {
     int nc = star_setup(&c);
     REQUIRE(nc == 1);
     ps_supernodes plain, with_min;
-    double persistence = 0.1;
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 0, 1, &plain, NULL) ==
-            PS_OK);
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, 1, &with_min, NULL) ==
-            PS_OK);
+    ps_supernodes_input in = star_input(&c, nc);
+    double persistence = -1;
+    REQUIRE(ps_supernodes_build(&in, &plain, &persistence, NULL) == PS_OK);
+    in.use_minima = 1;
+    REQUIRE(ps_supernodes_build(&in, &with_min, &persistence, NULL) == PS_OK);
     CHECK(persistence == 0.1);
     CHECK_MSG(plain.m == 6, "%d supernodes without minima", plain.m);
     int minima = 0;
@@ -84,14 +92,15 @@ static void test_tracked_two_threads_same_and_progress(void) {
     int nc = star_setup(&c);
     REQUIRE(nc == 1);
     ps_supernodes plain, tracked;
-    double persistence = 0.1, again = 0.1;
+    ps_supernodes_input in = star_input(&c, nc);
+    in.use_minima = 1;
+    double persistence, again;
     ps_progress_seen seen = {{0}, {0}, {0}, 0};
     ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
     ps_progress_span span = {&ctl, PS_PHASE_SUPERNODES, 0.0, 0.5};
-    REQUIRE(ps_supernodes_build(&c.g, c.f, c.comp, nc, &persistence, 1, 1, &plain, NULL) ==
-            PS_OK);
-    REQUIRE(ps_supernodes_build_tracked(&c.g, c.f, c.comp, nc, &again, 1, 2, &span, &tracked,
-                                        NULL) == PS_OK);
+    REQUIRE(ps_supernodes_build(&in, &plain, &persistence, NULL) == PS_OK);
+    in.threads = 2;
+    REQUIRE(ps_supernodes_build_tracked(&in, &span, &tracked, &again, NULL) == PS_OK);
     REQUIRE(tracked.m == plain.m);
     CHECK(memcmp(tracked.supernode_of, plain.supernode_of, c.n * sizeof(int)) == 0);
     CHECK(memcmp(tracked.sinks, plain.sinks, (size_t)plain.m * sizeof(uint32_t)) == 0);
@@ -160,8 +169,10 @@ static void test_supernode_cap(void) {
     off[N] = e;
     ps_graph g = {N, off, nbr, w};
     ps_supernodes sn;
+    ps_supernodes_input in = {.graph = &g, .f = f, .component = comp, .n_components = 1,
+                              .threads = 1}; /* persistence 0, without minima */
     double persistence = 0;
-    REQUIRE(ps_supernodes_build(&g, f, comp, 1, &persistence, 0, 1, &sn, NULL) == PS_OK);
+    REQUIRE(ps_supernodes_build(&in, &sn, &persistence, NULL) == PS_OK);
     CHECK_MSG(sn.m <= PS_MAX_SUPERNODES, "%d supernodes", sn.m);
     CHECK(persistence > 0.5);
     ps_supernodes_free(&sn);
