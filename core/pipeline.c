@@ -63,13 +63,19 @@ ps_status ps_pipeline_dedup(ps_pipeline *pl, ps_error *err) {
 
 /* ---- knn phase ------------------------------------------------------------ */
 
+/* The kNN graph's build on the distinct points, progress over span. */
+static ps_knn_graph_input knn_input(const ps_pipeline *pl, const ps_progress_span *span) {
+    return (ps_knn_graph_input){.points = pl->points, .n = pl->dedup.n_unique,
+                                .dim = pl->in->dim, .k = pl->params.k, .threads = pl->threads,
+                                .span = span};
+}
+
 /* With method auto the build keeps its search index for the stray points'
  * pruning. */
 ps_status ps_pipeline_knn_graph(ps_pipeline *pl, const ps_progress_span *span, ps_error *err) {
     int strays = pl->params.method == PS_METHOD_AUTO;
-    return ps_knn_graph_build_memo(pl->points, pl->dedup.n_unique, pl->in->dim, pl->params.k,
-                                   pl->threads, span, &pl->graph, strays ? &pl->knn_memo : NULL,
-                                   err);
+    ps_knn_graph_input in = knn_input(pl, span);
+    return ps_knn_graph_build_memo(&in, &pl->graph, strays ? &pl->knn_memo : NULL, err);
 }
 
 /* One round of the outlier removal (outliers.h): stray points leave the
@@ -96,8 +102,8 @@ static ps_status drop_outliers_once(ps_pipeline *pl, const ps_progress_span *spa
             ps_knn_memo_free(pl->knn_memo);
             pl->knn_memo = NULL;
             ps_graph_free(&pl->graph);
-            st = ps_knn_graph_build_tracked(pl->points, pl->dedup.n_unique, pl->in->dim,
-                                            pl->params.k, pl->threads, span, &pl->graph, err);
+            ps_knn_graph_input in = knn_input(pl, span);
+            st = ps_knn_graph_build_tracked(&in, &pl->graph, err);
         }
         *dropped = count;
     }

@@ -264,8 +264,10 @@ static void weigh_rows(void *ctx, size_t begin, size_t end, int worker) {
                                             j->dim);
 }
 
-static ps_status check_arguments(const double *points, size_t n, int dim, int k, ps_error *err) {
-    if (!points) return ps_fail(err, PS_ERR_INVALID, "knn: points is NULL");
+static ps_status check_arguments(const ps_knn_graph_input *in, ps_error *err) {
+    size_t n = in->n;
+    int dim = in->dim, k = in->k;
+    if (!in->points) return ps_fail(err, PS_ERR_INVALID, "knn: points is NULL");
     if (dim < 1 || dim > PS_MAX_DIM) return ps_fail(err, PS_ERR_INVALID, "knn: dim %d", dim);
     if (k < 1 || k > PS_MAX_K || (size_t)k >= n)
         return ps_fail(err, PS_ERR_INVALID, "knn: need 1 <= k <= %d and k < n, got k = %d, n = %zu",
@@ -274,27 +276,45 @@ static ps_status check_arguments(const double *points, size_t n, int dim, int k,
     return PS_OK;
 }
 
+/* g's weights, the lengths of its edges between in->points, on threads
+ * workers; progress to in->span->hi. */
+static ps_status weigh_edges(const ps_knn_graph_input *in, int threads, ps_graph *g,
+                             ps_error *err) {
+    size_t edges = g->offsets[g->n];
+    uint32_t *shrunk = realloc(g->neighbors, edges * sizeof *shrunk);
+    if (shrunk) g->neighbors = shrunk;
+    g->weights = malloc(edges * sizeof *g->weights);
+    if (!g->weights) return ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for %zu edges", edges);
+    weight_job wj = {in->points, in->dim, g};
+    ps_parallel_for(threads, g->n, 0, weigh_rows, &wj);
+    ps_control_progress(in->span->ctl, in->span->phase, in->span->hi);
+    return PS_OK;
+}
+
 ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k, int threads,
                              ps_graph *g, ps_error *err) {
     ps_progress_span untracked = {NULL, PS_PHASE_KNN, 0.0, 0.0};
-    return ps_knn_graph_build_tracked(points, n, dim, k, threads, &untracked, g, err);
+    ps_knn_graph_input in = {.points = points, .n = n, .dim = dim, .k = k, .threads = threads,
+                             .span = &untracked};
+    return ps_knn_graph_build_tracked(&in, g, err);
 }
 
-ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, int k, int threads,
-                                     const ps_progress_span *span, ps_graph *g, ps_error *err) {
-    return ps_knn_graph_build_memo(points, n, dim, k, threads, span, g, NULL, err);
+ps_status ps_knn_graph_build_tracked(const ps_knn_graph_input *in, ps_graph *g, ps_error *err) {
+    return ps_knn_graph_build_memo(in, g, NULL, err);
 }
 
-ps_status ps_knn_graph_build_memo(const double *points, size_t n, int dim, int k, int threads,
-                                  const ps_progress_span *span, ps_graph *g, ps_knn_memo **memo,
+ps_status ps_knn_graph_build_memo(const ps_knn_graph_input *in, ps_graph *g, ps_knn_memo **memo,
                                   ps_error *err) {
+    size_t n = in->n;
+    int k = in->k;
+    const ps_progress_span *span = in->span;
     memset(g, 0, sizeof *g);
     if (memo) *memo = NULL;
-    ps_status st = check_arguments(points, n, dim, k, err);
+    ps_status st = check_arguments(in, err);
     if (st != PS_OK) return st;
-    threads = ps_parallel_threads(threads);
+    int threads = ps_parallel_threads(in->threads);
     size_t directed = n * (size_t)k;
-    ps_knn_memo *mm = memo_new(n, dim, k, memo != NULL);
+    ps_knn_memo *mm = memo_new(n, in->dim, k, memo != NULL);
     size_t *fill = malloc(n * sizeof *fill);
     g->n = n;
     g->offsets = malloc((n + 1) * sizeof *g->offsets);
@@ -303,7 +323,7 @@ ps_status ps_knn_graph_build_memo(const double *points, size_t n, int dim, int k
         st = ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for %zu points", n);
         goto done;
     }
-    st = directed_knn(mm, points, n, threads, span, err);
+    st = directed_knn(mm, in->points, n, threads, span, err);
     if (st != PS_OK) goto done;
     if (!memo) { /* the index is not needed beyond the queries */
         struct FLANNParameters fp = ps_kd_parameters();
@@ -312,17 +332,7 @@ ps_status ps_knn_graph_build_memo(const double *points, size_t n, int dim, int k
     }
     symmetrize(mm->knn, n, k, threads, g, fill);
     ps_control_progress(span->ctl, span->phase, ps_progress_span_at(span, ROWS_SHARE));
-    size_t edges = g->offsets[n];
-    uint32_t *shrunk = realloc(g->neighbors, edges * sizeof *shrunk);
-    if (shrunk) g->neighbors = shrunk;
-    g->weights = malloc(edges * sizeof *g->weights);
-    if (!g->weights) {
-        st = ps_fail(err, PS_ERR_NOMEM, "knn: out of memory for %zu edges", edges);
-        goto done;
-    }
-    weight_job wj = {points, dim, g};
-    ps_parallel_for(threads, n, 0, weigh_rows, &wj);
-    ps_control_progress(span->ctl, span->phase, span->hi);
+    st = weigh_edges(in, threads, g, err);
 done:
     free(fill);
     if (st != PS_OK) ps_graph_free(g);

@@ -20,11 +20,20 @@
 ps_status ps_knn_graph_build(const double *points, size_t n, int dim, int k,
                              int threads, ps_graph *g, ps_error *err);
 
-/* The same, reporting progress from span->lo to span->hi as the queries
- * go (span->ctl may be NULL) and stopping with PS_ERR_CANCELLED when its
- * cancel flag is raised. */
-ps_status ps_knn_graph_build_tracked(const double *points, size_t n, int dim, int k, int threads,
-                                     const ps_progress_span *span, ps_graph *g, ps_error *err);
+typedef struct ps_knn_graph_input {
+    const double *points;          /* #P by dim, distinct */
+    size_t n;                      /* #P */
+    int dim;
+    int k;                         /* 1 <= k < n */
+    int threads;                   /* ps_parallel_threads; the graph is the same for any count */
+    const ps_progress_span *span;  /* progress from span->lo to span->hi as the queries go
+                                      (span->ctl may be NULL); not NULL */
+} ps_knn_graph_input;
+
+/* ps_knn_graph_build on in, reporting progress over in->span and stopping
+ * with PS_ERR_CANCELLED when its cancel flag is raised.  On success g owns
+ * its arrays. */
+ps_status ps_knn_graph_build_tracked(const ps_knn_graph_input *in, ps_graph *g, ps_error *err);
 
 /* What ps_knn_graph_prune needs of a build: its search index and each
  * row's own k nearest (knn_memo.h, private). */
@@ -32,8 +41,7 @@ typedef struct ps_knn_memo ps_knn_memo;
 
 /* ps_knn_graph_build_tracked that also keeps *memo (freed with
  * ps_knn_memo_free) for ps_knn_graph_prune, when memo is not NULL. */
-ps_status ps_knn_graph_build_memo(const double *points, size_t n, int dim, int k, int threads,
-                                  const ps_progress_span *span, ps_graph *g, ps_knn_memo **memo,
+ps_status ps_knn_graph_build_memo(const ps_knn_graph_input *in, ps_graph *g, ps_knn_memo **memo,
                                   ps_error *err);
 void ps_knn_memo_free(ps_knn_memo *memo);
 

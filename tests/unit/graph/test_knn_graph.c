@@ -205,7 +205,8 @@ static void test_tracked_progress_and_cancel(void) {
     ps_progress_span span = {&ctl, PS_PHASE_KNN, 0.0, 0.45};
     REQUIRE(pts && n > 4 * 2048);
     REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 2, &plain, NULL) == PS_OK);
-    REQUIRE(ps_knn_graph_build_tracked(pts, n, 3, 7, 2, &span, &tracked, NULL) == PS_OK);
+    ps_knn_graph_input in = {.points = pts, .n = n, .dim = 3, .k = 7, .threads = 2, .span = &span};
+    REQUIRE(ps_knn_graph_build_tracked(&in, &tracked, NULL) == PS_OK);
     CHECK(same_graph(&plain, &tracked));
     CHECK_MSG(seen.calls[PS_PHASE_KNN] > 3 && !seen.went_back && seen.last[PS_PHASE_KNN] == 0.45,
               "%d calls, last %g", seen.calls[PS_PHASE_KNN], seen.last[PS_PHASE_KNN]);
@@ -213,7 +214,7 @@ static void test_tracked_progress_and_cancel(void) {
     volatile int cancel = 1;
     ctl.cancel = &cancel;
     ps_error err = {0};
-    CHECK(ps_knn_graph_build_tracked(pts, n, 3, 7, 2, &span, &tracked, &err) == PS_ERR_CANCELLED);
+    CHECK(ps_knn_graph_build_tracked(&in, &tracked, &err) == PS_ERR_CANCELLED);
     CHECK(err.status == PS_ERR_CANCELLED && tracked.offsets == NULL);
     free(pts);
 }

@@ -70,7 +70,9 @@ static void strays_like_the_pipeline(int threads) {
     ps_graph g;
     ps_knn_memo *memo = NULL;
     ps_progress_span span = {NULL, PS_PHASE_KNN, 0.0, 1.0};
-    REQUIRE(ps_knn_graph_build_memo(pts, n, 3, 7, threads, &span, &g, &memo, NULL) == PS_OK);
+    ps_knn_graph_input in = {.points = pts, .n = n, .dim = 3, .k = 7, .threads = threads,
+                             .span = &span};
+    REQUIRE(ps_knn_graph_build_memo(&in, &g, &memo, NULL) == PS_OK);
     uint32_t *keep_for = malloc(n * sizeof *keep_for);
     size_t count = 0;
     REQUIRE(keep_for && ps_outliers_find(&g, threads, keep_for, &count, NULL) == PS_OK);
@@ -104,7 +106,9 @@ static void rounds(double *pts, size_t n, int k, const size_t *steps, size_t n_s
     ps_graph g;
     ps_knn_memo *memo = NULL;
     ps_progress_span span = {NULL, PS_PHASE_KNN, 0.0, 1.0};
-    REQUIRE(ps_knn_graph_build_memo(pts, n, 3, k, 2, &span, &g, &memo, NULL) == PS_OK);
+    ps_knn_graph_input in = {.points = pts, .n = n, .dim = 3, .k = k, .threads = 2,
+                             .span = &span};
+    REQUIRE(ps_knn_graph_build_memo(&in, &g, &memo, NULL) == PS_OK);
     for (size_t r = 0; r < n_steps; r++) {
         uint32_t *keep_for = every(n, steps[r], r % steps[r]);
         REQUIRE(keep_for);
@@ -148,7 +152,9 @@ static void test_declines_when_few_remain(void) {
     ps_graph g;
     ps_knn_memo *memo = NULL;
     ps_progress_span span = {NULL, PS_PHASE_KNN, 0.0, 1.0};
-    REQUIRE(pts && ps_knn_graph_build_memo(pts, n, 3, 7, 1, &span, &g, &memo, NULL) == PS_OK);
+    ps_knn_graph_input in = {.points = pts, .n = n, .dim = 3, .k = 7, .threads = 1,
+                             .span = &span};
+    REQUIRE(pts && ps_knn_graph_build_memo(&in, &g, &memo, NULL) == PS_OK);
     size_t edges = g.offsets[n];
     uint32_t *keep_for = every(n, 4, 0);
     int pruned = 1;
