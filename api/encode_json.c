@@ -169,7 +169,8 @@ static int add_timings(cJSON *doc, const ps_timings *t) {
     if (!o) return -1;
     for (int ph = 0; ph < PS_PHASE_COUNT; ph++)
         if (add_number(o, ps_phase_name((ps_phase)ph), t->ms[ph])) return -1;
-    cJSON *steps = add_number(o, "total", t->total_ms) ? NULL : cJSON_AddObjectToObject(o, "steps");
+    if (add_number(o, "total", t->total_ms)) return -1;
+    cJSON *steps = cJSON_AddObjectToObject(o, "steps");
     if (!steps) return -1;
     for (int s = 0; s < PS_STEP_COUNT; s++)
         if (add_number(steps, ps_step_name((ps_step)s), t->step_ms[s])) return -1;

@@ -14,6 +14,7 @@
 #include "features/normals_smooth.h"
 #include "features/profile_split.h"
 #include "graph/outliers.h"
+#include "hierarchy/ncut.h"
 #include "refine/boundary_cut.h"
 #include "refine/convex_merge.h"
 #include "refine/crease_merge.h"

@@ -13,7 +13,6 @@
 #include "features/supernodes.h"
 #include "graph/dedup.h"
 #include "graph/knn_graph.h"
-#include "hierarchy/ncut.h"
 #include "pointseg.h"
 #include "refine/segment_graph.h"
 #include "result.h"

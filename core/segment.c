@@ -38,40 +38,47 @@ typedef enum step_when {
 } step_when;
 
 typedef struct step {
-    ps_step id;
+    const char *name;           /* ps_step_name: the timings' and docs' */
     ps_phase phase;
     step_when when;
     double done;                /* the phase's progress once it has run */
     ps_pipeline_step_fn *run;   /* pipeline.c */
 } step;
 
-/* The method, step by step (docs/method.md, in the same order). */
+/* The method, step by step (docs/method.md, in the same order), indexed
+ * by ps_step. */
 static const step steps[PS_STEP_COUNT] = {
-    {PS_STEP_KNN_GRAPH, PS_PHASE_KNN, EVERY_METHOD, 0.45, ps_pipeline_knn_graph},
-    {PS_STEP_OUTLIERS, PS_PHASE_KNN, AUTO, 0.55, ps_pipeline_outliers},
-    {PS_STEP_COMPONENTS, PS_PHASE_KNN, EVERY_METHOD, 0.55, ps_pipeline_components},
-    {PS_STEP_NORMALS, PS_PHASE_KNN, CREASE_AWARE, 0.9, ps_pipeline_normals},
-    {PS_STEP_CREASE_METRIC, PS_PHASE_KNN, CREASE_AWARE, 1.0, ps_pipeline_crease_metric},
-    {PS_STEP_CENTRALITY, PS_PHASE_CENTRALITY, EVERY_METHOD, 1.0, ps_pipeline_centrality},
-    {PS_STEP_SUPERNODES, PS_PHASE_SUPERNODES, EVERY_METHOD, 0.5, ps_pipeline_supernodes},
-    {PS_STEP_F2_SPLIT, PS_PHASE_SUPERNODES, F2_ASKED, 0.6, ps_pipeline_f2_split},
-    {PS_STEP_CREASE_SPLIT, PS_PHASE_SUPERNODES, CREASE_AWARE, 0.8, ps_pipeline_crease_split},
-    {PS_STEP_PROFILE_SPLIT, PS_PHASE_SUPERNODES, CREASE_AWARE, 1.0, ps_pipeline_profile_split},
-    {PS_STEP_NCUT, PS_PHASE_HIERARCHY, EVERY_METHOD, 1.0, ps_pipeline_ncut},
-    {PS_STEP_FEATURE_MERGE, PS_PHASE_REFINE, EVERY_METHOD, 0.2, ps_pipeline_feature_merge},
-    {PS_STEP_BOUNDARY_CUT, PS_PHASE_REFINE, CREASE_AWARE, 0.7, ps_pipeline_boundary_cut},
-    {PS_STEP_CREASE_MERGE, PS_PHASE_REFINE, CREASE_AWARE, 0.85, ps_pipeline_crease_merge},
-    {PS_STEP_CONVEX_MERGE, PS_PHASE_REFINE, CREASE_AWARE, 0.95, ps_pipeline_convex_merge},
-    {PS_STEP_PATCH_MERGE, PS_PHASE_REFINE, CREASE_AWARE, 1.0, ps_pipeline_patch_merge},
+    [PS_STEP_KNN_GRAPH] = {"knn_graph", PS_PHASE_KNN, EVERY_METHOD, 0.45, ps_pipeline_knn_graph},
+    [PS_STEP_OUTLIERS] = {"outliers", PS_PHASE_KNN, AUTO, 0.55, ps_pipeline_outliers},
+    [PS_STEP_COMPONENTS] = {"components", PS_PHASE_KNN, EVERY_METHOD, 0.55,
+                            ps_pipeline_components},
+    [PS_STEP_NORMALS] = {"normals", PS_PHASE_KNN, CREASE_AWARE, 0.9, ps_pipeline_normals},
+    [PS_STEP_CREASE_METRIC] = {"crease_metric", PS_PHASE_KNN, CREASE_AWARE, 1.0,
+                               ps_pipeline_crease_metric},
+    [PS_STEP_CENTRALITY] = {"centrality", PS_PHASE_CENTRALITY, EVERY_METHOD, 1.0,
+                            ps_pipeline_centrality},
+    [PS_STEP_SUPERNODES] = {"supernodes", PS_PHASE_SUPERNODES, EVERY_METHOD, 0.5,
+                            ps_pipeline_supernodes},
+    [PS_STEP_F2_SPLIT] = {"f2_split", PS_PHASE_SUPERNODES, F2_ASKED, 0.6, ps_pipeline_f2_split},
+    [PS_STEP_CREASE_SPLIT] = {"crease_split", PS_PHASE_SUPERNODES, CREASE_AWARE, 0.8,
+                              ps_pipeline_crease_split},
+    [PS_STEP_PROFILE_SPLIT] = {"profile_split", PS_PHASE_SUPERNODES, CREASE_AWARE, 1.0,
+                               ps_pipeline_profile_split},
+    [PS_STEP_NCUT] = {"ncut", PS_PHASE_HIERARCHY, EVERY_METHOD, 1.0, ps_pipeline_ncut},
+    [PS_STEP_FEATURE_MERGE] = {"feature_merge", PS_PHASE_REFINE, EVERY_METHOD, 0.2,
+                               ps_pipeline_feature_merge},
+    [PS_STEP_BOUNDARY_CUT] = {"boundary_cut", PS_PHASE_REFINE, CREASE_AWARE, 0.7,
+                              ps_pipeline_boundary_cut},
+    [PS_STEP_CREASE_MERGE] = {"crease_merge", PS_PHASE_REFINE, CREASE_AWARE, 0.85,
+                              ps_pipeline_crease_merge},
+    [PS_STEP_CONVEX_MERGE] = {"convex_merge", PS_PHASE_REFINE, CREASE_AWARE, 0.95,
+                              ps_pipeline_convex_merge},
+    [PS_STEP_PATCH_MERGE] = {"patch_merge", PS_PHASE_REFINE, CREASE_AWARE, 1.0,
+                             ps_pipeline_patch_merge},
 };
 
 const char *ps_step_name(ps_step id) {
-    static const char *const names[PS_STEP_COUNT] = {
-        "knn_graph",    "outliers",      "components", "normals",       "crease_metric",
-        "centrality",   "supernodes",    "f2_split",   "crease_split",  "profile_split",
-        "ncut",         "feature_merge", "boundary_cut", "crease_merge", "convex_merge",
-        "patch_merge"};
-    return id >= 0 && id < PS_STEP_COUNT ? names[id] : "unknown";
+    return id >= 0 && id < PS_STEP_COUNT ? steps[id].name : "unknown";
 }
 
 ps_phase ps_step_phase(ps_step id) {
@@ -104,7 +111,7 @@ ps_status ps_segment_phase(ps_pipeline *pl, ps_phase ph, ps_error *err) {
         double step_start = ps_now_ms();
         ps_status st = s->run(pl, &span, err);
         if (st != PS_OK) return st;
-        pl->timings.step_ms[s->id] = ps_now_ms() - step_start;
+        pl->timings.step_ms[i] = ps_now_ms() - step_start;
         ps_control_progress(pl->ctl, ph, s->done);
         at = s->done;
     }
