@@ -221,7 +221,7 @@ ps_status ps_pipeline_centrality(ps_pipeline *pl, const ps_progress_span *span, 
         p->samples = ps_centrality_default_samples(u);
     pl->f = malloc(u * sizeof *pl->f);
     if (!pl->f) return ps_fail(err, PS_ERR_NOMEM, "out of memory (centrality)");
-    ps_centrality_input in = {.graph = &pl->graph, .component = pl->component,
+    ps_centrality_input in = {.component = pl->component,
                               .n_components = pl->n_components, .mode = p->centrality,
                               .samples = p->samples, .threads = pl->threads,
                               .coarse_min = PS_COARSE_MIN_POINTS, .ctl = pl->ctl};

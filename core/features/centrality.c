@@ -274,8 +274,6 @@ ps_status ps_centrality(const ps_centrality_input *in, double *f, uint32_t **sam
 
 ps_status ps_centrality_borrowing(const ps_centrality_input *in, ps_graph *g, double *f,
                                   uint32_t **sample_ids, int *samples_used, ps_error *err) {
-    if (in->graph != g)
-        return ps_fail(err, PS_ERR_INVALID, "centrality: the borrowed graph is not in->graph");
     ps_status st = check_mode(in->mode, in->samples, sample_ids, samples_used, err);
     if (st != PS_OK || g->n == 0) return st;
     ps_bfs_order o;

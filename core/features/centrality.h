@@ -58,8 +58,8 @@ typedef struct ps_centrality_input {
 ps_status ps_centrality(const ps_centrality_input *in, double *f, uint32_t **sample_ids,
                         int *samples_used, ps_error *err);
 
-/* ps_centrality (the same outputs) on a graph it borrows: g, which must be
- * in->graph (PS_ERR_INVALID otherwise).  g's arrays move into the
+/* ps_centrality (the same outputs) on a graph it borrows: g, in place of
+ * in->graph, which is not read (leave it NULL).  g's arrays move into the
  * breadth-first copy (bfs_order.h) while the centrality runs and move back,
  * byte-identical, before it returns, so the peak holds one copy of the
  * graph instead of two.  Out of memory, g may come back freed. */
