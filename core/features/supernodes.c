@@ -186,37 +186,6 @@ static void absorb_tiny(const ps_graph *g, ps_supernodes *out, size_t min_size) 
     }
 }
 
-/* Supernodes: the basins (above their highest saddles, with use_minima),
- * then the merge tree's parts, then the minima.  part_of #P: -1 or a part
- * in [0, n_parts); saddles (#count): up's border saddles (with down). */
-static ps_status combine(const ps_graph *g, const double *f, const ps_flow *up,
-                         const ps_flow *down, const ps_saddle *saddles, size_t count,
-                         const int *part_of, int n_parts, size_t min_size, ps_supernodes *out,
-                         ps_error *err) {
-    int n_up = up->n_sinks + n_parts, n_down = down ? down->n_sinks : 0;
-    ps_status st = allocate(out, g->n, n_up + n_down, err);
-    double *level = down ? malloc((size_t)up->n_sinks * sizeof *level) : NULL;
-    if (st != PS_OK || (down && !level)) {
-        free(level);
-        if (st == PS_OK) ps_supernodes_free(out);
-        return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
-    }
-    if (down) highest_saddles(saddles, count, up, level, NULL);
-    for (int s = 0; s < n_down; s++) out->is_minimum[n_up + s] = 1;
-    for (size_t p = 0; p < g->n; p++) {
-        int a = up->sink_of[p];
-        int s = down && f[p] < level[a] ? n_up + down->sink_of[p] : a;
-        if (part_of && part_of[p] >= 0) s = up->n_sinks + part_of[p];
-        out->supernode_of[p] = s;
-        out->sizes[s]++;
-    }
-    free(level);
-    if (min_size) absorb_tiny(g, out, min_size);
-    if (finish(out, f, g->n) == 0) return PS_OK;
-    ps_supernodes_free(out);
-    return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
-}
-
 /* The two flows of build_once, one per item of a parallel loop: the
  * ascent flow with its shallow tops merged and, with minima, its border
  * saddles (item 0) and, with minima, the descent flow (item 1).  Each item
@@ -264,6 +233,39 @@ static ps_status both_flows(flows_task *t, ps_error *err) {
     return PS_OK;
 }
 
+/* Supernodes from t's flows: the basins (above their highest saddles,
+ * with use_minima), then the merge tree's parts, then the minima.
+ * part_of #P: -1 or a part in [0, n_parts); supernodes under min_size
+ * points are absorbed by a neighbour (0: none). */
+static ps_status combine(const flows_task *t, const int *part_of, int n_parts, size_t min_size,
+                         ps_supernodes *out, ps_error *err) {
+    const ps_graph *g = t->in->graph;
+    const double *f = t->in->f;
+    const ps_flow *up = &t->flow[0], *down = t->in->use_minima ? &t->flow[1] : NULL;
+    int n_up = up->n_sinks + n_parts, n_down = down ? down->n_sinks : 0;
+    ps_status st = allocate(out, g->n, n_up + n_down, err);
+    double *level = down ? malloc((size_t)up->n_sinks * sizeof *level) : NULL;
+    if (st != PS_OK || (down && !level)) {
+        free(level);
+        if (st == PS_OK) ps_supernodes_free(out);
+        return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+    }
+    if (down) highest_saddles(t->saddles, t->n_saddles, up, level, NULL);
+    for (int s = 0; s < n_down; s++) out->is_minimum[n_up + s] = 1;
+    for (size_t p = 0; p < g->n; p++) {
+        int a = up->sink_of[p];
+        int s = down && f[p] < level[a] ? n_up + down->sink_of[p] : a;
+        if (part_of && part_of[p] >= 0) s = up->n_sinks + part_of[p];
+        out->supernode_of[p] = s;
+        out->sizes[s]++;
+    }
+    free(level);
+    if (min_size) absorb_tiny(g, out, min_size);
+    if (finish(out, f, g->n) == 0) return PS_OK;
+    ps_supernodes_free(out);
+    return ps_fail(err, PS_ERR_NOMEM, "supernodes: out of memory");
+}
+
 /* With minima, the merge tree's parts of t's ascent flow: part_of #P out,
  * or NULL when its allocation failed (PS_ERR_NOMEM); *n_parts out. */
 static ps_status merge_tree_parts(const flows_task *t, int *part_of, int *n_parts,
@@ -292,8 +294,7 @@ static ps_status build_once(const ps_supernodes_input *in, double persistence,
     report(span, PARTS_DONE);
     size_t min_size = persistence > 0 ? PS_PERSISTENCE_MIN_BASIN : 0;
     if (st == PS_OK)
-        st = combine(g, in->f, up, use_minima ? down : NULL, t.saddles, t.n_saddles, part_of,
-                     n_parts, min_size, out, err);
+        st = combine(&t, part_of, n_parts, min_size, out, err);
     report(span, COMBINED);
     free(part_of);
     free(t.saddles);
