@@ -1,6 +1,7 @@
 /*
  * pipeline.h: PRIVATE to the top of core/ (segment.c, pipeline.c,
- * ensemble.c), not part of the public API: one run of the method over a
+ * ensemble.c, and segment.h and ensemble.h, which take a pipeline), not
+ * part of the public API: one run of the method over a
  * point set, what each step leaves for the next, the steps themselves
  * (pipeline.c; which run, in what order, is segment.c's table), and the
  * result's parts taken from it.

@@ -4,7 +4,9 @@
 #     refine, then the driver at the top of core/ (pointseg.h, the public
 #     header, any folder may include);
 #   - a header marked "PRIVATE to" is included only from its own folder
-#     (and that folder's unit tests, tests/unit/FOLDER/, which are white-box);
+#     (and that folder's unit tests, tests/unit/FOLDER/, which are white-box),
+#     and within core/ only by the files its opening comment names (and its
+#     own .c);
 #   - no header includes itself through others (no include cycles);
 #   - api/, server/ and clients/ include only core's public header.
 # Prints PASS/FAIL lines (tests/run.sh counts them).
@@ -41,6 +43,21 @@ for h in core:
         if os.path.relpath(h, 'core') in inc.findall(open(p).read()):
             bad.append('%s includes %s, private to %s/' % (p, h, home))
 report('private_headers_stay_home', bad)
+# Within its folder too: a private header's opening comment names the
+# files it is private to, and only they (its own .c and the folder's unit
+# tests aside) include it.
+bad = []
+for h in core:
+    text = open(h).read()
+    if not h.endswith('.h') or 'PRIVATE to' not in text[:600]: continue
+    opening = text[:text.index('*/')].split('\n *\n')[0]
+    named = set(re.findall(r'\b([a-z_]+\.[ch])\b', opening)) - {os.path.basename(h)}
+    own = os.path.basename(h)[:-2] + '.c'
+    for p in core:
+        if p == h or os.path.basename(p) in named or os.path.basename(p) == own: continue
+        if os.path.relpath(h, 'core') in includes[p]:
+            bad.append('%s includes %s, which names only %s' % (p, h, ', '.join(sorted(named))))
+report('private_headers_name_their_includers', bad)
 bad = []
 graph = {h: [resolve(n) for n in includes[h] if resolve(n)] for h in core if h.endswith('.h')}
 def walk(h, stack, seen):
