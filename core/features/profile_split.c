@@ -129,7 +129,9 @@ static int split_one(profile_work *w, int s) {
     double range = w->f[top] - low;
     if (!(h > 0.0) || !(range > 0.0)) return 1;
     size_t nb = (size_t)(range / h) + 1;
-    if (nb < PS_PROFILE_MIN_BANDS + 2) return 1;
+    /* More bands than points (a few points strung far apart): no profile to
+     * read, and the bands' medians work in the per-point scratch. */
+    if (nb < PS_PROFILE_MIN_BANDS + 2 || nb > count) return 1;
     if (!band_perimeters(w, list, count, w->f[top], h, nb)) return 0;
     for (size_t j = 1, tries = 0; j + PS_PROFILE_PERSIST < nb && tries < PS_PROFILE_TRIES; j++) {
         size_t above = w->above[j];

@@ -39,8 +39,9 @@
  * point's mean kNN edge length (Euclidean; ps_crease_weights gives them
  * from its pass over the edges).  sn is replaced by its refinement (ps_supernodes_relabel): every new
  * supernode lies inside one old one and keeps its is_minimum; minima's
- * supernodes are not cut.  O(P + E + S), plus O(B^2) per supernode of B
- * bands (B is at most its f range over the band width). */
+ * supernodes are not cut, nor is a supernode with more bands than points.
+ * O(P + E + S), plus O(B^2) per supernode of B bands (B is at most its f
+ * range over the band width, and at most its point count). */
 ps_status ps_profile_split(const ps_graph *g, const double *points, const double *f,
                            const double *spacing, ps_supernodes *sn, ps_error *err);
 

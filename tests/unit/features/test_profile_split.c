@@ -3,7 +3,8 @@
  * standing out of the edge of a wide plate, one maximum's supernode with f
  * rising along the rod (a glasses arm and its lens), is cut where the rod
  * meets the plate; a rod alone, whose width does not change, stays whole;
- * a minimum's supernode is never cut; a scaled copy is cut the same way.
+ * a minimum's supernode is never cut; a scaled copy is cut the same way;
+ * a supernode with more bands than points is left alone.
  */
 #include "features/profile_split.h"
 #include "testlib.h"
@@ -180,5 +181,22 @@ static void test_minimum_not_cut(void) {
     free(c.points);
 }
 
+/* A supernode with more bands than points (a tight cluster and one point
+ * far off, found by the fuzzer as a 39-point request with k = 2): no
+ * profile to read, so it stays whole, and nothing is written past the
+ * per-point scratch (ASan build). */
+static void test_more_bands_than_points(void) {
+    cloud c;
+    memset(&c, 0, sizeof c);
+    c.seed = 5;
+    for (int i = 0; i < 39; i++) REQUIRE(add(&c, 0.001 * i, 0.001 * (i % 3), 0.0));
+    REQUIRE(add(&c, 100.0, 0.0, 0.0));
+    ps_supernodes sn = {0};
+    REQUIRE(split(&c, 1.0, 0, &sn) == PS_OK);
+    CHECK_MSG(sn.m == 1, "%d supernodes", sn.m);
+    ps_supernodes_free(&sn);
+    free(c.points);
+}
+
 PS_TEST_MAIN(TEST(test_rod_cut_off_its_plate), TEST(test_even_rod_stays_whole),
-             TEST(test_minimum_not_cut))
+             TEST(test_minimum_not_cut), TEST(test_more_bands_than_points))
