@@ -1,6 +1,7 @@
 #!/bin/sh
 # run.sh: builds the fuzz targets (the decoders, the daemon's multipart
-# path, whole requests to the daemon, and the --redis URL parser) with
+# path, whole requests to the daemon, the --redis URL parser, and the core
+# on small point sets of its own) with
 # libFuzzer + ASan + UBSan and runs each on a copy of its seed
 # corpus.
 #   tests/fuzz/run.sh BUILD [short|long]   20 s per target (short; FUZZ_SECONDS
@@ -13,7 +14,7 @@
 set -u
 BUILD=${1:-build}
 MODE=${2:-short}
-TARGETS="${FUZZ_TARGETS:-ply json text multipart head redis_url}"
+TARGETS="${FUZZ_TARGETS:-ply json text multipart head redis_url segment}"
 case "$MODE" in
 short) SECONDS_EACH=${FUZZ_SECONDS:-20} ;;
 long) SECONDS_EACH=600 ;;
@@ -32,6 +33,9 @@ DECODER_LIBS="$(pkg-config --cflags --libs libcjson) -lm"
 # multipart, head: the daemon's HTTP layer in-process, so everything but its main.
 DAEMON_SOURCES="$(ls core/*.c core/*/*.c api/*.c server/*.c | grep -v '^server/main\.c$') tests/fuzz/daemon_harness.c"
 DAEMON_LIBS="-lflann $(pkg-config --cflags --libs lapacke libmicrohttpd libcjson zlib hiredis) -lopenblas -lm -pthread"
+# segment: the core alone.
+CORE_SOURCES="$(ls core/*.c core/*/*.c)"
+CORE_LIBS="-lflann $(pkg-config --cflags --libs lapacke) -lopenblas -lm -pthread"
 # redis_url: the URL parser and the connection code it lives with.
 REDIS_SOURCES="server/redis_link.c"
 REDIS_LIBS="$(pkg-config --cflags --libs hiredis) -pthread"
@@ -46,6 +50,7 @@ for t in $TARGETS; do
     case "$t" in
     multipart | head) sources=$DAEMON_SOURCES libs=$DAEMON_LIBS ;;
     redis_url) sources=$REDIS_SOURCES libs=$REDIS_LIBS ;;
+    segment) sources=$CORE_SOURCES libs=$CORE_LIBS ;;
     *) sources=$DECODER_SOURCES libs=$DECODER_LIBS ;;
     esac
     # shellcheck disable=SC2086
