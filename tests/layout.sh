@@ -33,9 +33,9 @@ for p, names in includes.items():
         if q and order.index(folder(q)) > order.index(folder(p)) and n != 'pointseg.h':
             bad.append('%s includes %s (a later phase)' % (p, n))
 report('folders_depend_one_way', bad)
+private = [h for h in core if h.endswith('.h') and 'PRIVATE to' in open(h).read(600)]
 bad = []
-for h in core:
-    if not h.endswith('.h') or 'PRIVATE to' not in open(h).read(600): continue
+for h in private:
     home = os.path.dirname(h)
     tests = 'tests/unit' + home[len('core'):]
     for p in glob.glob('**/*.[ch]', recursive=True):
@@ -47,9 +47,8 @@ report('private_headers_stay_home', bad)
 # files it is private to, and only they (its own .c and the folder's unit
 # tests aside) include it.
 bad = []
-for h in core:
+for h in private:
     text = open(h).read()
-    if not h.endswith('.h') or 'PRIVATE to' not in text[:600]: continue
     opening = text[:text.index('*/')].split('\n *\n')[0]
     named = set(re.findall(r'\b([a-z_]+\.[ch])\b', opening)) - {os.path.basename(h)}
     own = os.path.basename(h)[:-2] + '.c'

@@ -30,12 +30,13 @@ fi
 # The decoder targets: only the decoders and what they need; no core, no daemon.
 DECODER_SOURCES="api/api_error.c api/pointset.c $(ls api/decode*.c)"
 DECODER_LIBS="$(pkg-config --cflags --libs libcjson) -lm"
-# multipart, head: the daemon's HTTP layer in-process, so everything but its main.
-DAEMON_SOURCES="$(ls core/*.c core/*/*.c api/*.c server/*.c | grep -v '^server/main\.c$') tests/fuzz/daemon_harness.c"
-DAEMON_LIBS="-lflann $(pkg-config --cflags --libs lapacke libmicrohttpd libcjson zlib hiredis) -lopenblas -lm -pthread"
 # segment: the core alone.
 CORE_SOURCES="$(ls core/*.c core/*/*.c)"
 CORE_LIBS="-lflann $(pkg-config --cflags --libs lapacke) -lopenblas -lm -pthread"
+# multipart, head: the daemon's HTTP layer in-process, so the core and
+# everything of the daemon but its main.
+DAEMON_SOURCES="$CORE_SOURCES $(ls api/*.c server/*.c | grep -v '^server/main\.c$') tests/fuzz/daemon_harness.c"
+DAEMON_LIBS="$CORE_LIBS $(pkg-config --cflags --libs libmicrohttpd libcjson zlib hiredis)"
 # redis_url: the URL parser and the connection code it lives with.
 REDIS_SOURCES="server/redis_link.c"
 REDIS_LIBS="$(pkg-config --cflags --libs hiredis) -pthread"
