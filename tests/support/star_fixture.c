@@ -1,5 +1,6 @@
 /*
- * star_fixture.c: the star test fixture of star_fixture.h.
+ * star_fixture.c: the star test fixture of star_fixture.h and a merge's
+ * run on it.
  */
 #include "star_fixture.h"
 
@@ -39,4 +40,23 @@ void ps_star_free(ps_star *s) {
     free(s->part);
     ps_graph_free(&s->graph);
     memset(s, 0, sizeof *s);
+}
+
+ps_status ps_star_merge(const ps_star *s, ps_merge_fn *merge, const ps_star_merge_input *in,
+                        int *group, int *leaf, ps_merge **merges, int *n_merges) {
+    double *zeros = in->f ? NULL : calloc(s->n, sizeof *zeros);
+    if (!in->f && !zeros) return PS_ERR_NOMEM;
+    ps_merge_input m = {.graph = &s->graph,
+                        .points = in->points ? in->points : s->points,
+                        .normals = in->normals ? in->normals : s->normals,
+                        .f = in->f ? in->f : zeros,
+                        .mean_angular = in->mean_angular,
+                        .n_groups = in->n_groups,
+                        .threads = 1};
+    for (int t = 0; t < in->n_groups; t++) leaf[t] = t;
+    *merges = NULL, *n_merges = 0;
+    ps_error err = {0};
+    ps_status st = merge(&m, group, leaf, merges, n_merges, &err);
+    free(zeros);
+    return st;
 }

@@ -45,12 +45,8 @@ static ps_status run_merge(const ps_star *s, const double *f, int *group, int *l
     ps_status st = ps_crease_strengths(&s->graph, s->points, s->normals, 1, &creases, NULL);
     free(creases.strength);
     if (st != PS_OK) return st;
-    ps_merge_input in = {.graph = &s->graph, .points = s->points, .normals = s->normals,
-                         .f = f, .mean_angular = creases.mean, .n_groups = N_PIECES};
-    for (int t = 0; t < N_PIECES; t++) leaf[t] = t;
-    *merges = NULL, *n_merges = 0;
-    ps_error err = {0};
-    return ps_crease_merge(&in, group, leaf, merges, n_merges, &err);
+    ps_star_merge_input in = {.f = f, .mean_angular = creases.mean, .n_groups = N_PIECES};
+    return ps_star_merge(s, ps_crease_merge, &in, group, leaf, merges, n_merges);
 }
 
 /* f = distance from the origin: feature sizes are easy to predict. */

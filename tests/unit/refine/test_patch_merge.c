@@ -40,16 +40,8 @@ static void cut_cap(const ps_star *s, int *group) {
 
 static ps_status run_merge(const ps_star *s, double mean_angular, int *group, int *leaf,
                            ps_merge **merges, int *n_merges) {
-    double *f = calloc(s->n, sizeof *f);
-    if (!f) return PS_ERR_NOMEM;
-    ps_merge_input in = {.graph = &s->graph, .normals = s->normals, .f = f,
-                         .mean_angular = mean_angular, .n_groups = N_GROUPS};
-    for (int t = 0; t < N_GROUPS; t++) leaf[t] = t;
-    *merges = NULL, *n_merges = 0;
-    ps_error err = {0};
-    ps_status st = ps_patch_merge(&in, group, leaf, merges, n_merges, &err);
-    free(f);
-    return st;
+    ps_star_merge_input in = {.mean_angular = mean_angular, .n_groups = N_GROUPS};
+    return ps_star_merge(s, ps_patch_merge, &in, group, leaf, merges, n_merges);
 }
 
 /* Whether some kNN edge joins segments a and b. */
