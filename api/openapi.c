@@ -92,12 +92,16 @@ static cJSON *request_body(void) {
     cJSON_AddBoolToObject(b, "required", 1);
     cJSON_AddStringToObject(b, "description",
                             "the points: PLY (ascii or binary), OFF, OBJ or XYZ recognized from the "
-                            "content (application/ply: PLY only), a JSON document, or a form "
+                            "content (application/ply: PLY only; model/obj and chemical/x-xyz, the "
+                            "types guessed from .obj and .xyz names, are read by content too), "
+                            "a JSON document, or a form "
                             "with a `file` part; any of them may be sent with Content-Encoding: "
                             "gzip.  Bytes that are not what the type says are a 400");
     cJSON_AddItemToObject(c, "application/ply", media(binary_schema()));
     cJSON_AddItemToObject(c, "application/octet-stream", media(binary_schema()));
     cJSON_AddItemToObject(c, "text/plain", media(binary_schema()));
+    cJSON_AddItemToObject(c, "model/obj", media(binary_schema()));
+    cJSON_AddItemToObject(c, "chemical/x-xyz", media(binary_schema()));
     cJSON_AddItemToObject(c, "application/json", media(ref("#/components/schemas/PointsRequest")));
     cJSON *form = cJSON_CreateObject(), *props = params_object_schema();
     cJSON_AddItemToObject(cJSON_GetObjectItem(props, "properties"), "file", binary_schema());

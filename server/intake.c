@@ -18,9 +18,16 @@ ps_media ps_intake_media(const char *ct) {
     if (media_is(ct, "application/json")) return PS_MEDIA_JSON;
     if (media_is(ct, "multipart/form-data")) return PS_MEDIA_MULTIPART;
     if (media_is(ct, "application/ply")) return PS_MEDIA_PLY;
-    if (media_is(ct, "application/octet-stream") || media_is(ct, "text/plain"))
+    if (media_is(ct, "application/octet-stream") || media_is(ct, "text/plain") ||
+        media_is(ct, "model/obj") || media_is(ct, "chemical/x-xyz"))
         return PS_MEDIA_POINTS;
     return PS_MEDIA_UNSUPPORTED;
+}
+
+int ps_intake_is_form(const char *ct) {
+    if (!ct) return 0;
+    while (*ct == ' ') ct++;
+    return media_is(ct, "application/x-www-form-urlencoded");
 }
 
 int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,

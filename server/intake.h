@@ -13,7 +13,10 @@
 #include "pointset.h"
 
 typedef enum ps_media {
-    PS_MEDIA_POINTS = 0,  /* application/octet-stream, text/plain: any format, by content */
+    PS_MEDIA_POINTS = 0,  /* application/octet-stream, text/plain, and the types a client
+                             guesses from a file's name (model/obj for .obj, chemical/x-xyz
+                             for .xyz: Python's mimetypes, /etc/mime.types): any format,
+                             by content */
     PS_MEDIA_PLY,         /* application/ply: a PLY file */
     PS_MEDIA_JSON,        /* application/json */
     PS_MEDIA_MULTIPART,   /* multipart/form-data */
@@ -22,6 +25,11 @@ typedef enum ps_media {
 
 /* From a Content-Type header value (NULL = octet-stream). */
 ps_media ps_intake_media(const char *content_type);
+
+/* 1 when content_type is application/x-www-form-urlencoded: what curl
+ * sends with --data-binary unless told otherwise, so a 415 says how to fix
+ * it. */
+int ps_intake_is_form(const char *content_type);
 
 typedef struct ps_text_param {
     const char *name;

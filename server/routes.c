@@ -220,8 +220,11 @@ static enum MHD_Result begin_upload(ps_request *r) {
     r->media = ps_intake_media(ct);
     if (r->media == PS_MEDIA_UNSUPPORTED)
         return ps_respond_problem(r, 415, NULL, "Content-Type %s is not supported (use application/ply, "
-                                  "application/octet-stream, text/plain, application/json or "
-                                  "multipart/form-data)", ct);
+                                  "application/octet-stream, text/plain, model/obj, chemical/x-xyz, "
+                                  "application/json or multipart/form-data)%s", ct,
+                                  ps_intake_is_form(ct) ? "; curl sends this type with --data-binary "
+                                  "unless told otherwise: add -H 'Content-Type: application/octet-stream'"
+                                  : "");
     int gzip = ce && !strcasecmp(ce, "gzip");
     if (ce && !gzip && strcasecmp(ce, "identity"))
         return ps_respond_problem(r, 415, NULL, "Content-Encoding %s is not supported (use gzip)", ce);

@@ -112,6 +112,17 @@ static char *binary_ply(const sample *s, size_t *len) {
     return out;
 }
 
+/* The sample as an OBJ file: a "v x y z" line per point. */
+static char *obj_body(const sample *s, size_t *len) {
+    char *text = malloc(s->n * 3 * 26 + 1);
+    size_t at = 0;
+    for (size_t i = 0; text && i < s->n; i++)
+        at += (size_t)sprintf(text + at, "v %.17g %.17g %.17g\n", s->pts[3 * i], s->pts[3 * i + 1],
+                              s->pts[3 * i + 2]);
+    *len = at;
+    return text;
+}
+
 #define BOUNDARY "pointsegTestBoundary7"
 
 static char *multipart_body(const char *file, size_t file_len, size_t *len) {
@@ -182,14 +193,17 @@ static void test_content_types_give_library_labels(void) {
     ps_daemon d;
     REQUIRE(need_small());
     REQUIRE_STARTS(d, NULL);
-    size_t json_len, ply_len, mp_len, gz_len;
+    size_t json_len, ply_len, obj_len, mp_len, gz_len;
     char *json = json_body(&small, &json_len), *ply = binary_ply(&small, &ply_len);
+    char *obj = obj_body(&small, &obj_len);
     char *mp = multipart_body(small.xyz, small.xyz_len, &mp_len);
     char *gz = ps_test_gzip(mp, mp_len, &gz_len);
     const ps_client_body bodies[] = {
         {small.xyz, small.xyz_len, "application/octet-stream", NULL},
         {small.xyz, small.xyz_len, "text/plain", NULL},
         {ply, ply_len, "application/ply", NULL},
+        {obj, obj_len, "model/obj", NULL},
+        {small.xyz, small.xyz_len, "chemical/x-xyz", NULL},
         {json, json_len, "application/json", NULL},
         {mp, mp_len, "multipart/form-data; boundary=" BOUNDARY, NULL},
         {gz, gz_len, "multipart/form-data; boundary=" BOUNDARY, "gzip"}};
@@ -200,7 +214,7 @@ static void test_content_types_give_library_labels(void) {
                   "body %zu (%s): status %ld %.200s", i, bodies[i].content_type, r.status, r.body);
         ps_client_response_free(&r);
     }
-    free(json), free(ply), free(mp), free(gz);
+    free(json), free(ply), free(obj), free(mp), free(gz);
     CHECK_STOPS(d, 10);
 }
 
@@ -382,6 +396,7 @@ static void test_bad_inputs_get_problems(void) {
         {"lying count", lying_ply, "application/ply", NULL, NULL, 400},
         {"nan", "0 0 0\n1 0 0\nnan 1 0\n0 1 1\n", "text/plain", NULL, NULL, 422},
         {"wrong content type", "0 0 0\n", "image/png", NULL, NULL, 415},
+        {"form type", "0 0 0\n", "application/x-www-form-urlencoded", NULL, NULL, 415},
         {"unknown parameter", "0 0 0\n1 0 0\n0 1 0\n", NULL, NULL, "colour=red", 400},
         {"out of range", "0 0 0\n1 0 0\n0 1 0\n", NULL, NULL, "k=100000", 422},
         {"bad enum", "0 0 0\n1 0 0\n0 1 0\n", NULL, NULL, "centrality=psychic", 422},
@@ -412,6 +427,25 @@ static void test_bad_inputs_get_problems(void) {
                   r.status, cases[i].status, r.content_type, r.body ? r.body : "");
         ps_client_response_free(&r);
         CHECK_MSG(ps_daemon_healthy(&d), "unhealthy after %s", cases[i].what);
+    }
+    CHECK_STOPS(d, 10);
+}
+
+/* curl's --data-binary without -H sends application/x-www-form-urlencoded:
+ * the 415 says which header to add; other unsupported types get no such
+ * advice. */
+static void test_form_type_names_the_fix(void) {
+    ps_daemon d;
+    REQUIRE_STARTS(d, NULL);
+    const char *types[] = {"application/x-www-form-urlencoded", "image/png"};
+    for (int i = 0; i < 2; i++) {
+        ps_client_body body = {"0 0 0\n", 6, types[i], NULL};
+        ps_client_response r;
+        ps_client_segment(&d.client, &body, NULL, &r);
+        int advised = r.body && strstr(r.body, "-H 'Content-Type: application/octet-stream'");
+        CHECK_MSG(is_problem(&r, 415) && advised == (i == 0), "%s: %ld %.300s", types[i], r.status,
+                  r.body ? r.body : "");
+        ps_client_response_free(&r);
     }
     CHECK_STOPS(d, 10);
 }
@@ -764,7 +798,7 @@ int main(int argc, char **argv) {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes),
         TEST(test_idle_daemon_job_gets_every_core), TEST(test_bad_inputs_get_problems),
-        TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_ply_header_warning_in_document),
+        TEST(test_form_type_names_the_fix), TEST(test_bad_bodies_of_taken_types_are_400), TEST(test_ply_header_warning_in_document),
         TEST(test_size_limits), TEST(test_memory_limit), TEST(test_token_and_static_files),
         TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_job_progress_moves_within_phases),
