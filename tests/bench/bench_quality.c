@@ -21,7 +21,8 @@
  * below 0.99 or another segment count).  --noise and --strays make the
  * input a noisy or outlier-ridden scan; --seed N draws the random inputs
  * (surface samples, noise, strays) anew, --seeds K runs K draws of each
- * mode that has any and prints their mean and range.  See
+ * mode that has any and prints their mean and range, how far two draws'
+ * labels disagree and what the medoid draw scores.  See
  * tests/bench/README.md.
  */
 #include <errno.h>
@@ -35,6 +36,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "draw_agreement.h"
 #include "mesh_sample.h"
 #include "params_table.h"
 #include "pointseg.h"
@@ -95,6 +97,8 @@ typedef struct model_row {
     int moved_segments;
     int compared;              /* --against: the earlier labels were found and scored */
     double earlier_error;      /* --against: their 1 - RI */
+    int *kept;                 /* --seeds: the first run's labels (#points), for the draws'
+                                  agreement; the caller takes them */
 } model_row;
 
 typedef struct pool {
@@ -444,6 +448,7 @@ static int score_runs(const quality_options *o, const input_mode *mode, const ps
         if (rc == 0)
             row->error[run] =
                 ps_psb_score_parts(mesh, labels, humans, &row->under[run], &row->over[run]);
+        if (rc == 0 && o->seeds > 1 && run == 0) row->kept = labels, labels = NULL;
         free(labels);
         if (rc != 0) return -1;
     }
@@ -796,6 +801,78 @@ static void print_draws(const quality_options *o, const split_means *s) {
     }
 }
 
+/* The first run's labels and 1 - RI of every mode (row i of mode m at
+ * m * n_rows + i), kept with --seeds for the draws' agreement. */
+typedef struct kept_draws {
+    int **labels;    /* NULL where the model failed */
+    double *error;
+    size_t n_rows;
+} kept_draws;
+
+/* Takes mode m's labels and errors off the rows. */
+static void keep_draws(kept_draws *k, int m, model_row *rows) {
+    for (size_t i = 0; i < k->n_rows; i++) {
+        size_t at = (size_t)m * k->n_rows + i;
+        k->labels[at] = rows[i].failed ? NULL : rows[i].kept;
+        if (rows[i].failed) free(rows[i].kept);
+        k->error[at] = rows[i].error[0];
+        rows[i].kept = NULL;
+    }
+}
+
+/* The draws of base mode m for row i, in draws[]; their count, or 0 when
+ * one is missing. */
+static int row_draws(const quality_options *o, const kept_draws *k, int m, size_t i,
+                     const int *draws[], int at_mode[]) {
+    int count = 0;
+    for (int d = 0; d < o->n_modes; d++) {
+        if (o->modes[d].first != m) continue;
+        const int *labels = k->labels[(size_t)d * k->n_rows + i];
+        if (!labels) return 0;
+        at_mode[count] = d;
+        draws[count++] = labels;
+    }
+    return count;
+}
+
+/* With --seeds: per mode and split, the mean over the models of the
+ * draws' disagreement (1 - RI between two draws' labels: no people's
+ * labels needed), of the medoid draw's 1 - RI and of a draw's. */
+static void print_agreement(const quality_options *o, const model_row *rows, const kept_draws *k) {
+    if (o->seeds < 2) return;
+    printf("\n== agreement of the %d draws (%s): 1 - RI between two draws' labels; 1 - RI of the "
+           "medoid draw (nearest the others) and of a draw ==\n", o->seeds, run_name(o, 0));
+    printf("%-16s %-38s %-38s\n", "input", "development", "validation");
+    for (int m = 0; m < o->n_modes; m++) {
+        if (o->modes[m].first != m) continue;
+        double sum[2][3] = {{0}}; /* [validation][disagreement, medoid, draw] */
+        int models[2] = {0, 0}, draws = 0;
+        for (size_t i = 0; i < k->n_rows; i++) {
+            const int *labels[MAX_SEEDS];
+            int at_mode[MAX_SEEDS];
+            int count = row_draws(o, k, m, i, labels, at_mode);
+            if (count < 2) continue;
+            draws = count;
+            ps_draw_agreement a = ps_draws_agree(labels, count, rows[i].points);
+            int v = rows[i].validation;
+            double mean = 0;
+            for (int d = 0; d < count; d++) mean += k->error[(size_t)at_mode[d] * k->n_rows + i];
+            sum[v][0] += a.disagreement;
+            sum[v][1] += k->error[(size_t)at_mode[a.medoid] * k->n_rows + i];
+            sum[v][2] += mean / count;
+            models[v]++;
+        }
+        if (draws < 2) continue;
+        printf("%-16s", o->modes[m].name);
+        for (int v = 0; v < 2; v++)
+            if (models[v])
+                printf(" %.4f; medoid %.4f, draw %.4f (%3d) ", sum[v][0] / models[v],
+                       sum[v][1] / models[v], sum[v][2] / models[v], models[v]);
+            else printf(" %-38s", "-");
+        printf("\n");
+    }
+}
+
 /* The folders to read: the given ones, else psb-dev and psb-train. */
 static int resolve_dirs(const quality_options *o, char dirs[][4096]) {
     int n = 0;
@@ -846,6 +923,12 @@ int main(int argc, char **argv) {
     print_params(&o, dirs, n_dirs);
     split_means means[MAX_MODES];
     int failed = 0, unstable = 0;
+    kept_draws kept = {.n_rows = n};
+    if (o.seeds > 1) {
+        kept.labels = calloc((size_t)o.n_modes * n + 1, sizeof *kept.labels);
+        kept.error = calloc((size_t)o.n_modes * n + 1, sizeof *kept.error);
+        if (!kept.labels || !kept.error) return 2;
+    }
     for (int m = 0; m < o.n_modes; m++) {
         double start = now_ms();
         for (size_t i = 0; i < n; i++)
@@ -857,13 +940,17 @@ int main(int argc, char **argv) {
         print_categories(&o, rows, n);
         means[m] = split_summary(&o, rows, n);
         paired_summary(rows, n, means[m].change);
+        if (o.seeds > 1) keep_draws(&kept, m, rows);
         failed += means[m].failed;
         if (o.stability) unstable += print_stability(rows, n);
     }
     print_totals(&o, o.modes, means, o.n_modes);
     print_draws(&o, means);
+    print_agreement(&o, rows, &kept);
     print_changes(&o, means);
     printf("models failed: %d\n", failed);
+    for (size_t i = 0; kept.labels && i < (size_t)o.n_modes * n; i++) free(kept.labels[i]);
+    free(kept.labels), free(kept.error);
     free(rows);
     return failed || unstable ? 1 : 0;
 }

@@ -6,7 +6,8 @@
 # every vertex in one segment (--baseline none) the default must be better
 # on both models; --dev-only must print "-" for the absent validation
 # split, never nan; --out makes missing parent folders; people among
-# themselves are printed; the uneven:N mode runs.  SKIP (loud) without ../shared/data/psb-dev.  Prints
+# themselves are printed; the uneven:N mode runs; --seeds 2 prints the
+# draws' agreement.  SKIP (loud) without ../shared/data/psb-dev.  Prints
 # "PASS bench_quality:NAME" / "FAIL ..."; exits 1 on any failure.
 SUITE=bench_quality
 . "$(dirname "$0")/lib.sh"
@@ -71,6 +72,15 @@ if bq --baseline none --out "$tmp/a/b/c" >/dev/null 2>&1 && [ -s "$tmp/a/b/c/1.v
     pass out_makes_parents
 else
     fail out_makes_parents "no $tmp/a/b/c/1.vertices.lab"
+fi
+
+# --seeds 2: the draws' agreement, a disagreement and two scores in [0, 1].
+if bq --input surface:5000 --seeds 2 >"$tmp/seeds.txt" 2>&1 &&
+    sed -n '/^== agreement of the 2 draws/,$p' "$tmp/seeds.txt" |
+    grep -q '^surface:5000  *0\.[0-9]\{4\}; medoid 0\.[0-9]\{4\}, draw 0\.[0-9]\{4\} (  2)  *-'; then
+    pass seeds_agreement
+else
+    fail seeds_agreement "$(sed -n '/^== agreement/,$p' "$tmp/seeds.txt" | head -n 3)"
 fi
 
 if grep -q '^people among themselves .*: development 0\.[0-9]\{4\} (2)$' "$tmp/first.txt"; then
