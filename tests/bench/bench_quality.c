@@ -864,11 +864,14 @@ static void print_agreement(const quality_options *o, const model_row *rows, con
         }
         if (draws < 2) continue;
         printf("%-16s", o->modes[m].name);
-        for (int v = 0; v < 2; v++)
+        for (int v = 0; v < 2; v++) {
+            char medoid[16] = "-     "; /* two draws are equally near each other */
+            if (draws > 2) snprintf(medoid, sizeof medoid, "%.4f", sum[v][1] / models[v]);
             if (models[v])
-                printf(" %.4f; medoid %.4f, draw %.4f (%3d) ", sum[v][0] / models[v],
-                       sum[v][1] / models[v], sum[v][2] / models[v], models[v]);
+                printf(" %.4f; medoid %s, draw %.4f (%3d) ", sum[v][0] / models[v], medoid,
+                       sum[v][2] / models[v], models[v]);
             else printf(" %-38s", "-");
+        }
         printf("\n");
     }
 }
