@@ -207,6 +207,11 @@ static int method_allowed(const ps_request *r) {
     }
 }
 
+/* What a 415 adds for application/x-www-form-urlencoded. */
+#define CURL_FORM_ADVICE                                                                  \
+    "; curl sends this type with --data-binary unless told otherwise: add -H "            \
+    "'Content-Type: application/octet-stream'"
+
 /* Checks the headers of an upload and prepares its body. */
 static enum MHD_Result begin_upload(ps_request *r) {
     const ps_config *cfg = r->srv->cfg;
@@ -222,9 +227,7 @@ static enum MHD_Result begin_upload(ps_request *r) {
         return ps_respond_problem(r, 415, NULL, "Content-Type %s is not supported (use application/ply, "
                                   "application/octet-stream, text/plain, model/obj, chemical/x-xyz, "
                                   "application/json or multipart/form-data)%s", ct,
-                                  ps_intake_is_form(ct) ? "; curl sends this type with --data-binary "
-                                  "unless told otherwise: add -H 'Content-Type: application/octet-stream'"
-                                  : "");
+                                  ps_intake_is_form(ct) ? CURL_FORM_ADVICE : "");
     int gzip = ce && !strcasecmp(ce, "gzip");
     if (ce && !gzip && strcasecmp(ce, "identity"))
         return ps_respond_problem(r, 415, NULL, "Content-Encoding %s is not supported (use gzip)", ce);
