@@ -7,14 +7,15 @@
 #include <string.h>
 #include <strings.h>
 
+/* Whether header value ct (leading spaces skipped) names media type name. */
 static int media_is(const char *ct, const char *name) {
+    while (*ct == ' ') ct++;
     size_t n = strlen(name);
     return !strncasecmp(ct, name, n) && (ct[n] == 0 || ct[n] == ';' || ct[n] == ' ');
 }
 
 ps_media ps_intake_media(const char *ct) {
     if (!ct || !*ct) return PS_MEDIA_POINTS;
-    while (*ct == ' ') ct++;
     if (media_is(ct, "application/json")) return PS_MEDIA_JSON;
     if (media_is(ct, "multipart/form-data")) return PS_MEDIA_MULTIPART;
     if (media_is(ct, "application/ply")) return PS_MEDIA_PLY;
@@ -25,9 +26,7 @@ ps_media ps_intake_media(const char *ct) {
 }
 
 int ps_intake_is_form(const char *ct) {
-    if (!ct) return 0;
-    while (*ct == ' ') ct++;
-    return media_is(ct, "application/x-www-form-urlencoded");
+    return ct && media_is(ct, "application/x-www-form-urlencoded");
 }
 
 int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,
