@@ -50,8 +50,9 @@ static const ps_param_spec table[P_COUNT] = {
     [P_CENTRALITY] = {"centrality", PS_PT_ENUM, "auto", 0, 0, centrality_choices,
                       "exact (Dijkstra from every point), approx (sampled), or auto by size"},
     [P_SAMPLES] = {"samples", PS_PT_INT, "0", 0, 100000, NULL,
-                   "approx centrality sample count; 0 = ceil(sqrt(n)), at most 512; "
-                   "shared by the draws of an input split in draws (method auto, 120,000 points or more)"},
+                   "approx centrality sample count; 0 = ceil(sqrt(n)) of the points segmented, "
+                   "at most 512; shared by the draws of an input split in draws "
+                   "(method auto, over 26,667 points)"},
     [P_PERSISTENCE] = {"persistence", PS_PT_DOUBLE, "0.1", 0, 1, NULL,
                        "merge maxima less prominent than this fraction of f's range"},
     [P_NCUT_THRESHOLD] = {"ncut_threshold", PS_PT_DOUBLE, "0", 0, 2, NULL,

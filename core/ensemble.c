@@ -45,19 +45,25 @@ typedef struct draw {
 typedef struct ensemble {
     const ps_pipeline *whole;
     int count;
+    size_t size;        /* points a draw takes (ps_ensemble_draw_points) */
     uint32_t *key;      /* #P each point's key (ps_ensemble_keys) */
-    uint8_t *draw_of;   /* #P the draw of each point of the whole input */
+    uint8_t *draw_of;   /* #P the draw of each point of the whole input, or
+                           PS_ENSEMBLE_NONE */
     uint32_t *local_of; /* #P its index within its draw */
     draw d[PS_ENSEMBLE_MAX_DRAWS];
     double last_progress[PS_PHASE_COUNT];
 } ensemble;
 
 int ps_ensemble_draws(const ps_params *p, size_t n) {
-    if (p->method != PS_METHOD_AUTO) return 1;
+    if (p->method != PS_METHOD_AUTO || n <= PS_DENSITY_REFERENCE_POINTS) return 0;
     size_t fit = n / PS_DENSITY_REFERENCE_POINTS;
     int draws = fit < PS_ENSEMBLE_MAX_DRAWS ? (int)fit : PS_ENSEMBLE_MAX_DRAWS;
-    if (draws % 2 == 0) draws--;
-    return draws >= 3 ? draws : 1;
+    return draws % 2 ? draws : draws - 1;
+}
+
+size_t ps_ensemble_draw_points(size_t n) {
+    size_t share = (n + PS_ENSEMBLE_MAX_DRAWS - 1) / PS_ENSEMBLE_MAX_DRAWS;
+    return share > PS_DENSITY_REFERENCE_POINTS ? share : PS_DENSITY_REFERENCE_POINTS;
 }
 
 /* splitmix64's finalizer: index i to 64 well-mixed bits. */
@@ -114,12 +120,20 @@ void ps_ensemble_keys(const double *points, size_t n, int dim, uint32_t *key) {
                                 (double)((1u << PS_ENSEMBLE_KEY_BITS) - 1));
 }
 
-void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, uint8_t *draw_of) {
-    size_t size[PS_ENSEMBLE_MAX_DRAWS] = {0};
-    for (size_t i = 0; i < n; i++) size[draw_of[i] = (uint8_t)(mix(key[i]) % (uint64_t)draws)]++;
+/* The draw of hash h: its slot of size among n, or none past the draws. */
+static uint8_t draw_of_hash(uint64_t h, size_t n, int draws, size_t size) {
+    uint64_t j = h % (uint64_t)n / (uint64_t)size;
+    return j < (uint64_t)draws ? (uint8_t)j : PS_ENSEMBLE_NONE;
+}
+
+void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, size_t size, uint8_t *draw_of) {
+    size_t got[PS_ENSEMBLE_MAX_DRAWS] = {0};
+    for (size_t i = 0; i < n; i++)
+        if ((draw_of[i] = draw_of_hash(mix(key[i]), n, draws, size)) != PS_ENSEMBLE_NONE)
+            got[draw_of[i]]++;
     for (int j = 0; j < draws; j++)
-        if (size[j] < n / (2 * (size_t)draws)) {
-            for (size_t i = 0; i < n; i++) draw_of[i] = (uint8_t)(mix(i) % (uint64_t)draws);
+        if (got[j] < size / 2) {
+            for (size_t i = 0; i < n; i++) draw_of[i] = draw_of_hash(mix(i), n, draws, size);
             return;
         }
 }
@@ -171,11 +185,11 @@ static ps_status split(ensemble *e, ps_error *err) {
         return out_of_memory(err);
     }
     ps_ensemble_keys(in->points, n, in->dim, e->key);
-    ps_ensemble_assign(e->key, n, e->count, e->draw_of);
+    ps_ensemble_assign(e->key, n, e->count, e->size, e->draw_of);
     ps_order_by_u32(e->key, n, order, e->local_of); /* local_of: its scratch */
     for (size_t t = 0; t < n; t++) {
         size_t i = order[t];
-        e->local_of[i] = (uint32_t)size[e->draw_of[i]]++;
+        if (e->draw_of[i] != PS_ENSEMBLE_NONE) e->local_of[i] = (uint32_t)size[e->draw_of[i]]++;
     }
     free(order);
     ps_status st = PS_OK;
@@ -189,6 +203,7 @@ static ps_status split(ensemble *e, ps_error *err) {
             st = out_of_memory(err);
     }
     for (size_t i = 0; st == PS_OK && i < n; i++) {
+        if (e->draw_of[i] == PS_ENSEMBLE_NONE) continue;
         draw *d = &e->d[e->draw_of[i]];
         size_t l = e->local_of[i];
         d->members[l] = (uint32_t)i;
@@ -208,7 +223,8 @@ static void report_share(void *user, ps_phase phase, double fraction) {
 }
 
 /* Draw j's pipeline: the whole's parameters, its share of the centrality
- * samples, its share of the progress, the whole's cancel flag. */
+ * samples (those of one run over all the draws' points), its share of the
+ * progress, the whole's cancel flag. */
 static void draw_setup(ensemble *e, int j) {
     const ps_pipeline *whole = e->whole;
     draw *d = &e->d[j];
@@ -217,8 +233,10 @@ static void draw_setup(ensemble *e, int j) {
     d->pl = (ps_pipeline){.in = &d->in, .n_input = d->in.n, .ctl = whole->ctl ? &d->ctl : NULL,
                           .params = whole->params, .threads = whole->threads};
     d->pl.points = (double *)d->in.points;
-    int samples = whole->params.samples ? whole->params.samples
-                                        : ps_centrality_default_samples(whole->in->n);
+    size_t drawn = e->size * (size_t)e->count;
+    int samples = whole->params.samples
+                      ? whole->params.samples
+                      : ps_centrality_default_samples(drawn < whole->in->n ? drawn : whole->in->n);
     d->pl.params.samples = (samples + e->count - 1) / e->count;
 }
 
@@ -300,6 +318,8 @@ static ps_status locate(const ensemble *e, int j, const uint32_t *ids, size_t q,
 /* The medoid draw, compared on the points ps_ensemble_compared picks. */
 static ps_status choose(const ensemble *e, int *chosen, ps_error *err) {
     size_t n = e->whole->in->n, s = 0;
+    *chosen = 0;
+    if (e->count == 1) return PS_OK;
     for (size_t i = 0; i < n; i++) s += ps_ensemble_compared(e->key[i], n, PS_ENSEMBLE_SAMPLE);
     uint32_t *ids = calloc(s ? s : 1, sizeof *ids), *unique = malloc((s ? s : 1) * sizeof *unique);
     int *labels = malloc((size_t)e->count * (s ? s : 1) * sizeof *labels);
@@ -312,7 +332,7 @@ static ps_status choose(const ensemble *e, int *chosen, ps_error *err) {
         for (size_t t = 0; st == PS_OK && t < s; t++)
             labels[(size_t)j * s + t] = pl->group_of_point[unique[t]];
     }
-    if (st == PS_OK) *chosen = s ? ps_ensemble_medoid(labels, e->count, s) : 0;
+    if (st == PS_OK && s) *chosen = ps_ensemble_medoid(labels, e->count, s);
     free(ids), free(unique), free(labels);
     return st;
 }
@@ -357,7 +377,8 @@ static ps_status result(ensemble *e, int c, ps_result **out, ps_error *err) {
 }
 
 ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, ps_result **out, ps_error *err) {
-    ensemble e = {.whole = whole, .count = draws};
+    ensemble e = {.whole = whole, .count = draws,
+                  .size = ps_ensemble_draw_points(whole->in->n)};
     ps_status st = split(&e, err);
     if (st == PS_OK) st = run(&e, whole, err);
     double start = ps_now_ms();

@@ -1,20 +1,24 @@
 /*
- * ensemble.h: method auto on an input at least three times the reference
- * sampling (PS_DENSITY_REFERENCE_POINTS, reference_density.h) segments as
- * many disjoint random draws of its points as keep the reference density
- * each (an odd number from 3 to PS_ENSEMBLE_MAX_DRAWS), and keeps the
- * draw whose partition the others agree with most: the medoid under the
- * Rand index, compared on about PS_ENSEMBLE_SAMPLE of the input's points.  Every caller's point takes
+ * ensemble.h: method auto on an input denser than the reference sampling
+ * (PS_DENSITY_REFERENCE_POINTS, reference_density.h) segments disjoint
+ * random draws of its points, each of the reference sampling (of n /
+ * PS_ENSEMBLE_MAX_DRAWS points once that is more): one draw up to three
+ * times the reference, then as many as fit (an odd number up to
+ * PS_ENSEMBLE_MAX_DRAWS), and keeps the draw whose partition the others
+ * agree with most: the medoid under the Rand index, compared on about
+ * PS_ENSEMBLE_SAMPLE of the input's points.  Every caller's point takes
  * the answers (label, supernode, centrality) of its own point in that
  * draw or of the draw's nearest; the supernodes, the hierarchy and the
  * merges are that draw's.
  *
- * Why: one sampling's partition moves with the sampling (1 - RI 0.06
- * between two samplings of the same PSB model), and a denser sampling
- * segments worse than the reference one; the medoid of draws at the
- * reference density is the typical partition (docs/method.md).  The
- * draws share one run's centrality samples (each ceil(S / draws), S the
- * whole input's count), so the ensemble costs less than one run.
+ * Why: what the crease steps call a crease depends on the spacing of the
+ * points, so the method segments at the sampling its thresholds were
+ * chosen on, whatever the scanner's; one sampling's partition moves with
+ * the sampling (1 - RI 0.05 between two samplings of the same PSB model),
+ * and the medoid of draws is the typical partition (docs/method.md).  The
+ * draws share the centrality samples one run over their points would take
+ * (each ceil(S / draws)), so the ensemble costs less than one run over
+ * the whole input.
  */
 #ifndef PS_ENSEMBLE_H
 #define PS_ENSEMBLE_H
@@ -30,11 +34,19 @@
                                    (1e-15 of the distance) crosses a step of
                                    2^-20 on one point in 10^9 */
 
-/* Draws for an input of n points (after any surface fill) under p: for
- * method auto the largest odd count from 3 to PS_ENSEMBLE_MAX_DRAWS whose
- * draws each keep the reference sampling, else 1 (the whole input in one
- * run). */
+#define PS_ENSEMBLE_NONE 0xFF /* a point in no draw */
+
+/* Draws for an input of n points (after any surface fill) under p: 0 (the
+ * whole input in one run) for method paper or n at most the reference
+ * sampling, else the largest odd count up to PS_ENSEMBLE_MAX_DRAWS whose
+ * draws each keep the reference sampling (1 below three times it). */
 int ps_ensemble_draws(const ps_params *p, size_t n);
+
+/* Points each draw of an input of n points takes: the reference sampling,
+ * or n / PS_ENSEMBLE_MAX_DRAWS (rounded up) when more, so that the draws
+ * cover the whole input from PS_ENSEMBLE_MAX_DRAWS times the reference on
+ * and leave the rest out below it. */
+size_t ps_ensemble_draw_points(size_t n);
 
 /* key out: #P each point's distance to the centroid over the largest
  * such distance, quantized to PS_ENSEMBLE_KEY_BITS bits: the same, but
@@ -42,10 +54,12 @@ int ps_ensemble_draws(const ps_params *p, size_t n);
  * #P by dim. */
 void ps_ensemble_keys(const double *points, size_t n, int dim, uint32_t *key);
 
-/* draw_of out: #P the draw of each point, a hash of its key; where keys
- * tie so much that a draw would get under half its share (a synthetic
- * sphere: every point as far from the centre), a hash of its index. */
-void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, uint8_t *draw_of);
+/* draw_of out: #P the draw of each point, or PS_ENSEMBLE_NONE, a hash of
+ * its key: each draw takes about size of the n points; where keys tie so
+ * much that a draw would get under half that (a synthetic sphere: every
+ * point as far from the centre), a hash of its index.  draws * size <= n. */
+void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, size_t size,
+                        uint8_t *draw_of);
 
 /* 1 when the point with this key is among the about s of n on which the
  * draws are compared (a second hash of the key). */

@@ -27,7 +27,8 @@
  * without the input, at k = 28 647; these constants give 397 and 754,
  * about 1.15 (1M, k = 7) to 1.45 (10M) times the measured peak with the
  * input.  The peak is the boundary cut's (refine) or the centrality's. */
-#define BASE_BYTES ((size_t)32 << 20) /* the process and small arrays */
+#define BASE_BYTES ((size_t)16 << 20) /* the process and small arrays: a run over
+                                         25,000 points peaks at 18 MB in all */
 #define BYTES_PER_POINT 230           /* labels, f, flow, normals, creases, ... */
 #define BYTES_PER_NEIGHBOUR 17        /* per point and unit of k: graph, cut capacities */
 #define BYTES_PER_COORDINATE 16       /* the distinct points and one working copy */
@@ -57,7 +58,8 @@ static size_t cut_workers_bytes(size_t n, const ps_params *params) {
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
     /* a mesh may be filled up to the reference sampling */
     if (ps_surface_fill_wanted(params, dim, n)) n = PS_DENSITY_REFERENCE_POINTS;
-    int n_draws = ps_ensemble_draws(params, n), draws = n_draws > 1;
+    int n_draws = ps_ensemble_draws(params, n), draws = n_draws > 0;
+    size_t per_pipeline = n_draws ? ps_ensemble_draw_points(n) : n;
     size_t per_point = (draws ? DRAWS_BYTES_PER_POINT : BYTES_PER_POINT) +
                        (draws ? DRAWS_BYTES_PER_NEIGHBOUR : BYTES_PER_NEIGHBOUR) * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
@@ -70,5 +72,5 @@ size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
         size_t cells = (n < PS_CELL_SCALE_POINTS ? n : PS_CELL_SCALE_POINTS) / CELL_POINTS;
         table = cells * samples * sizeof(float);
     }
-    return BASE_BYTES + n * per_point + table + cut_workers_bytes(n / (size_t)n_draws, params);
+    return BASE_BYTES + n * per_point + table + cut_workers_bytes(per_pipeline, params);
 }

@@ -122,7 +122,7 @@ typedef struct ps_input {
     const uint32_t *faces; /* optional #F by 3 triangles of a mesh (indices into
                               points); NULL if absent.  Method auto, dim 3,
                               centrality not exact: a mesh of fewer than
-                              40,000 points is filled with points on its
+                              26,667 points is filled with points on its
                               triangles up to that many (an even sampling,
                               core/graph/surface_fill.h; not a noisy mesh); only
                               the input points get answers */
@@ -268,7 +268,7 @@ void ps_result_free(ps_result *r);
 /* Bytes ps_segment is expected to take at its peak for n points of dim
  * coordinates with params (the input's own arrays not included): an upper
  * estimate from measured runs (memory_estimate.c), for a service to refuse
- * a job that cannot fit before it starts; below 40,000 points it covers a
+ * a job that cannot fit before it starts; below 26,667 points it covers a
  * mesh filled up to that many (ps_input.faces). */
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params);
 

@@ -202,7 +202,7 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     pl.points = (double *)pl.in->points;
     pl.threads = ps_parallel_threads(pl.params.threads);
     int draws = ps_ensemble_draws(&pl.params, pl.in->n);
-    st = draws > 1 ? ps_ensemble_segment(&pl, draws, out, err) : segment_whole(&pl, out, err);
+    st = draws ? ps_ensemble_segment(&pl, draws, out, err) : segment_whole(&pl, out, err);
     ps_pipeline_free(&pl);
     ps_surface_fill_free(&fill);
     if (st == PS_OK) {

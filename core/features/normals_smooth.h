@@ -24,7 +24,9 @@
  * the reference sampling's raw normals, and the crease steps see the same
  * creases at any density above it (fractional iterations blend the last
  * one in; at most PS_SMOOTH_MAX, so beyond about 360,000 points the scale
- * shrinks again).  Below the reference nothing changes.
+ * shrinks again).  Below the reference nothing changes; an input is
+ * segmented in draws of the reference sampling (ensemble.h) up to
+ * PS_ENSEMBLE_MAX_DRAWS times it, so only denser draws than that smooth.
  */
 #ifndef PS_NORMALS_SMOOTH_H
 #define PS_NORMALS_SMOOTH_H

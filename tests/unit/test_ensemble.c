@@ -17,32 +17,52 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define DENSE_STAR 2500.0 /* ps_shape_star density: about 128,000 points, 3 draws */
+#define DENSE_STAR 2500.0   /* ps_shape_star density: about 128,000 points, 3 draws */
+#define ONE_DRAW_STAR 800.0 /* about 41,000 points, one draw */
 #define DRAWS 3           /* the assignment tests' draw count */
 
 static void test_draws_only_when_each_keeps_the_reference(void) {
     ps_params p;
     ps_params_default(&p);
     size_t ref = PS_DENSITY_REFERENCE_POINTS;
+    CHECK(ps_ensemble_draws(&p, ref) == 0);
+    CHECK(ps_ensemble_draws(&p, ref + 1) == 1);
     CHECK(ps_ensemble_draws(&p, 3 * ref - 1) == 1);
     CHECK(ps_ensemble_draws(&p, 3 * ref) == 3);
     CHECK(ps_ensemble_draws(&p, 5 * ref - 1) == 3);
     CHECK(ps_ensemble_draws(&p, 5 * ref) == (PS_ENSEMBLE_MAX_DRAWS >= 5 ? 5 : 3));
     CHECK(ps_ensemble_draws(&p, 100 * ref) == PS_ENSEMBLE_MAX_DRAWS);
     p.method = PS_METHOD_PAPER;
-    CHECK(ps_ensemble_draws(&p, 10 * ref) == 1);
+    CHECK(ps_ensemble_draws(&p, 10 * ref) == 0);
 }
 
-/* Draw sizes within 2% of an even share. */
-static void check_balanced(const uint8_t *draw_of, size_t n) {
-    size_t count[DRAWS] = {0};
+/* A draw keeps the reference sampling until the draws cover the input. */
+static void test_draw_points(void) {
+    size_t ref = PS_DENSITY_REFERENCE_POINTS;
+    size_t most = PS_ENSEMBLE_MAX_DRAWS;
+    CHECK(ps_ensemble_draw_points(ref + 1) == ref);
+    CHECK(ps_ensemble_draw_points(4 * ref) == ref);
+    CHECK(ps_ensemble_draw_points(most * ref) == ref);
+    CHECK(ps_ensemble_draw_points(10 * most * ref) == 10 * ref);
+    CHECK(ps_ensemble_draw_points(10 * most * ref + 1) == 10 * ref + 1);
+}
+
+/* Each draw within 2% of size points, the rest in none. */
+static void check_balanced(const uint8_t *draw_of, size_t n, size_t size) {
+    size_t count[DRAWS] = {0}, none = 0;
     for (size_t i = 0; i < n; i++) {
+        if (draw_of[i] == PS_ENSEMBLE_NONE) {
+            none++;
+            continue;
+        }
         REQUIRE(draw_of[i] < DRAWS);
         count[draw_of[i]]++;
     }
     for (int j = 0; j < DRAWS; j++)
-        CHECK_MSG(count[j] > 0.98 * n / DRAWS && count[j] < 1.02 * n / DRAWS,
-                  "draw %d has %zu of %zu points", j, count[j], n);
+        CHECK_MSG(count[j] > 0.98 * size && count[j] < 1.02 * size,
+                  "draw %d has %zu of %zu points, not about %zu", j, count[j], n, size);
+    CHECK_MSG(none + 0.03 * n >= n - DRAWS * size && none <= n - DRAWS * size + 0.03 * n,
+              "%zu of %zu points in no draw", none, n);
 }
 
 /* The keys of a rotated, scaled, moved and reversed copy are the same
@@ -62,9 +82,9 @@ static void test_keys_invariant(void) {
     size_t same = 0;
     for (size_t i = 0; i < n; i++) same += a[i] == b[n - 1 - i];
     CHECK_MSG(same + 5 >= n, "%zu of %zu keys kept", same, n);
-    ps_ensemble_assign(a, n, DRAWS, draw_a);
-    ps_ensemble_assign(b, n, DRAWS, draw_b);
-    check_balanced(draw_a, n);
+    ps_ensemble_assign(a, n, DRAWS, n / DRAWS, draw_a);
+    ps_ensemble_assign(b, n, DRAWS, n / DRAWS, draw_b);
+    check_balanced(draw_a, n, n / DRAWS);
     same = 0;
     for (size_t i = 0; i < n; i++) same += draw_a[i] == draw_b[n - 1 - i];
     CHECK_MSG(same + 5 >= n, "%zu of %zu points kept their draw", same, n);
@@ -96,15 +116,35 @@ static void test_keys_georeferenced(void) {
     free(pts), free(moved), free(a), free(b);
 }
 
-/* Every point as far from the centre: the draws still share the points. */
+/* Draws that leave points out take their size each, the same points for
+ * a reordered copy. */
+static void test_assign_partial(void) {
+    size_t n = 60000, size = n / 5;
+    uint32_t *key = malloc(n * sizeof *key), *reversed = malloc(n * sizeof *reversed);
+    uint8_t *draw_of = malloc(n), *draw_rev = malloc(n);
+    REQUIRE(key && reversed && draw_of && draw_rev);
+    for (size_t i = 0; i < n; i++) key[i] = reversed[n - 1 - i] = (uint32_t)(i * 17);
+    ps_ensemble_assign(key, n, DRAWS, size, draw_of);
+    ps_ensemble_assign(reversed, n, DRAWS, size, draw_rev);
+    check_balanced(draw_of, n, size);
+    size_t same = 0;
+    for (size_t i = 0; i < n; i++) same += draw_of[i] == draw_rev[n - 1 - i];
+    CHECK_MSG(same == n, "%zu of %zu points kept their draw", same, n);
+    free(key), free(reversed), free(draw_of), free(draw_rev);
+}
+
+/* Every point as far from the centre: the draws still take their share,
+ * covering the input or not. */
 static void test_assign_tied_keys(void) {
     size_t n = 30000;
     uint32_t *key = malloc(n * sizeof *key);
     uint8_t *draw_of = malloc(n);
     REQUIRE(key && draw_of);
     for (size_t i = 0; i < n; i++) key[i] = 4000000000u;
-    ps_ensemble_assign(key, n, DRAWS, draw_of);
-    check_balanced(draw_of, n);
+    ps_ensemble_assign(key, n, DRAWS, n / DRAWS, draw_of);
+    check_balanced(draw_of, n, n / DRAWS);
+    ps_ensemble_assign(key, n, DRAWS, n / 4, draw_of);
+    check_balanced(draw_of, n, n / 4);
     free(key), free(draw_of);
 }
 
@@ -155,6 +195,23 @@ static void test_dense_star_in_draws(void) {
     ps_check_parts_separate(one, part, 1, 6, 0.8); /* each arm a segment of its own */
     CHECK(memcmp(one->labels, two->labels, n * sizeof *one->labels) == 0);
     CHECK(memcmp(one->centrality, two->centrality, n * sizeof *one->centrality) == 0);
+    ps_result_free(one), ps_result_free(two);
+    free(pts), free(part);
+}
+
+/* A star of about 40,000 points: one draw of the reference sampling, the
+ * other third of the points answered by their nearest in it. */
+static void test_star_in_one_draw(void) {
+    size_t n;
+    int *part;
+    double *pts = ps_shape_star(ONE_DRAW_STAR, &n, &part);
+    REQUIRE(pts && part);
+    REQUIRE(ps_ensemble_draws(&(ps_params){.method = PS_METHOD_AUTO}, n) == 1);
+    ps_result *one = segment_star(pts, n, 1, NULL), *two = segment_star(pts, n, 2, NULL);
+    REQUIRE(one && two);
+    check_answers(one, n);
+    ps_check_parts_separate(one, part, 1, 6, 0.8);
+    CHECK(memcmp(one->labels, two->labels, n * sizeof *one->labels) == 0);
     ps_result_free(one), ps_result_free(two);
     free(pts), free(part);
 }
@@ -224,8 +281,8 @@ static void test_dense_star_progress_and_cancel(void) {
     free(pts);
 }
 
-PS_TEST_MAIN(TEST(test_draws_only_when_each_keeps_the_reference), TEST(test_keys_invariant),
-             TEST(test_keys_georeferenced),
-             TEST(test_assign_tied_keys), TEST(test_medoid_is_the_middle),
-             TEST(test_dense_star_in_draws), TEST(test_dense_star_rotated_and_reordered),
+PS_TEST_MAIN(TEST(test_draws_only_when_each_keeps_the_reference), TEST(test_draw_points),
+             TEST(test_keys_invariant), TEST(test_keys_georeferenced),
+             TEST(test_assign_partial), TEST(test_assign_tied_keys), TEST(test_medoid_is_the_middle),
+             TEST(test_star_in_one_draw), TEST(test_dense_star_in_draws), TEST(test_dense_star_rotated_and_reordered),
              TEST(test_dense_star_progress_and_cancel))

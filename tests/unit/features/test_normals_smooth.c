@@ -56,7 +56,9 @@ static void test_density_iterations(void) {
     CHECK(ps_density_iterations(0) == 0);
     CHECK(ps_density_iterations(PS_DENSITY_REFERENCE_POINTS) == 0);
     CHECK_NEAR(ps_density_iterations(2 * PS_DENSITY_REFERENCE_POINTS), 1.0, 1e-12);
-    CHECK_NEAR(ps_density_iterations(5 * PS_DENSITY_REFERENCE_POINTS / 2), 1.5, 1e-12);
+    CHECK_NEAR(ps_density_iterations(3 * PS_DENSITY_REFERENCE_POINTS), 2.0, 1e-12);
+    /* 2.5 times the reference, rounded down to whole points */
+    CHECK_NEAR(ps_density_iterations(5 * PS_DENSITY_REFERENCE_POINTS / 2), 1.5, 1e-4);
     CHECK(ps_density_iterations(100 * (size_t)PS_DENSITY_REFERENCE_POINTS) == PS_SMOOTH_MAX);
 }
 
