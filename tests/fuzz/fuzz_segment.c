@@ -5,7 +5,7 @@
  * duplicates, collinear runs and far outliers are common), then the
  * normals, 8-bit and not normalized (zero ones included).  ps_segment must
  * return PS_OK or PS_ERR_INVALID and never crash.  No triangles: a small
- * mesh is filled up to 40,000 points (method auto), too slow to fuzz here;
+ * mesh is filled up to 26,667 points (method auto), too slow to fuzz here;
  * the daemon's targets send meshes. */
 #include <stdint.h>
 #include <stdlib.h>
