@@ -12,8 +12,8 @@
  * merges are that draw's.
  *
  * Why: what the crease steps call a crease depends on the spacing of the
- * points, so the method segments at the sampling its thresholds were
- * chosen on, whatever the scanner's; one sampling's partition moves with
+ * points, so the method segments at the sampling its thresholds read,
+ * whatever the scanner's; one sampling's partition moves with
  * the sampling (1 - RI 0.05 between two samplings of the same PSB model),
  * and the medoid of draws is the typical partition (docs/method.md).  The
  * draws share the centrality samples one run over their points would take
@@ -57,7 +57,8 @@ void ps_ensemble_keys(const double *points, size_t n, int dim, uint32_t *key);
 /* draw_of out: #P the draw of each point, or PS_ENSEMBLE_NONE, a hash of
  * its key: each draw takes about size of the n points; where keys tie so
  * much that a draw would get under half that (a synthetic sphere: every
- * point as far from the centre), a hash of its index.  draws * size <= n. */
+ * point as far from the centre), a hash of its index.  size is at most
+ * n / draws, rounded up. */
 void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, size_t size,
                         uint8_t *draw_of);
 
