@@ -1,7 +1,10 @@
 /*
- * ensemble.c: method auto's ensemble of disjoint draws (ensemble.h).
+ * ensemble.c: method auto's ensembles of samplings (ensemble.h): fills of
+ * a mesh, or disjoint draws of a denser input.
  *
- * The draws' points (and normals) are copied out of the whole input, each
+ * A fill's points are surface_fill.c's (the mesh's own first), so each
+ * fill answers the caller's points itself.  The draws' points (and
+ * normals) are copied out of the whole input, each
  * draw runs the phases of pipeline.h, a FLANN index over each draw's
  * points (nearest.h, built side by side) finds a point's nearest in a draw
  * it is not in, and the chosen draw's distinct points become the result's:
@@ -14,6 +17,7 @@
 #include "features/centrality.h"
 #include "graph/nearest.h"
 #include "graph/reference_density.h"
+#include "graph/surface_fill.h"
 #include "segment.h"
 #include "util/control.h"
 #include "util/morton.h"
@@ -35,7 +39,8 @@ typedef struct progress_share {
 
 typedef struct draw {
     ps_input in;         /* the draw's points (and normals), no faces */
-    uint32_t *members;   /* #D index in the whole input of each point */
+    uint32_t *members;   /* #D index in the whole input of each point (draws) */
+    uint32_t *host;      /* fills: the added points' stand-ins (surface_fill.h) */
     ps_pipeline pl;
     ps_control ctl;
     progress_share share;
@@ -45,6 +50,7 @@ typedef struct draw {
 typedef struct ensemble {
     const ps_pipeline *whole;
     int count;
+    int fills;          /* 1: the draws are fills of a mesh (ps_ensemble_fill) */
     size_t size;        /* points a draw takes (ps_ensemble_draw_points) */
     uint32_t *key;      /* #P each point's key (ps_ensemble_keys) */
     uint8_t *draw_of;   /* #P the draw of each point of the whole input, or
@@ -142,7 +148,7 @@ int ps_ensemble_compared(uint32_t key, size_t n, size_t s) {
     return mix((uint64_t)key ^ 0x5851f42d4c957f2dULL) % (uint64_t)n < (uint64_t)s;
 }
 
-int ps_ensemble_medoid(const int *labels, int draws, size_t s) {
+int ps_ensemble_medoid(const int *labels, int draws, size_t s, double margin) {
     double cost[PS_ENSEMBLE_MAX_DRAWS] = {0};
     for (int a = 0; a < draws; a++)
         for (int b = a + 1; b < draws; b++) {
@@ -152,7 +158,7 @@ int ps_ensemble_medoid(const int *labels, int draws, size_t s) {
     int best = 0;
     for (int a = 1; a < draws; a++)
         if (cost[a] < cost[best]) best = a;
-    return best;
+    return cost[0] - cost[best] <= margin ? 0 : best;
 }
 
 static void ensemble_free(ensemble *e) {
@@ -160,7 +166,7 @@ static void ensemble_free(ensemble *e) {
         draw *d = &e->d[j];
         if (d->pl.in) ps_pipeline_free(&d->pl);
         free((double *)d->in.points), free((double *)d->in.normals);
-        free(d->members);
+        free(d->members), free(d->host);
         ps_nearest_free(d->index);
     }
     free(e->key), free(e->draw_of), free(e->local_of);
@@ -223,8 +229,8 @@ static void report_share(void *user, ps_phase phase, double fraction) {
 }
 
 /* Draw j's pipeline: the whole's parameters, its share of the centrality
- * samples (those of one run over all the draws' points), its share of the
- * progress, the whole's cancel flag. */
+ * samples (those of one run over all the draws' points; a fill its own),
+ * its share of the progress, the whole's cancel flag. */
 static void draw_setup(ensemble *e, int j) {
     const ps_pipeline *whole = e->whole;
     draw *d = &e->d[j];
@@ -233,6 +239,11 @@ static void draw_setup(ensemble *e, int j) {
     d->pl = (ps_pipeline){.in = &d->in, .n_input = d->in.n, .ctl = whole->ctl ? &d->ctl : NULL,
                           .params = whole->params, .threads = whole->threads};
     d->pl.points = (double *)d->in.points;
+    if (e->fills) d->pl.n_input = whole->in->n, d->pl.host_of_added = d->host;
+    if (e->fills) { /* each fill runs as one run over its points would */
+        if (!whole->params.samples) d->pl.params.samples = ps_centrality_default_samples(d->in.n);
+        return;
+    }
     size_t drawn = e->size * (size_t)e->count;
     int samples = whole->params.samples
                       ? whole->params.samples
@@ -295,6 +306,10 @@ static ps_status locate(const ensemble *e, int j, const uint32_t *ids, size_t q,
                         uint32_t *unique, ps_error *err) {
     const ps_input *in = e->whole->in;
     const ps_dedup *dd = &e->d[j].pl.dedup;
+    if (e->fills) { /* every fill holds the caller's points first */
+        for (size_t t = 0; t < q; t++) unique[t] = dd->unique_of[ids[t]];
+        return PS_OK;
+    }
     size_t dim = (size_t)in->dim, m = 0;
     for (size_t t = 0; t < q; t++) m += e->draw_of[ids[t]] != j;
     double *queries = calloc((m ? m : 1) * dim, sizeof *queries);
@@ -332,7 +347,8 @@ static ps_status choose(const ensemble *e, int *chosen, ps_error *err) {
         for (size_t t = 0; st == PS_OK && t < s; t++)
             labels[(size_t)j * s + t] = pl->group_of_point[unique[t]];
     }
-    if (st == PS_OK && s) *chosen = ps_ensemble_medoid(labels, e->count, s);
+    if (st == PS_OK && s)
+        *chosen = ps_ensemble_medoid(labels, e->count, s, e->fills ? PS_ENSEMBLE_FILL_MARGIN : 0);
     free(ids), free(unique), free(labels);
     return st;
 }
@@ -353,8 +369,20 @@ static ps_status caller_points(const ensemble *e, int c, uint32_t *unique_of, ps
     return st;
 }
 
+/* The result from fill c: its pipeline answers the caller's points, its
+ * first ones, itself. */
+static ps_status fill_result(ensemble *e, int c, ps_result **out, ps_error *err) {
+    ps_pipeline *pl = &e->d[c].pl;
+    ps_result_parts parts = ps_pipeline_parts(pl);
+    ps_status st = ps_result_build(&parts, &pl->params, out, err);
+    /* the tree moved into the result */
+    if (st == PS_OK) pl->tree = NULL, pl->n_tree = 0;
+    return st;
+}
+
 /* The result from draw c, for the caller's points. */
 static ps_status result(ensemble *e, int c, ps_result **out, ps_error *err) {
+    if (e->fills) return fill_result(e, c, out, err);
     const ps_pipeline *whole = e->whole;
     ps_pipeline *pl = &e->d[c].pl;
     size_t n = whole->n_input, u = pl->dedup.n_unique;
@@ -376,17 +404,55 @@ static ps_status result(ensemble *e, int c, ps_result **out, ps_error *err) {
     return st;
 }
 
+/* The draws' (or fills') phases, their medoid and its answers; the
+ * medoid and the answers timed as refine. */
+static ps_status segment_all(ensemble *e, ps_pipeline *whole, ps_result **out, ps_error *err) {
+    ps_status st = run(e, whole, err);
+    double start = ps_now_ms();
+    int chosen = 0;
+    if (st == PS_OK && !e->fills) st = index_all(e, err);
+    if (st == PS_OK) st = choose(e, &chosen, err);
+    if (st == PS_OK) st = result(e, chosen, out, err);
+    whole->timings.ms[PS_PHASE_REFINE] += ps_now_ms() - start;
+    return st;
+}
+
 ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, ps_result **out, ps_error *err) {
     ensemble e = {.whole = whole, .count = draws,
                   .size = ps_ensemble_draw_points(whole->in->n)};
     ps_status st = split(&e, err);
-    if (st == PS_OK) st = run(&e, whole, err);
-    double start = ps_now_ms();
-    int chosen = 0;
-    if (st == PS_OK) st = index_all(&e, err);
-    if (st == PS_OK) st = choose(&e, &chosen, err);
-    if (st == PS_OK) st = result(&e, chosen, out, err);
-    whole->timings.ms[PS_PHASE_REFINE] += ps_now_ms() - start;
+    if (st == PS_OK) st = segment_all(&e, whole, out, err);
+    ensemble_free(&e);
+    return st;
+}
+
+/* Fill j of the caller's mesh for each fill (its points, normals and
+ * stand-ins move into the draw), and the keys of the caller's points;
+ * *filled 0 when a fill adds nothing (a rough mesh, no area). */
+static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
+    const ps_input *in = e->whole->in;
+    *filled = 0;
+    e->key = malloc(in->n * sizeof *e->key);
+    if (!e->key) return out_of_memory(err);
+    ps_ensemble_keys(in->points, in->n, in->dim, e->key);
+    for (int j = 0; j < e->count; j++) {
+        ps_surface_fill fill;
+        ps_status st = ps_surface_fill_build(in, PS_DENSITY_REFERENCE_POINTS, (uint64_t)j, &fill,
+                                             err);
+        if (st != PS_OK || !fill.n_added) return st;
+        e->d[j].in = (ps_input){.points = fill.points, .normals = fill.normals,
+                                .n = in->n + fill.n_added, .dim = in->dim};
+        e->d[j].host = fill.host;
+    }
+    *filled = 1;
+    return PS_OK;
+}
+
+ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, int *filled, ps_result **out,
+                           ps_error *err) {
+    ensemble e = {.whole = whole, .count = fills, .fills = 1};
+    ps_status st = fill_all(&e, filled, err);
+    if (st == PS_OK && *filled) st = segment_all(&e, whole, out, err);
     ensemble_free(&e);
     return st;
 }

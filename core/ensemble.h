@@ -1,24 +1,28 @@
 /*
- * ensemble.h: method auto on an input denser than the reference sampling
- * (PS_DENSITY_REFERENCE_POINTS, reference_density.h) segments disjoint
- * random draws of its points, each of the reference sampling (of n /
- * PS_ENSEMBLE_MAX_DRAWS points once that is more): one draw up to three
- * times the reference, then as many as fit (an odd number up to
- * PS_ENSEMBLE_MAX_DRAWS), and keeps the draw whose partition the others
- * agree with most: the medoid under the Rand index, compared on about
- * PS_ENSEMBLE_SAMPLE of the input's points.  Every caller's point takes
- * the answers (label, supernode, centrality) of its own point in that
- * draw or of the draw's nearest; the supernodes, the hierarchy and the
- * merges are that draw's.
+ * ensemble.h: several samplings of one surface segmented side by side (the
+ * phases in step), the partition the others agree with most kept: the
+ * medoid under the Rand index, compared on about PS_ENSEMBLE_SAMPLE of the
+ * caller's points.  Method auto only, at the reference sampling
+ * (PS_DENSITY_REFERENCE_POINTS, reference_density.h):
+ * - a mesh under it: PS_ENSEMBLE_FILLS independent fills of its triangles
+ *   (surface_fill.h), each up to the reference with the mesh's points
+ *   first, so every fill answers every one of them (ps_ensemble_fill);
+ * - an input denser than it: disjoint random draws of its points, each of
+ *   the reference sampling (of n / PS_ENSEMBLE_MAX_DRAWS points once that
+ *   is more): one draw up to three times the reference, then as many as
+ *   fit (an odd number up to PS_ENSEMBLE_MAX_DRAWS); every caller's point
+ *   takes the answers (label, supernode, centrality) of its own point in
+ *   the chosen draw or of the draw's nearest (ps_ensemble_segment).
+ * The supernodes, the hierarchy and the merges are the chosen one's.
  *
  * Why: what the crease steps call a crease depends on the spacing of the
  * points, so the method segments at the sampling its thresholds read,
- * whatever the scanner's; one sampling's partition moves with
- * the sampling (1 - RI 0.05 between two samplings of the same PSB model),
- * and the medoid of draws is the typical partition (docs/method.md).  The
- * draws share the centrality samples one run over their points would take
- * (each ceil(S / draws)), so the ensemble costs less than one run over
- * the whole input.
+ * whatever the scanner's; one sampling's partition moves with the sampling
+ * (1 - RI 0.05 between two samplings of the same PSB model), and the
+ * medoid of several is the typical partition (docs/method.md).  The draws
+ * share the centrality samples one run over their points would take (each
+ * ceil(S / draws)), so they cost less than one run over the whole input;
+ * each fill takes a run's own, and three fills cost three runs.
  */
 #ifndef PS_ENSEMBLE_H
 #define PS_ENSEMBLE_H
@@ -30,6 +34,10 @@
                                    5 against 3 at 200,000 points: method.md */
 #endif
 #define PS_ENSEMBLE_SAMPLE 4096 /* points the draws are compared on */
+#define PS_ENSEMBLE_FILLS 3     /* fills of a mesh under the reference sampling */
+#define PS_ENSEMBLE_FILL_MARGIN 0.01 /* fill 0 answers unless another's summed
+                                        error is lower by more: near ties
+                                        flipped under rotation (method.md) */
 #define PS_ENSEMBLE_KEY_BITS 20 /* a key's resolution: a rotated copy's rounding
                                    (1e-15 of the distance) crosses a step of
                                    2^-20 on one point in 10^9 */
@@ -67,8 +75,22 @@ void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, size_t size,
 int ps_ensemble_compared(uint32_t key, size_t n, size_t s);
 
 /* labels: #draws by #S, each draw's labels of the same S items.  The draw
- * with the least summed Rand index error to the others (ties: lowest). */
-int ps_ensemble_medoid(const int *labels, int draws, size_t s);
+ * with the least summed Rand index error to the others (ties: lowest),
+ * but the first unless that error is lower than the first's by more than
+ * margin. */
+int ps_ensemble_medoid(const int *labels, int draws, size_t s, double margin);
+
+/* A mesh under the reference sampling (whole->in with faces, whole
+ * prepared as for one run, ps_surface_fill_wanted) segmented as fills
+ * independent fills of it (ps_surface_fill_build's seeds 0 to fills - 1,
+ * each up to the reference sampling, the mesh's points first), their
+ * phases in step as the draws', and *out from the medoid fill, compared on
+ * about PS_ENSEMBLE_SAMPLE of the mesh's points.  *filled 0 (and *out
+ * untouched) when a fill adds nothing: the mesh is then to be segmented
+ * as given.  Each fill takes the centrality samples of a run over its own
+ * points (shared as the draws share them, the 228 scored 0.0019 worse). */
+ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, int *filled, ps_result **out,
+                           ps_error *err);
 
 /* Segments whole->in (whole prepared as for one run: params, threads,
  * ctl, n_input, host_of_added) in draws draws, and *out as above.  The

@@ -7,7 +7,8 @@
  * two-level centrality's table of cell-to-sample distances (a float per
  * sample for every cell of about CELL_POINTS points; the cell count stops
  * growing at PS_CELL_SCALE_POINTS, coarse_graph.h), over a fixed base; an
- * input split in draws has per-point constants of its own; a pipeline small
+ * input split in draws, or a mesh segmented in fills (their pipelines side
+ * by side), has per-point constants of its own; a pipeline small
  * enough for the boundary cut's pairs side by side adds its further
  * workers' scratch.
  */
@@ -55,22 +56,28 @@ static size_t cut_workers_bytes(size_t n, const ps_params *params) {
     return (size_t)extra * n * CUT_WORKER_BYTES_PER_POINT;
 }
 
+/* The two-level centrality's table for a pipeline of n points. */
+static size_t table_bytes(size_t n, const ps_params *params) {
+    int approx = params->centrality == PS_CENTRALITY_APPROX ||
+                 (params->centrality == PS_CENTRALITY_AUTO && n > PS_EXACT_AUTO_LIMIT);
+    if (!approx) return 0;
+    size_t samples = params->samples > 0 ? (size_t)params->samples
+                                         : (size_t)ps_centrality_default_samples(n);
+    size_t cells = (n < PS_CELL_SCALE_POINTS ? n : PS_CELL_SCALE_POINTS) / CELL_POINTS;
+    return cells * samples * sizeof(float);
+}
+
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
-    /* a mesh may be filled up to the reference sampling */
-    if (ps_surface_fill_wanted(params, dim, n)) n = PS_DENSITY_REFERENCE_POINTS;
-    int n_draws = ps_ensemble_draws(params, n), draws = n_draws > 0;
-    size_t per_pipeline = n_draws ? ps_ensemble_draw_points(n) : n;
+    /* a mesh may be segmented in fills up to the reference sampling, side by side */
+    int fills = ps_surface_fill_wanted(params, dim, n);
+    if (fills) n = PS_ENSEMBLE_FILLS * (size_t)PS_DENSITY_REFERENCE_POINTS;
+    int n_draws = fills ? PS_ENSEMBLE_FILLS : ps_ensemble_draws(params, n), draws = n_draws > 0;
+    size_t per_pipeline = fills      ? PS_DENSITY_REFERENCE_POINTS
+                          : n_draws ? ps_ensemble_draw_points(n)
+                                    : n;
     size_t per_point = (draws ? DRAWS_BYTES_PER_POINT : BYTES_PER_POINT) +
                        (draws ? DRAWS_BYTES_PER_NEIGHBOUR : BYTES_PER_NEIGHBOUR) * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
-    size_t table = 0;
-    int approx = params->centrality == PS_CENTRALITY_APPROX ||
-                 (params->centrality == PS_CENTRALITY_AUTO && n > PS_EXACT_AUTO_LIMIT);
-    if (approx) {
-        size_t samples = params->samples > 0 ? (size_t)params->samples
-                                             : (size_t)ps_centrality_default_samples(n);
-        size_t cells = (n < PS_CELL_SCALE_POINTS ? n : PS_CELL_SCALE_POINTS) / CELL_POINTS;
-        table = cells * samples * sizeof(float);
-    }
+    size_t table = fills ? PS_ENSEMBLE_FILLS * table_bytes(per_pipeline, params) : table_bytes(n, params);
     return BASE_BYTES + n * per_point + table + cut_workers_bytes(per_pipeline, params);
 }

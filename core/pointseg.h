@@ -124,8 +124,10 @@ typedef struct ps_input {
                               centrality not exact: a mesh of fewer than
                               26,667 points is filled with points on its
                               triangles up to that many (an even sampling,
-                              core/graph/surface_fill.h; not a noisy mesh); only
-                              the input points get answers */
+                              core/graph/surface_fill.h; not a noisy mesh),
+                              three times independently, and the fill the
+                              others agree with most answers (ensemble.h);
+                              only the input points get answers */
     size_t n_faces;        /* #F */
 } ps_input;
 
@@ -234,8 +236,9 @@ typedef struct ps_result {
                               filled surface when faces were given) */
     int normal_smoothing;  /* iterations the estimated normals were smoothed
                               (params.smooth_normals on a noisy scan; else 0) */
-    size_t n_filled;       /* points added on the faces (ps_input.faces), 0
-                              when none were; they get no answers */
+    size_t n_filled;       /* points added on the faces (ps_input.faces) by
+                              the fill that answers, 0 when none were; they
+                              get no answers */
     size_t n_outliers;     /* distinct points left out as stray (method auto:
                               far from their neighbours' spacing); each takes
                               the answers of its nearest kept neighbour */
@@ -269,7 +272,7 @@ void ps_result_free(ps_result *r);
  * coordinates with params (the input's own arrays not included): an upper
  * estimate from measured runs (memory_estimate.c), for a service to refuse
  * a job that cannot fit before it starts; below 26,667 points it covers a
- * mesh filled up to that many (ps_input.faces). */
+ * mesh segmented in fills up to that many (ps_input.faces). */
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params);
 
 /* ---- scoring (Princeton Segmentation Benchmark conventions) ------------ */

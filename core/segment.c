@@ -2,21 +2,21 @@
  * segment.c: ps_segment, the method as a list of steps (steps[] below, in
  * the order docs/method.md describes them), each a call into pipeline.c.
  *
- * ps_segment validates the input and the parameters, fills a mesh's
- * triangles with points up to the reference sampling (method auto,
- * surface_fill.h), removes duplicate points, then runs the five phases
+ * ps_segment validates the input and the parameters, removes duplicate
+ * points, then runs the five phases
  * (ps_phase, pointseg.h) one after the other, each its steps in the table's
  * order: those of every method (the paper's: kNN graph, centrality, flow
  * to sinks, normalized cuts, feature-size merge), those of method auto,
  * and those of auto in 3-D, which read normals (crease-aware).  It times
  * each step and phase, reports progress after each step and honours the
  * cancel flag between steps.  The result is assembled by result.c for the
- * caller's points; duplicates get their representative's answers.  An
- * input denser than the reference sampling several times over (method
- * auto) goes to ensemble.h, which runs the same phases on disjoint draws.
+ * caller's points; duplicates get their representative's answers.  With
+ * method auto a mesh under the reference sampling (reference_density.h)
+ * and an input denser than it go to ensemble.h, which runs the same
+ * phases on fills of the mesh's triangles (surface_fill.h) or on draws of
+ * the input, and answers from the one the others agree with most.
  */
 #include "ensemble.h"
-#include "graph/reference_density.h"
 #include "graph/surface_fill.h"
 #include "hierarchy/eigen.h"
 #include "pipeline.h"
@@ -167,21 +167,18 @@ static void apply_method(ps_params *p) {
     if (p->ncut_threshold == 0) p->ncut_threshold = paper ? PS_NCUT_PAPER : PS_NCUT_NEVER_STOP;
 }
 
-/* A mesh's triangles filled up to the reference sampling where the
- * parameters want it (surface_fill.h); pl->in becomes *filled, the input
- * points first. */
-static ps_status fill_surface(ps_pipeline *pl, ps_surface_fill *fill, ps_input *filled,
-                              ps_error *err) {
+/* A mesh under the reference sampling in fills of it where the
+ * parameters want them (surface_fill.h, ensemble.h); else the input as
+ * given, whole or in draws. */
+static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) {
     const ps_input *in = pl->in;
-    pl->n_input = in->n;
-    if (!ps_surface_fill_wanted(&pl->params, in->dim, in->n)) return PS_OK;
-    ps_status st = ps_surface_fill_build(in, PS_DENSITY_REFERENCE_POINTS, fill, err);
-    if (st != PS_OK || !fill->n_added) return st;
-    filled->points = fill->points, filled->normals = fill->normals;
-    filled->n = in->n + fill->n_added;
-    pl->in = filled;
-    pl->host_of_added = fill->host;
-    return PS_OK;
+    if (in->faces && in->n_faces && ps_surface_fill_wanted(&pl->params, in->dim, in->n)) {
+        int filled = 0;
+        ps_status st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, &filled, out, err);
+        if (st != PS_OK || filled) return st;
+    }
+    int draws = ps_ensemble_draws(&pl->params, in->n);
+    return draws ? ps_ensemble_segment(pl, draws, out, err) : segment_whole(pl, out, err);
 }
 
 ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,
@@ -195,16 +192,11 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     apply_method(&pl.params);
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
-    ps_surface_fill fill = {0};
-    ps_input filled = *in;
-    st = fill_surface(&pl, &fill, &filled, err);
-    if (st != PS_OK) return st;
-    pl.points = (double *)pl.in->points;
+    pl.n_input = in->n;
+    pl.points = (double *)in->points;
     pl.threads = ps_parallel_threads(pl.params.threads);
-    int draws = ps_ensemble_draws(&pl.params, pl.in->n);
-    st = draws ? ps_ensemble_segment(&pl, draws, out, err) : segment_whole(&pl, out, err);
+    st = segment_input(&pl, out, err);
     ps_pipeline_free(&pl);
-    ps_surface_fill_free(&fill);
     if (st == PS_OK) {
         (*out)->timings = pl.timings;
         (*out)->timings.total_ms = ps_now_ms() - start;

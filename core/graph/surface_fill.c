@@ -39,14 +39,20 @@ static double squared_distance(const double *a, const double *b) {
 typedef struct filler {
     const ps_input *in;
     ps_surface_fill *out;
-    size_t next;  /* added points placed so far */
+    uint64_t seed; /* which fill (ps_surface_fill_build) */
+    size_t next;   /* added points placed so far */
 } filler;
+
+/* Triangle t's hash in fill seed (seed 0: the triangle's own). */
+static uint64_t triangle_hash(size_t t, uint64_t seed, uint64_t salt) {
+    return mix64((uint64_t)t ^ salt ^ seed * 0x9E3779B97F4A7C15ull);
+}
 
 /* The i-th added point of triangle t (#P + next in out's arrays). */
 static void place(filler *fl, size_t t, size_t i) {
     const ps_input *in = fl->in;
     const uint32_t *v = in->faces + 3 * t;
-    uint64_t h = mix64((uint64_t)t);
+    uint64_t h = triangle_hash(t, fl->seed, 0);
     double u = fmod(unit_of(h) + (double)i * R2_A1, 1.0);
     double s = fmod(unit_of(mix64(h)) + (double)i * R2_A2, 1.0);
     double r = sqrt(u), w[3] = {1 - r, r * (1 - s), r * s};
@@ -78,9 +84,9 @@ static void place(filler *fl, size_t t, size_t i) {
  * area / step rounded up or down by a dither fixed per triangle, so that
  * the expected count is exact and a rounding of the area (a rotated copy)
  * changes a count only where it sits within rounding of a whole number. */
-static size_t count_of(size_t t, double area, double step) {
+static size_t count_of(size_t t, uint64_t seed, double area, double step) {
     if (!(area > 0)) return 0;
-    return (size_t)floor(area / step + unit_of(mix64((uint64_t)t ^ 0x5F1Dull)));
+    return (size_t)floor(area / step + unit_of(triangle_hash(t, seed, 0x5F1Dull)));
 }
 
 static double dot3(const double *a, const double *b) {
@@ -156,8 +162,8 @@ static int allocate(const ps_input *in, size_t m, ps_surface_fill *out) {
 
 /* Fills out from the triangles' normals (#F by 3, face_normals), or
  * leaves it empty (see surface_fill.h); 0 when out of memory. */
-static int fill_from_normals(const ps_input *in, size_t target, const double *normal,
-                             ps_surface_fill *out) {
+static int fill_from_normals(const ps_input *in, size_t target, uint64_t seed,
+                             const double *normal, ps_surface_fill *out) {
     double total = 0;
     for (size_t t = 0; t < in->n_faces; t++) total += area_of(normal + 3 * t);
     if (!(total > 0) || !isfinite(total)) return 1;
@@ -166,12 +172,13 @@ static int fill_from_normals(const ps_input *in, size_t target, const double *no
     if (roughness > PS_FILL_MAX_ROUGHNESS) return 1;
     double step = total / (double)(target - in->n);
     size_t m = 0;
-    for (size_t t = 0; t < in->n_faces; t++) m += count_of(t, area_of(normal + 3 * t), step);
+    for (size_t t = 0; t < in->n_faces; t++)
+        m += count_of(t, seed, area_of(normal + 3 * t), step);
     if (m == 0) return 1;
     if (!allocate(in, m, out)) return 0;
-    filler fl = {in, out, 0};
+    filler fl = {in, out, seed, 0};
     for (size_t t = 0; t < in->n_faces; t++) {
-        size_t count = count_of(t, area_of(normal + 3 * t), step);
+        size_t count = count_of(t, seed, area_of(normal + 3 * t), step);
         for (size_t i = 0; i < count; i++) place(&fl, t, i);
     }
     return 1;
@@ -182,15 +189,15 @@ int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n) {
            dim == 3 && n < PS_DENSITY_REFERENCE_POINTS;
 }
 
-ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
-                                ps_error *err) {
+ps_status ps_surface_fill_build(const ps_input *in, size_t target, uint64_t seed,
+                                ps_surface_fill *out, ps_error *err) {
     memset(out, 0, sizeof *out);
     if (in->dim != 3 || !in->faces || in->n_faces == 0 || in->n >= target) return PS_OK;
     double *normal = malloc(3 * in->n_faces * sizeof *normal);
     int ok = normal != NULL;
     if (ok) {
         face_normals(in, normal);
-        ok = fill_from_normals(in, target, normal, out);
+        ok = fill_from_normals(in, target, seed, normal, out);
     }
     free(normal);
     return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");

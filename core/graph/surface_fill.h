@@ -61,9 +61,11 @@ int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n);
  * about target (within the dither's rounding).  Nothing when #P >= target,
  * when the faces have no area, or when they are rougher than
  * PS_FILL_MAX_ROUGHNESS: then out->n_added is 0 and out's arrays are NULL.
- * Face indices must be < #P (the caller checks). */
-ps_status ps_surface_fill_build(const ps_input *in, size_t target, ps_surface_fill *out,
-                                ps_error *err);
+ * seed picks one of independent fills (0, 1, ...): the per-triangle
+ * hashes (dither and sequence start) are keyed by it.  Face indices must
+ * be < #P (the caller checks). */
+ps_status ps_surface_fill_build(const ps_input *in, size_t target, uint64_t seed,
+                                ps_surface_fill *out, ps_error *err);
 
 void ps_surface_fill_free(ps_surface_fill *s);
 

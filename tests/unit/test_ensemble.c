@@ -149,7 +149,7 @@ static void test_assign_tied_keys(void) {
 }
 
 /* One labelling all in one part, one in halves, one in quarters: the
- * halves lie between the other two. */
+ * halves lie between the other two, unless a margin keeps the first. */
 static void test_medoid_is_the_middle(void) {
     enum { S = 400 };
     int labels[3 * S];
@@ -158,9 +158,11 @@ static void test_medoid_is_the_middle(void) {
         labels[S + t] = t / (S / 2);
         labels[2 * S + t] = t / (S / 4);
     }
-    CHECK(ps_ensemble_medoid(labels, 3, S) == 1);
+    CHECK(ps_ensemble_medoid(labels, 3, S, 0) == 1);
+    CHECK(ps_ensemble_medoid(labels, 3, S, 0.4) == 1);   /* the first is 0.5 worse */
+    CHECK(ps_ensemble_medoid(labels, 3, S, 0.6) == 0);   /* within the margin */
     for (int t = 0; t < S; t++) labels[S + t] = 0; /* two alike: the lower wins */
-    CHECK(ps_ensemble_medoid(labels, 3, S) == 0);
+    CHECK(ps_ensemble_medoid(labels, 3, S, 0) == 0);
 }
 
 static ps_result *segment_star(const double *pts, size_t n, int threads, const ps_control *ctl) {

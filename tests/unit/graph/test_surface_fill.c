@@ -4,14 +4,17 @@
  * exactly the points the target asks for, on the tube's triangles, evenly
  * (every band between two rings gets its area's share), with each host a
  * corner of the point's triangle and interpolated unit normals; it moves
- * with the mesh under rotation and scaling, and adds nothing to a dense
+ * with the mesh under rotation and scaling, another seed samples the
+ * triangles elsewhere, and it adds nothing to a dense
  * mesh, to faces without area or to a noisy mesh.  End to end, a bare point set of rings
  * falls apart into its rings, the same points with their faces come out
  * whole (but with exact centrality, which runs on the input as given),
- * and the answers cover the caller's points only; a face pointing past
+ * the same for any thread count and a moved copy, and the answers cover
+ * the caller's points only; a face pointing past
  * the points is refused.
  */
 #include "graph/surface_fill.h"
+#include "progress_seen.h"
 #include "testlib.h"
 
 #include <math.h>
@@ -61,7 +64,7 @@ static void test_fills_the_tube_evenly(void) {
     ps_input in = tube_input(&t);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
     /* the dither's rounding: 1,280 triangles of 15.1 points each */
     REQUIRE(s.n_added > TARGET - N_TUBE - 100 && s.n_added < TARGET - N_TUBE + 100);
     CHECK(s.normals == NULL);
@@ -92,7 +95,7 @@ static void test_normals_interpolated(void) {
     in.normals = t.normals;
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
     REQUIRE(s.normals != NULL);
     for (size_t a = 0; a < s.n_added; a++) {
         const double *p = s.points + 3 * (N_TUBE + a), *n = s.normals + 3 * (N_TUBE + a);
@@ -121,8 +124,8 @@ static void test_moves_with_the_mesh(void) {
     ps_input a = tube_input(&t), b = tube_input(&moved);
     ps_surface_fill sa, sb;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&a, TARGET, &sa, &err) == PS_OK);
-    REQUIRE(ps_surface_fill_build(&b, TARGET, &sb, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&a, TARGET, 0, &sa, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&b, TARGET, 0, &sb, &err) == PS_OK);
     REQUIRE(sa.n_added == sb.n_added);
     size_t same = 0;
     for (size_t i = 0; i < sa.n_added; i++) {
@@ -144,15 +147,15 @@ static void test_nothing_to_add(void) {
     ps_input in = tube_input(&t);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, N_TUBE, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, N_TUBE, 0, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL && s.host == NULL);
     uint32_t flat[6] = {0, 0, 1, 2, 2, 2}; /* two triangles without area */
     in.faces = flat, in.n_faces = 2;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL);
     in = tube_input(&t);
     in.faces = NULL, in.n_faces = 0;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
     CHECK(s.n_added == 0);
 }
 
@@ -172,8 +175,31 @@ static void test_noisy_mesh_not_filled(void) {
     CHECK(ps_surface_fill_roughness(&in) > PS_FILL_MAX_ROUGHNESS);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL);
+}
+
+/* Fills of other seeds add as many points (but for the dither) at other
+ * places: independent samplings of the same triangles. */
+static void test_seeds_fill_independently(void) {
+    static tube t;
+    tube_make(&t);
+    ps_input in = tube_input(&t);
+    ps_surface_fill a, b;
+    ps_error err;
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &a, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &b, &err) == PS_OK);
+    REQUIRE(a.n_added > 0 && b.n_added > 0);
+    CHECK_MSG(fabs((double)a.n_added - (double)b.n_added) < 0.01 * (double)a.n_added,
+              "%zu and %zu added", a.n_added, b.n_added);
+    size_t same = 0, m = a.n_added < b.n_added ? a.n_added : b.n_added;
+    for (size_t i = 0; i < m; i++) {
+        const double *p = a.points + 3 * (N_TUBE + i), *q = b.points + 3 * (N_TUBE + i);
+        same += fabs(p[0] - q[0]) + fabs(p[1] - q[1]) + fabs(p[2] - q[2]) < 1e-9;
+    }
+    CHECK_MSG(same < m / 100, "%zu of %zu added points in the same place", same, m);
+    ps_surface_fill_free(&a);
+    ps_surface_fill_free(&b);
 }
 
 /* Segments of the tube's points, with or without its faces; checks that the
@@ -207,6 +233,37 @@ static int segments_of(const tube *t, int with_faces, ps_centrality_mode central
     *components = r->n_components;
     ps_result_free(r);
     return n;
+}
+
+static ps_result *segment_tube(const tube *t, int threads, const ps_control *ctl) {
+    ps_input in = tube_input(t);
+    ps_params p;
+    ps_params_default(&p);
+    p.threads = threads;
+    ps_result *r = NULL;
+    ps_error err;
+    CHECK_MSG(ps_segment(&in, &p, ctl, &r, &err) == PS_OK, "ps_segment: %s", err.message);
+    return r;
+}
+
+/* The mesh is segmented in fills (ensemble.h): the same labels for any
+ * thread count and for a moved copy, progress that never goes back. */
+static void test_segment_in_fills_deterministic(void) {
+    static tube t, moved;
+    tube_make(&t);
+    moved = t;
+    for (size_t i = 0; i < N_TUBE; i++) move(t.points + 3 * i, 250.0, moved.points + 3 * i);
+    ps_progress_seen seen = {{0}, {0}, {0}, 0};
+    ps_control ctl = {.progress = ps_progress_seen_record, .user = &seen};
+    ps_result *one = segment_tube(&t, 1, &ctl), *two = segment_tube(&t, 2, NULL),
+              *far = segment_tube(&moved, 0, NULL);
+    REQUIRE(one && two && far);
+    CHECK(!seen.went_back);
+    for (int ph = 0; ph < PS_PHASE_COUNT; ph++) CHECK(seen.last[ph] == 1.0);
+    CHECK(memcmp(one->labels, two->labels, N_TUBE * sizeof *one->labels) == 0);
+    CHECK(memcmp(one->labels, far->labels, N_TUBE * sizeof *one->labels) == 0);
+    CHECK(one->n_filled > 10000 && one->n_filled == far->n_filled);
+    ps_result_free(one), ps_result_free(two), ps_result_free(far);
 }
 
 static void test_segment_fills_the_faces(void) {
@@ -244,7 +301,8 @@ static void test_face_past_the_points_refused(void) {
 }
 
 PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
-             TEST(test_moves_with_the_mesh), TEST(test_nothing_to_add),
+             TEST(test_moves_with_the_mesh), TEST(test_seeds_fill_independently),
+             TEST(test_nothing_to_add),
              TEST(test_noisy_mesh_not_filled),
-             TEST(test_segment_fills_the_faces), TEST(test_exact_centrality_not_filled),
+             TEST(test_segment_fills_the_faces), TEST(test_segment_in_fills_deterministic), TEST(test_exact_centrality_not_filled),
              TEST(test_face_past_the_points_refused))
