@@ -266,6 +266,24 @@ static void test_segment_in_fills_deterministic(void) {
     ps_result_free(one), ps_result_free(two), ps_result_free(far);
 }
 
+/* A mesh of a few points with duplicate points, degenerate and repeated
+ * triangles, and one real triangle: the fills cover the one triangle, and
+ * every caller's point is answered. */
+static void test_degenerate_mesh_in_fills(void) {
+    double pts[3 * 12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 2, 2, 2,
+                          2, 2, 2, 0.5, 0.5, 0, 3, 0, 0, 3, 0, 0, 0, 3, 0, 1e-9, 0, 0};
+    uint32_t faces[3 * 6] = {0, 0, 0, 0, 1, 1, 0, 1, 2, 0, 1, 2, 3, 4, 1, 8, 9, 10};
+    ps_input in = {.points = pts, .n = 12, .dim = 3, .faces = faces, .n_faces = 6};
+    ps_result *r = NULL;
+    ps_error err;
+    ps_status st = ps_segment(&in, NULL, NULL, &r, &err);
+    CHECK_MSG(st == PS_OK, "ps_segment: %s", err.message);
+    if (st != PS_OK) return;
+    CHECK(r->n_points == 12 && r->n_filled > 0);
+    for (size_t i = 0; i < 12; i++) CHECK(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
+    ps_result_free(r);
+}
+
 static void test_segment_fills_the_faces(void) {
     static tube t;
     tube_make(&t);
@@ -304,5 +322,6 @@ PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
              TEST(test_moves_with_the_mesh), TEST(test_seeds_fill_independently),
              TEST(test_nothing_to_add),
              TEST(test_noisy_mesh_not_filled),
-             TEST(test_segment_fills_the_faces), TEST(test_segment_in_fills_deterministic), TEST(test_exact_centrality_not_filled),
+             TEST(test_segment_fills_the_faces), TEST(test_segment_in_fills_deterministic),
+             TEST(test_degenerate_mesh_in_fills), TEST(test_exact_centrality_not_filled),
              TEST(test_face_past_the_points_refused))
