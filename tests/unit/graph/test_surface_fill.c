@@ -5,13 +5,13 @@
  * (every band between two rings gets its area's share), with each host a
  * corner of the point's triangle and interpolated unit normals; it moves
  * with the mesh under rotation and scaling, another seed samples the
- * triangles elsewhere, and it adds nothing to a dense
- * mesh, to faces without area or to a noisy mesh.  End to end, a bare point set of rings
+ * triangles elsewhere, and it adds nothing to a dense mesh, to faces
+ * without area or to a noisy mesh.  End to end, a bare point set of rings
  * falls apart into its rings, the same points with their faces come out
  * whole (but with exact centrality, which runs on the input as given),
  * the same for any thread count and a moved copy, and the answers cover
- * the caller's points only; a face pointing past
- * the points is refused.
+ * the caller's points only; a mesh of duplicate points and degenerate
+ * triangles is answered, and a face pointing past the points is refused.
  */
 #include "graph/surface_fill.h"
 #include "progress_seen.h"
