@@ -239,8 +239,8 @@ static void draw_setup(ensemble *e, int j) {
     d->pl = (ps_pipeline){.in = &d->in, .n_input = d->in.n, .ctl = whole->ctl ? &d->ctl : NULL,
                           .params = whole->params, .threads = whole->threads};
     d->pl.points = (double *)d->in.points;
-    if (e->fills) d->pl.n_input = whole->in->n, d->pl.host_of_added = d->host;
     if (e->fills) { /* each fill runs as one run over its points would */
+        d->pl.n_input = whole->in->n, d->pl.host_of_added = d->host;
         if (!whole->params.samples) d->pl.params.samples = ps_centrality_default_samples(d->in.n);
         return;
     }
@@ -369,20 +369,13 @@ static ps_status caller_points(const ensemble *e, int c, uint32_t *unique_of, ps
     return st;
 }
 
-/* The result from fill c: its pipeline answers the caller's points, its
- * first ones, itself. */
-static ps_status fill_result(ensemble *e, int c, ps_result **out, ps_error *err) {
-    ps_pipeline *pl = &e->d[c].pl;
-    ps_result_parts parts = ps_pipeline_parts(pl);
-    ps_status st = ps_result_build(&parts, &pl->params, out, err);
-    /* the tree moved into the result */
-    if (st == PS_OK) pl->tree = NULL, pl->n_tree = 0;
-    return st;
-}
-
-/* The result from draw c, for the caller's points. */
+/* The result from draw c, for the caller's points (a fill's pipeline
+ * answers them, its first points, itself). */
 static ps_status result(ensemble *e, int c, ps_result **out, ps_error *err) {
-    if (e->fills) return fill_result(e, c, out, err);
+    if (e->fills) {
+        ps_result_parts parts = ps_pipeline_parts(&e->d[c].pl);
+        return ps_pipeline_result(&e->d[c].pl, &parts, out, err);
+    }
     const ps_pipeline *whole = e->whole;
     ps_pipeline *pl = &e->d[c].pl;
     size_t n = whole->n_input, u = pl->dedup.n_unique;
@@ -396,9 +389,7 @@ static ps_status result(ensemble *e, int c, ps_result **out, ps_error *err) {
         parts.n_filled = whole->in->n - n;
         parts.unique_of = unique_of;
         parts.first_of = first;
-        st = ps_result_build(&parts, &pl->params, out, err);
-        /* the tree moved into the result */
-        if (st == PS_OK) pl->tree = NULL, pl->n_tree = 0;
+        st = ps_pipeline_result(pl, &parts, out, err);
     }
     free(unique_of), free(first);
     return st;

@@ -387,6 +387,13 @@ void ps_pipeline_free(ps_pipeline *pl) {
     free(pl->merges);
 }
 
+ps_status ps_pipeline_result(ps_pipeline *pl, const ps_result_parts *parts, ps_result **out,
+                             ps_error *err) {
+    ps_status st = ps_result_build(parts, &pl->params, out, err);
+    if (st == PS_OK) pl->tree = NULL, pl->n_tree = 0;
+    return st;
+}
+
 ps_result_parts ps_pipeline_parts(const ps_pipeline *pl) {
     return (ps_result_parts){
         .n_input = pl->n_input,

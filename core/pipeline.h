@@ -82,6 +82,11 @@ void ps_pipeline_shed(ps_pipeline *pl);
 /* The result's parts for pl's own input points (after every phase). */
 ps_result_parts ps_pipeline_parts(const ps_pipeline *pl);
 
+/* *out built from parts (ps_pipeline_parts, or adjusted for a draw's
+ * callers) with pl's parameters; on success pl's tree has moved into it. */
+ps_status ps_pipeline_result(ps_pipeline *pl, const ps_result_parts *parts, ps_result **out,
+                             ps_error *err);
+
 void ps_pipeline_free(ps_pipeline *pl);
 
 #endif

@@ -21,7 +21,6 @@
 #include "hierarchy/eigen.h"
 #include "pipeline.h"
 #include "pointseg.h"
-#include "result.h"
 #include "segment.h"
 #include "util/control.h"
 #include "util/parallel.h"
@@ -152,9 +151,7 @@ static ps_status segment_whole(ps_pipeline *pl, ps_result **out, ps_error *err) 
         st = ps_segment_phase(pl, (ps_phase)ph, err);
     if (st == PS_OK) {
         ps_result_parts parts = ps_pipeline_parts(pl);
-        st = ps_result_build(&parts, &pl->params, out, err);
-        /* the tree moved into the result */
-        if (st == PS_OK) pl->tree = NULL, pl->n_tree = 0;
+        st = ps_pipeline_result(pl, &parts, out, err);
     }
     return st;
 }
