@@ -51,7 +51,8 @@ typedef struct ensemble {
     const ps_pipeline *whole;
     int count;
     int fills;          /* 1: the draws are fills of a mesh (ps_ensemble_fill) */
-    size_t size;        /* points a draw takes (ps_ensemble_draw_points) */
+    size_t distinct;    /* distinct points of the whole input (draws) */
+    size_t size;        /* distinct points a draw takes (ps_ensemble_draw_points) */
     uint32_t *key;      /* #P each point's key (ps_ensemble_keys) */
     uint8_t *draw_of;   /* #P the draw of each point of the whole input, or
                            PS_ENSEMBLE_NONE */
@@ -132,14 +133,15 @@ static uint8_t draw_of_hash(uint64_t h, size_t n, int draws, size_t size) {
     return j < (uint64_t)draws ? (uint8_t)j : PS_ENSEMBLE_NONE;
 }
 
-void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, size_t size, uint8_t *draw_of) {
+void ps_ensemble_assign(const uint32_t *key, size_t n, size_t distinct, int draws, size_t size,
+                        uint8_t *draw_of) {
     size_t got[PS_ENSEMBLE_MAX_DRAWS] = {0};
     for (size_t i = 0; i < n; i++)
-        if ((draw_of[i] = draw_of_hash(mix(key[i]), n, draws, size)) != PS_ENSEMBLE_NONE)
+        if ((draw_of[i] = draw_of_hash(mix(key[i]), distinct, draws, size)) != PS_ENSEMBLE_NONE)
             got[draw_of[i]]++;
     for (int j = 0; j < draws; j++)
         if (got[j] < size / 2) {
-            for (size_t i = 0; i < n; i++) draw_of[i] = draw_of_hash(mix(i), n, draws, size);
+            for (size_t i = 0; i < n; i++) draw_of[i] = draw_of_hash(mix(i), distinct, draws, size);
             return;
         }
 }
@@ -191,7 +193,7 @@ static ps_status split(ensemble *e, ps_error *err) {
         return out_of_memory(err);
     }
     ps_ensemble_keys(in->points, n, in->dim, e->key);
-    ps_ensemble_assign(e->key, n, e->count, e->size, e->draw_of);
+    ps_ensemble_assign(e->key, n, e->distinct, e->count, e->size, e->draw_of);
     ps_order_by_u32(e->key, n, order, e->local_of); /* local_of: its scratch */
     for (size_t t = 0; t < n; t++) {
         size_t i = order[t];
@@ -247,7 +249,7 @@ static void draw_setup(ensemble *e, int j) {
     size_t drawn = e->size * (size_t)e->count;
     int samples = whole->params.samples
                       ? whole->params.samples
-                      : ps_centrality_default_samples(drawn < whole->in->n ? drawn : whole->in->n);
+                      : ps_centrality_default_samples(drawn < e->distinct ? drawn : e->distinct);
     d->pl.params.samples = (samples + e->count - 1) / e->count;
 }
 
@@ -408,9 +410,10 @@ static ps_status segment_all(ensemble *e, ps_pipeline *whole, ps_result **out, p
     return st;
 }
 
-ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, ps_result **out, ps_error *err) {
-    ensemble e = {.whole = whole, .count = draws,
-                  .size = ps_ensemble_draw_points(whole->in->n)};
+ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, size_t distinct, ps_result **out,
+                              ps_error *err) {
+    ensemble e = {.whole = whole, .count = draws, .distinct = distinct,
+                  .size = ps_ensemble_draw_points(distinct)};
     ps_status st = split(&e, err);
     if (st == PS_OK) st = segment_all(&e, whole, out, err);
     ensemble_free(&e);

@@ -44,13 +44,15 @@
 
 #define PS_ENSEMBLE_NONE 0xFF /* a point in no draw */
 
-/* Draws for an input of n points (after any surface fill) under p: 0 (the
+/* Draws for an input of n distinct points (after any surface fill; a
+ * repeated point counts once: the reference is a density) under p: 0 (the
  * whole input in one run) for method paper or n at most the reference
  * sampling, else the largest odd count up to PS_ENSEMBLE_MAX_DRAWS whose
  * draws each keep the reference sampling (1 below three times it). */
 int ps_ensemble_draws(const ps_params *p, size_t n);
 
-/* Points each draw of an input of n points takes: the reference sampling,
+/* Distinct points each draw of an input of n distinct points takes: the
+ * reference sampling,
  * or n / PS_ENSEMBLE_MAX_DRAWS (rounded up) when more, so that the draws
  * cover the whole input from PS_ENSEMBLE_MAX_DRAWS times the reference on
  * and leave the rest out below it. */
@@ -63,11 +65,12 @@ size_t ps_ensemble_draw_points(size_t n);
 void ps_ensemble_keys(const double *points, size_t n, int dim, uint32_t *key);
 
 /* draw_of out: #P the draw of each point, or PS_ENSEMBLE_NONE, a hash of
- * its key: each draw takes about size of the n points; where keys tie so
- * much that a draw would get under half that (a synthetic sphere: every
- * point as far from the centre), a hash of its index.  size is at most
- * n / draws, rounded up. */
-void ps_ensemble_assign(const uint32_t *key, size_t n, int draws, size_t size,
+ * its key: each draw takes about size of the distinct of the n points
+ * (copies of a point share its key, so its draw); where keys tie so much
+ * that a draw would get under half that (a synthetic sphere: every point
+ * as far from the centre), a hash of its index.  distinct <= n; size is
+ * at most distinct / draws, rounded up. */
+void ps_ensemble_assign(const uint32_t *key, size_t n, size_t distinct, int draws, size_t size,
                         uint8_t *draw_of);
 
 /* 1 when the point with this key is among the about s of n on which the
@@ -93,10 +96,12 @@ ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, int *filled, ps_result
                            ps_error *err);
 
 /* Segments whole->in (whole prepared as for one run: params, threads,
- * ctl, n_input, host_of_added) in draws draws, and *out as above.  The
+ * ctl, n_input, host_of_added), of distinct distinct points, in draws
+ * draws (ps_ensemble_draws of distinct), and *out as above.  The
  * phases run draw after draw within each phase, progress per phase over
  * all draws; the phase times are summed over the draws, the medoid and
  * the answers' transfer timed as refine. */
-ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, ps_result **out, ps_error *err);
+ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, size_t distinct, ps_result **out,
+                              ps_error *err);
 
 #endif

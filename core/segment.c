@@ -164,9 +164,19 @@ static void apply_method(ps_params *p) {
     if (p->ncut_threshold == 0) p->ncut_threshold = paper ? PS_NCUT_PAPER : PS_NCUT_NEVER_STOP;
 }
 
+/* *distinct out: the distinct points of in (dedup.h). */
+static ps_status count_distinct(const ps_input *in, size_t *distinct, ps_error *err) {
+    ps_dedup d;
+    ps_status st = ps_dedup_build(in->points, in->n, in->dim, &d, err);
+    *distinct = d.n_unique;
+    ps_dedup_free(&d);
+    return st;
+}
+
 /* A mesh under the reference sampling in fills of it where the
  * parameters want them (surface_fill.h, ensemble.h); else the input as
- * given, whole or in draws. */
+ * given, whole or in draws, as many as its distinct points ask for (a few
+ * points repeated many times are a small input, not a dense one). */
 static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) {
     const ps_input *in = pl->in;
     if (in->faces && in->n_faces && ps_surface_fill_wanted(&pl->params, in->dim, in->n)) {
@@ -174,8 +184,13 @@ static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) 
         ps_status st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, &filled, out, err);
         if (st != PS_OK || filled) return st;
     }
-    int draws = ps_ensemble_draws(&pl->params, in->n);
-    return draws ? ps_ensemble_segment(pl, draws, out, err) : segment_whole(pl, out, err);
+    size_t distinct = in->n;
+    if (ps_ensemble_draws(&pl->params, in->n)) {
+        ps_status st = count_distinct(in, &distinct, err);
+        if (st != PS_OK) return st;
+    }
+    int draws = ps_ensemble_draws(&pl->params, distinct);
+    return draws ? ps_ensemble_segment(pl, draws, distinct, out, err) : segment_whole(pl, out, err);
 }
 
 ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,
