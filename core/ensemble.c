@@ -423,7 +423,7 @@ ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, size_t distinct, ps
 /* Fill j of the caller's mesh for each fill (its points, normals and
  * stand-ins move into the draw), and the keys of the caller's points;
  * *filled 0 when a fill adds nothing (a rough mesh, no area). */
-static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
+static ps_status fill_all(ensemble *e, size_t target, int *filled, ps_error *err) {
     const ps_input *in = e->whole->in;
     *filled = 0;
     e->key = malloc(in->n * sizeof *e->key);
@@ -431,8 +431,7 @@ static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
     ps_ensemble_keys(in->points, in->n, in->dim, e->key);
     for (int j = 0; j < e->count; j++) {
         ps_surface_fill fill;
-        ps_status st = ps_surface_fill_build(in, PS_DENSITY_REFERENCE_POINTS, (uint64_t)j, &fill,
-                                             err);
+        ps_status st = ps_surface_fill_build(in, target, (uint64_t)j, &fill, err);
         if (st != PS_OK || !fill.n_added) return st;
         e->d[j].in = (ps_input){.points = fill.points, .normals = fill.normals,
                                 .n = in->n + fill.n_added, .dim = in->dim};
@@ -442,10 +441,10 @@ static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
     return PS_OK;
 }
 
-ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, int *filled, ps_result **out,
-                           ps_error *err) {
+ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t target, int *filled,
+                           ps_result **out, ps_error *err) {
     ensemble e = {.whole = whole, .count = fills, .fills = 1};
-    ps_status st = fill_all(&e, filled, err);
+    ps_status st = fill_all(&e, target, filled, err);
     if (st == PS_OK && *filled) st = segment_all(&e, whole, out, err);
     ensemble_free(&e);
     return st;

@@ -17,6 +17,7 @@
  * the input, and answers from the one the others agree with most.
  */
 #include "ensemble.h"
+#include "graph/reference_density.h"
 #include "graph/surface_fill.h"
 #include "hierarchy/eigen.h"
 #include "pipeline.h"
@@ -175,19 +176,23 @@ static ps_status count_distinct(const ps_input *in, size_t *distinct, ps_error *
 
 /* A mesh under the reference sampling in fills of it where the
  * parameters want them (surface_fill.h, ensemble.h); else the input as
- * given, whole or in draws, as many as its distinct points ask for (a few
- * points repeated many times are a small input, not a dense one). */
+ * given, whole or in draws.  Both count distinct points: a few points
+ * repeated many times are a small input, not a dense one, and a mesh
+ * whose triangles each have copies of their own vertices is as sparse as
+ * the same mesh welded. */
 static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) {
     const ps_input *in = pl->in;
-    if (in->faces && in->n_faces && ps_surface_fill_wanted(&pl->params, in->dim, in->n)) {
-        int filled = 0;
-        ps_status st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, &filled, out, err);
-        if (st != PS_OK || filled) return st;
-    }
+    int mesh = in->faces && in->n_faces;
     size_t distinct = in->n;
-    if (ps_ensemble_draws(&pl->params, in->n)) {
+    if (mesh || ps_ensemble_draws(&pl->params, in->n)) {
         ps_status st = count_distinct(in, &distinct, err);
         if (st != PS_OK) return st;
+    }
+    if (mesh && ps_surface_fill_wanted(&pl->params, in->dim, distinct)) {
+        int filled = 0;
+        size_t target = PS_DENSITY_REFERENCE_POINTS + (in->n - distinct);
+        ps_status st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, target, &filled, out, err);
+        if (st != PS_OK || filled) return st;
     }
     int draws = ps_ensemble_draws(&pl->params, distinct);
     return draws ? ps_ensemble_segment(pl, draws, distinct, out, err) : segment_whole(pl, out, err);

@@ -10,6 +10,7 @@
  */
 #include "graph/surface_fill.h"
 
+#include "graph/dedup.h"
 #include "graph/reference_density.h"
 #include "util/sort_util.h"
 
@@ -110,27 +111,37 @@ static void face_normals(const ps_input *in, double *normal) {
 /* The area of the triangle whose face_normals entry is n. */
 static double area_of(const double *n) { return 0.5 * sqrt(dot3(n, n)); }
 
+/* The corner of triangle t's c-th vertex: its distinct point (dedup.h),
+ * so that a mesh whose triangles do not share their vertices (each with
+ * copies of its own) has its corners' normals summed over the triangles
+ * that meet there, as a welded mesh's. */
+static size_t corner_of(const ps_input *in, const ps_dedup *d, size_t t, int c) {
+    return d->unique_of[in->faces[3 * t + (size_t)c]];
+}
+
 /* The roughness (surface_fill.h) from the triangles' normals #F by 3; -1
  * when out of memory. */
 static double roughness_of(const ps_input *in, const double *normal) {
-    double *corner = calloc(3 * in->n, sizeof *corner); /* area-weighted normals */
+    ps_dedup d;
+    if (ps_dedup_build(in->points, in->n, 3, &d, NULL) != PS_OK) return -1;
+    double *corner = calloc(3 * d.n_unique, sizeof *corner); /* area-weighted normals */
     double *deviation = malloc(in->n_faces * sizeof *deviation);
-    if (!corner || !deviation) return free(corner), free(deviation), -1;
+    if (!corner || !deviation) return free(corner), free(deviation), ps_dedup_free(&d), -1;
     for (size_t t = 0; t < in->n_faces; t++)
         for (int c = 0; c < 3; c++)
-            for (int d = 0; d < 3; d++)
-                corner[3 * (size_t)in->faces[3 * t + c] + d] += normal[3 * t + d];
+            for (int k = 0; k < 3; k++) corner[3 * corner_of(in, &d, t, c) + k] += normal[3 * t + k];
     size_t count = 0;
     for (size_t t = 0; t < in->n_faces; t++) {
         const double *n = normal + 3 * t;
         double m[3] = {0, 0, 0};
         for (int c = 0; c < 3; c++)
-            for (int d = 0; d < 3; d++) m[d] += corner[3 * (size_t)in->faces[3 * t + c] + d];
+            for (int k = 0; k < 3; k++) m[k] += corner[3 * corner_of(in, &d, t, c) + k];
         double nn = dot3(n, n), mm = dot3(m, m);
         if (nn > 0 && mm > 0) deviation[count++] = 1 - dot3(n, m) / sqrt(nn * mm);
     }
     double median = count ? ps_select_kth(deviation, count, count / 2) : 0;
     free(corner), free(deviation);
+    ps_dedup_free(&d);
     return median;
 }
 

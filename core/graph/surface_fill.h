@@ -24,7 +24,9 @@
  * point's neighbours would lie on one or two flat triangles), so that the
  * crease steps took the jagged facets for creases.  Roughness: the median
  * over the triangles of 1 - cos between a triangle's normal and the
- * area-weighted normal of its three corners.  On the 228 development PSB
+ * area-weighted normal of its three corners (a corner is a distinct
+ * point, dedup.h: the triangles of a mesh that gives each its own copies
+ * of its vertices meet there as a welded mesh's do).  On the 228 development PSB
  * meshes: clean 0 to 0.0047, but for two coarse ones (0.017, 0.024); with
  * Gaussian noise of 0.1 mean edge lengths 0.012 to 0.019, of 0.25 0.07 to
  * 0.12.  Filling noisy meshes cost 0.04 at noise 0.1 (development 0.126

@@ -12,7 +12,11 @@
  * the same for any thread count and a moved copy, and the answers cover
  * the caller's points only; a mesh of duplicate points and degenerate
  * triangles is answered, and a face pointing past the points is refused.
+ * The tube unwelded (each triangle with copies of its own vertices) is as
+ * smooth, as rough when noisy, and as filled and whole as welded, even
+ * given over the reference sampling by its copies.
  */
+#include "graph/reference_density.h"
 #include "graph/surface_fill.h"
 #include "progress_seen.h"
 #include "testlib.h"
@@ -284,6 +288,79 @@ static void test_degenerate_mesh_in_fills(void) {
     ps_result_free(r);
 }
 
+/* The tube unwelded: each of its triangles, given copies times over,
+ * with three copies of its own of its vertices (as a mesh exported
+ * triangle by triangle); *n its points. */
+static ps_input unwelded(const tube *t, int copies, double **points, uint32_t **faces, size_t *n) {
+    size_t f = (size_t)copies * N_BAND_FACES;
+    *n = 3 * f;
+    *points = malloc(3 * *n * sizeof **points);
+    *faces = malloc(3 * f * sizeof **faces);
+    if (!*points || !*faces) return (ps_input){0};
+    for (size_t i = 0; i < *n; i++) {
+        memcpy(*points + 3 * i, t->points + 3 * (size_t)t->faces[i % (3 * N_BAND_FACES)],
+               3 * sizeof **points);
+        (*faces)[i] = (uint32_t)i;
+    }
+    return (ps_input){.points = *points, .n = *n, .dim = 3, .faces = *faces, .n_faces = f};
+}
+
+/* Unwelded, the clean tube is as smooth and the noisy one as rough as
+ * welded: a corner's normal sums the triangles meeting at its point,
+ * whichever copy of it each names (a triangle alone at each corner read
+ * every unwelded mesh as smooth, so noise was filled over). */
+static void test_unwelded_roughness(void) {
+    static tube t;
+    tube_make(&t);
+    double *points;
+    uint32_t *faces;
+    size_t n;
+    ps_input in = unwelded(&t, 1, &points, &faces, &n);
+    REQUIRE(in.points);
+    CHECK(ps_surface_fill_roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
+    free(points), free(faces);
+    uint64_t state = 88172645463325252ull;
+    for (size_t i = 0; i < 3 * N_TUBE; i++) {
+        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+        t.points[i] += 0.1 * ((double)(state >> 11) / 9007199254740992.0 - 0.5);
+    }
+    in = unwelded(&t, 1, &points, &faces, &n);
+    REQUIRE(in.points);
+    CHECK_MSG(ps_surface_fill_roughness(&in) > PS_FILL_MAX_ROUGHNESS, "roughness %g",
+              ps_surface_fill_roughness(&in));
+    free(points), free(faces);
+}
+
+/* The tube unwelded and its triangles given 7 times (26,880 points, over
+ * the reference sampling, 704 distinct): filled and whole as the welded
+ * tube, every copy of a vertex answered alike (counted with its copies it
+ * was not filled and fell apart into its rings). */
+static void test_unwelded_mesh_filled_as_welded(void) {
+    static tube t;
+    tube_make(&t);
+    double *points;
+    uint32_t *faces;
+    size_t n;
+    ps_input in = unwelded(&t, 7, &points, &faces, &n);
+    REQUIRE(in.points && n > PS_DENSITY_REFERENCE_POINTS);
+    ps_result *r = NULL;
+    ps_error err;
+    ps_status st = ps_segment(&in, NULL, NULL, &r, &err);
+    CHECK_MSG(st == PS_OK, "ps_segment: %s", err.message);
+    if (st != PS_OK) {
+        free(points), free(faces);
+        return;
+    }
+    CHECK(r->n_points == n);
+    CHECK_MSG(r->n_filled > PS_DENSITY_REFERENCE_POINTS - N_TUBE - 500, "%zu filled", r->n_filled);
+    CHECK_MSG(r->n_segments <= 3 && r->n_components == 1, "%d segments, %d components",
+              r->n_segments, r->n_components);
+    for (size_t i = 3 * N_BAND_FACES; i < n; i++)
+        CHECK(r->labels[i] == r->labels[i % (3 * N_BAND_FACES)]);
+    ps_result_free(r);
+    free(points), free(faces);
+}
+
 static void test_segment_fills_the_faces(void) {
     static tube t;
     tube_make(&t);
@@ -324,4 +401,5 @@ PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
              TEST(test_noisy_mesh_not_filled),
              TEST(test_segment_fills_the_faces), TEST(test_segment_in_fills_deterministic),
              TEST(test_degenerate_mesh_in_fills), TEST(test_exact_centrality_not_filled),
-             TEST(test_face_past_the_points_refused))
+             TEST(test_face_past_the_points_refused), TEST(test_unwelded_roughness),
+             TEST(test_unwelded_mesh_filled_as_welded))
