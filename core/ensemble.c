@@ -51,7 +51,7 @@ typedef struct ensemble {
     const ps_pipeline *whole;
     int count;
     int fills;          /* 1: the draws are fills of a mesh (ps_ensemble_fill) */
-    size_t distinct;    /* distinct points of the whole input (draws) */
+    size_t distinct;    /* distinct points of the whole input */
     size_t size;        /* distinct points a draw takes (ps_ensemble_draw_points) */
     uint32_t *key;      /* #P each point's key (ps_ensemble_keys) */
     uint8_t *draw_of;   /* #P the draw of each point of the whole input, or
@@ -243,7 +243,9 @@ static void draw_setup(ensemble *e, int j) {
     d->pl.points = (double *)d->in.points;
     if (e->fills) { /* each fill runs as one run over its points would */
         d->pl.n_input = whole->in->n, d->pl.host_of_added = d->host;
-        if (!whole->params.samples) d->pl.params.samples = ps_centrality_default_samples(d->in.n);
+        size_t repeated = whole->in->n - e->distinct;
+        if (!whole->params.samples)
+            d->pl.params.samples = ps_centrality_default_samples(d->in.n - repeated);
         return;
     }
     size_t drawn = e->size * (size_t)e->count;
@@ -423,8 +425,9 @@ ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, size_t distinct, ps
 /* Fill j of the caller's mesh for each fill (its points, normals and
  * stand-ins move into the draw), and the keys of the caller's points;
  * *filled 0 when a fill adds nothing (a rough mesh, no area). */
-static ps_status fill_all(ensemble *e, size_t target, int *filled, ps_error *err) {
+static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
     const ps_input *in = e->whole->in;
+    size_t target = PS_DENSITY_REFERENCE_POINTS + (in->n - e->distinct);
     *filled = 0;
     e->key = malloc(in->n * sizeof *e->key);
     if (!e->key) return out_of_memory(err);
@@ -441,10 +444,10 @@ static ps_status fill_all(ensemble *e, size_t target, int *filled, ps_error *err
     return PS_OK;
 }
 
-ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t target, int *filled,
+ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t distinct, int *filled,
                            ps_result **out, ps_error *err) {
-    ensemble e = {.whole = whole, .count = fills, .fills = 1};
-    ps_status st = fill_all(&e, target, filled, err);
+    ensemble e = {.whole = whole, .count = fills, .fills = 1, .distinct = distinct};
+    ps_status st = fill_all(&e, filled, err);
     if (st == PS_OK && *filled) st = segment_all(&e, whole, out, err);
     ensemble_free(&e);
     return st;

@@ -86,15 +86,15 @@ int ps_ensemble_medoid(const int *labels, int draws, size_t s, double margin);
 /* A mesh under the reference sampling (whole->in with faces, whole
  * prepared as for one run, ps_surface_fill_wanted) segmented as fills
  * independent fills of it (ps_surface_fill_build's seeds 0 to fills - 1,
- * each up to target points, the mesh's points first: the reference
- * sampling plus the mesh's repeated points, so that its distinct points
- * and the added ones make the reference sampling), their
+ * each up to the reference sampling in distinct points: the mesh's
+ * points, copies and all, then the added ones), their
  * phases in step as the draws', and *out from the medoid fill, compared on
  * about PS_ENSEMBLE_SAMPLE of the mesh's points.  *filled 0 (and *out
  * untouched) when a fill adds nothing: the mesh is then to be segmented
  * as given.  Each fill takes the centrality samples of a run over its own
- * points (shared as the draws share them, the 228 scored 0.0019 worse). */
-ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t target, int *filled,
+ * distinct points (shared as the draws share them, the 228 scored 0.0019
+ * worse).  distinct: the mesh's distinct points (dedup.h). */
+ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t distinct, int *filled,
                            ps_result **out, ps_error *err);
 
 /* Segments whole->in (whole prepared as for one run: params, threads,

@@ -17,7 +17,6 @@
  * the input, and answers from the one the others agree with most.
  */
 #include "ensemble.h"
-#include "graph/reference_density.h"
 #include "graph/surface_fill.h"
 #include "hierarchy/eigen.h"
 #include "pipeline.h"
@@ -190,8 +189,7 @@ static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) 
     }
     if (mesh && ps_surface_fill_wanted(&pl->params, in->dim, distinct)) {
         int filled = 0;
-        size_t target = PS_DENSITY_REFERENCE_POINTS + (in->n - distinct);
-        ps_status st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, target, &filled, out, err);
+        ps_status st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, distinct, &filled, out, err);
         if (st != PS_OK || filled) return st;
     }
     int draws = ps_ensemble_draws(&pl->params, distinct);
