@@ -52,10 +52,10 @@
 int ps_ensemble_draws(const ps_params *p, size_t n);
 
 /* Distinct points each draw of an input of n distinct points takes: the
- * reference sampling,
- * or n / PS_ENSEMBLE_MAX_DRAWS (rounded up) when more, so that the draws
- * cover the whole input from PS_ENSEMBLE_MAX_DRAWS times the reference on
- * and leave the rest out below it. */
+ * reference sampling, or n / PS_ENSEMBLE_MAX_DRAWS (rounded up) when
+ * more, so that the draws cover the whole input from
+ * PS_ENSEMBLE_MAX_DRAWS times the reference on and leave the rest out
+ * below it. */
 size_t ps_ensemble_draw_points(size_t n);
 
 /* key out: #P each point's distance to the centroid over the largest
@@ -98,8 +98,8 @@ ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t distinct, int *
                            ps_result **out, ps_error *err);
 
 /* Segments whole->in (whole prepared as for one run: params, threads,
- * ctl, n_input, host_of_added), of distinct distinct points, in draws
- * draws (ps_ensemble_draws of distinct), and *out as above.  The
+ * ctl, n_input, host_of_added; distinct: its distinct points, dedup.h)
+ * in draws draws (ps_ensemble_draws of distinct), and *out as above.  The
  * phases run draw after draw within each phase, progress per phase over
  * all draws; the phase times are summed over the draws, the medoid and
  * the answers' transfer timed as refine. */
