@@ -135,49 +135,10 @@ static ps_status samples_init(samples *s, const ps_segment_graph *sg, const int 
     return st;
 }
 
-/* Whether the normals turn along the kNN edges at all: the mean of
- * 1 - n_p . n_q over the arcs is at least PS_CREASE_FLAT (a ball, not a
- * plane). */
-static int curved(const ps_merge_input *in) {
-    const ps_graph *g = in->graph;
-    double sum = 0;
-    for (size_t p = 0; p < g->n; p++)
-        for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
-            const double *a = in->normals + 3 * p, *b = in->normals + 3 * (size_t)g->neighbors[e];
-            sum += 1 - (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-        }
-    return g->offsets[g->n] && sum / (double)g->offsets[g->n] >= PS_CREASE_FLAT;
-}
-
-/* A curved surface without a concave edge is convex everywhere: every
- * adjacent pair merges (the first in (a, b) order each time, the smaller
- * segment into the larger), one segment per connected piece. */
-static ps_status merge_all_adjacent(const ps_merge_input *in, int *group_of_point,
-                                    int *group_of_leaf, ps_merge **merges, int *n_merges,
-                                    ps_error *err) {
-    ps_segment_graph sg;
-    ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .group = group_of_point,
-                                  .n_groups = in->n_groups, .threads = in->threads};
-    ps_status st = ps_segment_graph_build_along(&sg, &sgi, in->boundary, err);
-    if (st != PS_OK) return st;
-    while (st == PS_OK && sg.count > 0) {
-        int a = sg.list[0].a, b = sg.list[0].b;
-        int loser = sg.size[b] <= sg.size[a] ? b : a, winner = loser == a ? b : a;
-        if (!ps_segment_graph_merge(&sg, loser, winner, merges, n_merges))
-            st = ps_fail(err, PS_ERR_NOMEM, "out of memory (convex merge)");
-    }
-    if (st == PS_OK) ps_segment_graph_apply(&sg, group_of_point, in->graph->n, group_of_leaf);
-    ps_segment_graph_free(&sg);
-    return st;
-}
-
 ps_status ps_convex_merge(const ps_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
-    if (in->mean_angular < PS_CREASE_FLAT) /* no concave edge: convex everywhere */
-        return curved(in) ? merge_all_adjacent(in, group_of_point, group_of_leaf, merges,
-                                               n_merges, err)
-                          : PS_OK; /* a plane: its outline's parts are its parts */
+    if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* convex everywhere */
     ps_segment_graph sg;
     ps_crease_test test = ps_crease_test_of(in);
     ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .group = group_of_point,

@@ -29,12 +29,8 @@
  * the first in (a, b) order) merges, the smaller segment into the larger
  * (ties: the higher id into the lower); the creased edges add up.
  * Rotation and scale invariant; deterministic; no threads; O(points) to
- * set up, then O(pairs x samples^2) per merge.  A surface without a
- * concave edge (crease.h: mean angular term under PS_CREASE_FLAT) is
- * convex everywhere: curved (a ball, an egg, a convex stone sampled
- * without noise), all its adjacent segments merge, one part per connected
- * piece; flat (a plane, 2-D points given with z = 0), it is left alone:
- * the parts of a flat shape are those of its outline.
+ * set up, then O(pairs x samples^2) per merge.  A flat surface (crease.h, PS_CREASE_FLAT) is convex
+ * everywhere and is left alone.
  */
 #ifndef PS_CONVEX_MERGE_H
 #define PS_CONVEX_MERGE_H
