@@ -422,25 +422,26 @@ ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, size_t distinct, ps
     return st;
 }
 
-/* Fill j of the caller's mesh for each fill (its points, normals and
+/* The caller's mesh's fills, one per draw (its points, normals and
  * stand-ins move into the draw), and the keys of the caller's points;
  * *filled 0 when a fill adds nothing (a rough mesh, no area). */
 static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
     const ps_input *in = e->whole->in;
     size_t target = PS_DENSITY_REFERENCE_POINTS + (in->n - e->distinct);
+    ps_surface_fill fill[PS_ENSEMBLE_MAX_DRAWS];
     *filled = 0;
     e->key = malloc(in->n * sizeof *e->key);
     if (!e->key) return out_of_memory(err);
     ps_ensemble_keys(in->points, in->n, in->dim, e->key);
-    for (int j = 0; j < e->count; j++) {
-        ps_surface_fill fill;
-        ps_status st = ps_surface_fill_build(in, target, (uint64_t)j, &fill, err);
-        if (st != PS_OK || !fill.n_added) return st;
-        e->d[j].in = (ps_input){.points = fill.points, .normals = fill.normals,
-                                .n = in->n + fill.n_added, .dim = in->dim};
-        e->d[j].host = fill.host;
-    }
+    ps_status st = ps_surface_fill_build(in, target, e->count, fill, err);
+    if (st != PS_OK) return st;
     *filled = 1;
+    for (int j = 0; j < e->count; j++) {
+        e->d[j].in = (ps_input){.points = fill[j].points, .normals = fill[j].normals,
+                                .n = in->n + fill[j].n_added, .dim = in->dim};
+        e->d[j].host = fill[j].host;
+        if (!fill[j].n_added) *filled = 0;
+    }
     return PS_OK;
 }
 

@@ -171,16 +171,22 @@ static int allocate(const ps_input *in, size_t m, ps_surface_fill *out) {
     return 1;
 }
 
-/* Fills out from the triangles' normals (#F by 3, face_normals), or
- * leaves it empty (see surface_fill.h); 0 when out of memory. */
-static int fill_from_normals(const ps_input *in, size_t target, uint64_t seed,
-                             const double *normal, ps_surface_fill *out) {
-    double total = 0;
-    for (size_t t = 0; t < in->n_faces; t++) total += area_of(normal + 3 * t);
-    if (!(total > 0) || !isfinite(total)) return 1;
+/* Whether the triangles (normals #F by 3, face_normals) take points:
+ * they have area (*total, their sum) and are no rougher than
+ * PS_FILL_MAX_ROUGHNESS; -1 when out of memory. */
+static int fillable(const ps_input *in, const double *normal, double *total) {
+    *total = 0;
+    for (size_t t = 0; t < in->n_faces; t++) *total += area_of(normal + 3 * t);
+    if (!(*total > 0) || !isfinite(*total)) return 0;
     double roughness = roughness_of(in, normal);
-    if (roughness < 0) return 0;
-    if (roughness > PS_FILL_MAX_ROUGHNESS) return 1;
+    if (roughness < 0) return -1;
+    return roughness <= PS_FILL_MAX_ROUGHNESS;
+}
+
+/* Fill seed of the triangles (normals #F by 3, of area total) into out,
+ * or out left empty when it would add nothing; 0 when out of memory. */
+static int fill_seed(const ps_input *in, size_t target, uint64_t seed, const double *normal,
+                     double total, ps_surface_fill *out) {
     double step = total / (double)(target - in->n);
     size_t m = 0;
     for (size_t t = 0; t < in->n_faces; t++)
@@ -200,18 +206,23 @@ int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n) {
            dim == 3 && n < PS_DENSITY_REFERENCE_POINTS;
 }
 
-ps_status ps_surface_fill_build(const ps_input *in, size_t target, uint64_t seed,
+ps_status ps_surface_fill_build(const ps_input *in, size_t target, int fills,
                                 ps_surface_fill *out, ps_error *err) {
-    memset(out, 0, sizeof *out);
+    memset(out, 0, (size_t)fills * sizeof *out);
     if (in->dim != 3 || !in->faces || in->n_faces == 0 || in->n >= target) return PS_OK;
-    double *normal = malloc(3 * in->n_faces * sizeof *normal);
-    int ok = normal != NULL;
+    double *normal = malloc(3 * in->n_faces * sizeof *normal), total = 0;
+    int ok = normal != NULL, take = 0;
     if (ok) {
         face_normals(in, normal);
-        ok = fill_from_normals(in, target, seed, normal, out);
+        take = fillable(in, normal, &total);
+        ok = take >= 0;
     }
+    for (int j = 0; ok && take && j < fills; j++)
+        ok = fill_seed(in, target, (uint64_t)j, normal, total, &out[j]);
     free(normal);
-    return ok ? PS_OK : ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
+    if (ok) return PS_OK;
+    for (int j = 0; j < fills; j++) ps_surface_fill_free(&out[j]);
+    return ps_fail(err, PS_ERR_NOMEM, "out of memory (surface fill)");
 }
 
 void ps_surface_fill_free(ps_surface_fill *s) {

@@ -59,14 +59,16 @@ double ps_surface_fill_roughness(const ps_input *in);
  * is then depends on its faces (ps_surface_fill_build). */
 int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n);
 
-/* Points added on in's triangles (in->dim must be 3) until #P+#A reaches
- * about target (within the dither's rounding).  Nothing when #P >= target,
- * when the faces have no area, or when they are rougher than
- * PS_FILL_MAX_ROUGHNESS: then out->n_added is 0 and out's arrays are NULL.
- * seed picks one of independent fills (0, 1, ...): the per-triangle
- * hashes (dither and sequence start) are keyed by it.  Face indices must
- * be < #P (the caller checks). */
-ps_status ps_surface_fill_build(const ps_input *in, size_t target, uint64_t seed,
+/* out #fills: independent fills of in's triangles (in->dim must be 3),
+ * seeds 0 to fills - 1, each with points added until #P+#A reaches about
+ * target (within the dither's rounding); a seed keys the per-triangle
+ * hashes (dither and sequence start), so seed 0 is the same fill however
+ * many are asked for.  The face normals and the roughness are computed
+ * once for all.  A fill adds nothing when #P >= target, when the faces
+ * have no area, or when they are rougher than PS_FILL_MAX_ROUGHNESS: then
+ * its n_added is 0 and its arrays are NULL.  Face indices must be < #P
+ * (the caller checks). */
+ps_status ps_surface_fill_build(const ps_input *in, size_t target, int fills,
                                 ps_surface_fill *out, ps_error *err);
 
 void ps_surface_fill_free(ps_surface_fill *s);

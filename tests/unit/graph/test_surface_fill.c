@@ -68,7 +68,7 @@ static void test_fills_the_tube_evenly(void) {
     ps_input in = tube_input(&t);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     /* the dither's rounding: 1,280 triangles of 15.1 points each */
     REQUIRE(s.n_added > TARGET - N_TUBE - 100 && s.n_added < TARGET - N_TUBE + 100);
     CHECK(s.normals == NULL);
@@ -99,7 +99,7 @@ static void test_normals_interpolated(void) {
     in.normals = t.normals;
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     REQUIRE(s.normals != NULL);
     for (size_t a = 0; a < s.n_added; a++) {
         const double *p = s.points + 3 * (N_TUBE + a), *n = s.normals + 3 * (N_TUBE + a);
@@ -128,8 +128,8 @@ static void test_moves_with_the_mesh(void) {
     ps_input a = tube_input(&t), b = tube_input(&moved);
     ps_surface_fill sa, sb;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&a, TARGET, 0, &sa, &err) == PS_OK);
-    REQUIRE(ps_surface_fill_build(&b, TARGET, 0, &sb, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&a, TARGET, 1, &sa, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&b, TARGET, 1, &sb, &err) == PS_OK);
     REQUIRE(sa.n_added == sb.n_added);
     size_t same = 0;
     for (size_t i = 0; i < sa.n_added; i++) {
@@ -151,15 +151,15 @@ static void test_nothing_to_add(void) {
     ps_input in = tube_input(&t);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, N_TUBE, 0, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, N_TUBE, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL && s.host == NULL);
     uint32_t flat[6] = {0, 0, 1, 2, 2, 2}; /* two triangles without area */
     in.faces = flat, in.n_faces = 2;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL);
     in = tube_input(&t);
     in.faces = NULL, in.n_faces = 0;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0);
 }
 
@@ -179,20 +179,25 @@ static void test_noisy_mesh_not_filled(void) {
     CHECK(ps_surface_fill_roughness(&in) > PS_FILL_MAX_ROUGHNESS);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &s, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL);
 }
 
 /* Fills of other seeds add as many points (but for the dither) at other
- * places: independent samplings of the same triangles. */
+ * places: independent samplings of the same triangles; seed 0 is the same
+ * fill asked alone or with another. */
 static void test_seeds_fill_independently(void) {
     static tube t;
     tube_make(&t);
     ps_input in = tube_input(&t);
-    ps_surface_fill a, b;
+    ps_surface_fill fills[2], one;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 0, &a, &err) == PS_OK);
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &b, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 2, fills, &err) == PS_OK);
+    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &one, &err) == PS_OK);
+    ps_surface_fill a = fills[0], b = fills[1];
+    REQUIRE(one.n_added == a.n_added);
+    CHECK(memcmp(one.points, a.points, 3 * (N_TUBE + a.n_added) * sizeof *a.points) == 0);
+    ps_surface_fill_free(&one);
     REQUIRE(a.n_added > 0 && b.n_added > 0);
     CHECK_MSG(fabs((double)a.n_added - (double)b.n_added) < 0.01 * (double)a.n_added,
               "%zu and %zu added", a.n_added, b.n_added);
