@@ -111,11 +111,42 @@ static int merge_pair(ps_segment_graph *sg, size_t i, ps_merge **merges, int *n_
     return ps_segment_graph_merge(sg, loser, winner, merges, n_merges);
 }
 
+/* The area about point p: the mean squared length of its kNN edges. */
+static double area_about(const ps_merge_input *in, size_t p) {
+    const ps_graph *g = in->graph;
+    size_t begin = g->offsets[p], end = g->offsets[p + 1];
+    double sum = 0;
+    for (size_t e = begin; e < end; e++) {
+        const double *a = in->points + 3 * p, *b = in->points + 3 * (size_t)g->neighbors[e];
+        for (int i = 0; i < 3; i++) sum += (b[i] - a[i]) * (b[i] - a[i]);
+    }
+    return end > begin ? sum / (double)(end - begin) : 0;
+}
+
+/* Whether the surface closes on itself: its normals, each weighted by the
+ * area about its point (so that the sampling's density does not count),
+ * sum to less than PS_CREASE_MERGE_CLOSED times that area.  The normals of
+ * a closed surface integrate to 0 (Gauss), whichever way each component
+ * is oriented; a sheet's do not, bent or not. */
+static int closed_surface(const ps_merge_input *in) {
+    double sum[3] = {0, 0, 0}, area = 0;
+    for (size_t p = 0; p < in->graph->n; p++) {
+        double w = area_about(in, p);
+        for (int i = 0; i < 3; i++) sum[i] += w * in->normals[3 * p + i];
+        area += w;
+    }
+    return sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) <
+           PS_CREASE_MERGE_CLOSED * area;
+}
+
 ps_status ps_crease_merge(const ps_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
-    if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* no creases: no evidence */
     ps_crease_test test = ps_crease_test_of(in);
+    if (in->mean_angular < PS_CREASE_FLAT) {
+        if (!closed_surface(in)) return PS_OK; /* a sheet: its parts are its outline's */
+        test.crease = INFINITY;                /* no edge creased: protrusions alone stay */
+    }
     ps_segment_graph sg;
     ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .points = in->points,
                                   .normals = in->normals, .group = group_of_point,

@@ -28,8 +28,11 @@
  * centre (ps_segment_bulge below -PS_CREASE_MERGE_CAVITY; the inside of a
  * cup), merges as if none of its boundary were creased, since the concave
  * bend of its own surface marks its boundary edges as creased wherever
- * they run.  A flat surface (crease.h,
- * PS_CREASE_FLAT) has no creases to judge by and is left alone.
+ * they run.  A surface without concave edges (crease.h, PS_CREASE_FLAT: a
+ * plane, a ball, a cube) has no creases to judge by.  A sheet is left
+ * alone: its parts are its outline's, bent or not.  A closed one (its
+ * normals cancel) merges every pair but the protruding: on a ball or an
+ * egg f is flat and its basins are the sampling's noise.
  * Deterministic; no threads.
  */
 #ifndef PS_CREASE_MERGE_H
@@ -50,6 +53,9 @@
 #define PS_CREASE_MERGE_PROTRUSION 1.0
 /* A smaller segment whose bulge is below minus this is a cavity. */
 #define PS_CREASE_MERGE_CAVITY 0.35
+/* A surface is closed when its area-weighted normals sum to less than this
+ * fraction of its area (a hemisphere's: 0.5, a plane's: 1). */
+#define PS_CREASE_MERGE_CLOSED 0.25
 
 /* The test of a boundary edge above, for the other merges that weigh
  * creases (convex_merge.h): a ps_boundary_mark_fn, ps_crease_marked_edge,
