@@ -433,7 +433,7 @@ static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
     e->key = malloc(in->n * sizeof *e->key);
     if (!e->key) return out_of_memory(err);
     ps_ensemble_keys(in->points, in->n, in->dim, e->key);
-    ps_status st = ps_surface_fill_build(in, target, e->count, fill, err);
+    ps_status st = ps_surface_fill_build(in, &e->whole->dedup, target, e->count, fill, err);
     if (st != PS_OK) return st;
     *filled = 1;
     for (int j = 0; j < e->count; j++) {
@@ -445,9 +445,10 @@ static ps_status fill_all(ensemble *e, int *filled, ps_error *err) {
     return PS_OK;
 }
 
-ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t distinct, int *filled,
-                           ps_result **out, ps_error *err) {
-    ensemble e = {.whole = whole, .count = fills, .fills = 1, .distinct = distinct};
+ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, int *filled, ps_result **out,
+                           ps_error *err) {
+    ensemble e = {.whole = whole, .count = fills, .fills = 1,
+                  .distinct = whole->dedup.n_unique};
     ps_status st = fill_all(&e, filled, err);
     if (st == PS_OK && *filled) st = segment_all(&e, whole, out, err);
     ensemble_free(&e);

@@ -84,7 +84,8 @@ int ps_ensemble_compared(uint32_t key, size_t n, size_t s);
 int ps_ensemble_medoid(const int *labels, int draws, size_t s, double margin);
 
 /* A mesh under the reference sampling (whole->in with faces, whole
- * prepared as for one run, ps_surface_fill_wanted) segmented as fills
+ * prepared as for one run with whole->dedup built on whole->in,
+ * ps_surface_fill_wanted of its distinct points) segmented as fills
  * independent fills of it (ps_surface_fill_build's seeds 0 to fills - 1,
  * each up to the reference sampling in distinct points: the mesh's
  * points, copies and all, then the added ones), their
@@ -93,9 +94,9 @@ int ps_ensemble_medoid(const int *labels, int draws, size_t s, double margin);
  * untouched) when a fill adds nothing: the mesh is then to be segmented
  * as given.  Each fill takes the centrality samples of a run over its own
  * distinct points (shared as the draws share them, the 228 scored 0.0019
- * worse).  distinct: the mesh's distinct points (dedup.h). */
-ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, size_t distinct, int *filled,
-                           ps_result **out, ps_error *err);
+ * worse). */
+ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, int *filled, ps_result **out,
+                           ps_error *err);
 
 /* Segments whole->in (whole prepared as for one run: params, threads,
  * ctl, n_input, host_of_added; distinct: its distinct points, dedup.h)

@@ -53,7 +53,12 @@ static ps_status distinct_points(ps_pipeline *pl, ps_error *err) {
 ps_status ps_pipeline_dedup(ps_pipeline *pl, ps_error *err) {
     const ps_input *in = pl->in;
     ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
-    if (st != PS_OK) return st;
+    return st == PS_OK ? ps_pipeline_distinct(pl, err) : st;
+}
+
+ps_status ps_pipeline_distinct(ps_pipeline *pl, ps_error *err) {
+    const ps_input *in = pl->in;
+    ps_status st = PS_OK;
     size_t u = pl->dedup.n_unique;
     if (u < (size_t)pl->params.k + 1)
         return ps_fail(err, PS_ERR_INVALID,

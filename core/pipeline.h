@@ -59,8 +59,11 @@ typedef struct ps_pipeline {
 double ps_now_ms(void);
 
 /* pl->points: the distinct points of pl->in (in Morton order for a big
- * scan, dedup.h); fails when fewer than k + 1 remain. */
+ * scan, dedup.h); fails when fewer than k + 1 remain.  ps_pipeline_dedup
+ * finds them; ps_pipeline_distinct takes pl->dedup as built already
+ * (ps_dedup_build on pl->in, not reordered). */
 ps_status ps_pipeline_dedup(ps_pipeline *pl, ps_error *err);
+ps_status ps_pipeline_distinct(ps_pipeline *pl, ps_error *err);
 
 /* A step of the method (ps_step, pointseg.h) on pl, after the steps
  * before it: span is its share of its phase's progress.  One per step, in

@@ -146,7 +146,7 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
 
 /* Every phase on the whole input, and the result for the caller's points. */
 static ps_status segment_whole(ps_pipeline *pl, ps_result **out, ps_error *err) {
-    ps_status st = ps_pipeline_dedup(pl, err);
+    ps_status st = ps_pipeline_distinct(pl, err);
     for (int ph = 0; st == PS_OK && ph < PS_PHASE_COUNT; ph++)
         st = ps_segment_phase(pl, (ps_phase)ph, err);
     if (st == PS_OK) {
@@ -164,15 +164,6 @@ static void apply_method(ps_params *p) {
     if (p->ncut_threshold == 0) p->ncut_threshold = paper ? PS_NCUT_PAPER : PS_NCUT_NEVER_STOP;
 }
 
-/* *distinct out: the distinct points of in (dedup.h). */
-static ps_status count_distinct(const ps_input *in, size_t *distinct, ps_error *err) {
-    ps_dedup d;
-    ps_status st = ps_dedup_build(in->points, in->n, in->dim, &d, err);
-    *distinct = d.n_unique;
-    ps_dedup_free(&d);
-    return st;
-}
-
 /* A mesh under the reference sampling in fills of it where the
  * parameters want them (surface_fill.h, ensemble.h); else the input as
  * given, whole or in draws.  Both count distinct points: a few points
@@ -181,19 +172,18 @@ static ps_status count_distinct(const ps_input *in, size_t *distinct, ps_error *
  * the same mesh welded. */
 static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) {
     const ps_input *in = pl->in;
-    int mesh = in->faces && in->n_faces;
-    size_t distinct = in->n;
-    if (mesh || ps_ensemble_draws(&pl->params, in->n)) {
-        ps_status st = count_distinct(in, &distinct, err);
-        if (st != PS_OK) return st;
-    }
-    if (mesh && ps_surface_fill_wanted(&pl->params, in->dim, distinct)) {
+    ps_status st = ps_dedup_build(in->points, in->n, in->dim, &pl->dedup, err);
+    if (st != PS_OK) return st;
+    size_t distinct = pl->dedup.n_unique;
+    if (in->faces && in->n_faces && ps_surface_fill_wanted(&pl->params, in->dim, distinct)) {
         int filled = 0;
-        ps_status st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, distinct, &filled, out, err);
+        st = ps_ensemble_fill(pl, PS_ENSEMBLE_FILLS, &filled, out, err);
         if (st != PS_OK || filled) return st;
     }
     int draws = ps_ensemble_draws(&pl->params, distinct);
-    return draws ? ps_ensemble_segment(pl, draws, distinct, out, err) : segment_whole(pl, out, err);
+    if (!draws) return segment_whole(pl, out, err);
+    ps_dedup_free(&pl->dedup); /* each draw finds its own; only the count is needed */
+    return ps_ensemble_segment(pl, draws, distinct, out, err);
 }
 
 ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,

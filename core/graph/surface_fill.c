@@ -119,38 +119,35 @@ static size_t corner_of(const ps_input *in, const ps_dedup *d, size_t t, int c) 
     return d->unique_of[in->faces[3 * t + (size_t)c]];
 }
 
-/* The roughness (surface_fill.h) from the triangles' normals #F by 3; -1
- * when out of memory. */
-static double roughness_of(const ps_input *in, const double *normal) {
-    ps_dedup d;
-    if (ps_dedup_build(in->points, in->n, 3, &d, NULL) != PS_OK) return -1;
-    double *corner = calloc(3 * d.n_unique, sizeof *corner); /* area-weighted normals */
+/* The roughness (surface_fill.h) from the triangles' normals #F by 3 and
+ * in's distinct points d; -1 when out of memory. */
+static double roughness_of(const ps_input *in, const ps_dedup *d, const double *normal) {
+    double *corner = calloc(3 * d->n_unique, sizeof *corner); /* area-weighted normals */
     double *deviation = malloc(in->n_faces * sizeof *deviation);
-    if (!corner || !deviation) return free(corner), free(deviation), ps_dedup_free(&d), -1;
+    if (!corner || !deviation) return free(corner), free(deviation), -1;
     for (size_t t = 0; t < in->n_faces; t++)
         for (int c = 0; c < 3; c++)
-            for (int k = 0; k < 3; k++) corner[3 * corner_of(in, &d, t, c) + k] += normal[3 * t + k];
+            for (int k = 0; k < 3; k++) corner[3 * corner_of(in, d, t, c) + k] += normal[3 * t + k];
     size_t count = 0;
     for (size_t t = 0; t < in->n_faces; t++) {
         const double *n = normal + 3 * t;
         double m[3] = {0, 0, 0};
         for (int c = 0; c < 3; c++)
-            for (int k = 0; k < 3; k++) m[k] += corner[3 * corner_of(in, &d, t, c) + k];
+            for (int k = 0; k < 3; k++) m[k] += corner[3 * corner_of(in, d, t, c) + k];
         double nn = dot3(n, n), mm = dot3(m, m);
         if (nn > 0 && mm > 0) deviation[count++] = 1 - dot3(n, m) / sqrt(nn * mm);
     }
     double median = count ? ps_select_kth(deviation, count, count / 2) : 0;
     free(corner), free(deviation);
-    ps_dedup_free(&d);
     return median;
 }
 
-double ps_surface_fill_roughness(const ps_input *in) {
+double ps_surface_fill_roughness(const ps_input *in, const ps_dedup *corners) {
     if (in->dim != 3 || !in->faces || in->n_faces == 0) return 0;
     double *normal = malloc(3 * in->n_faces * sizeof *normal);
     if (!normal) return -1;
     face_normals(in, normal);
-    double roughness = roughness_of(in, normal);
+    double roughness = roughness_of(in, corners, normal);
     free(normal);
     return roughness;
 }
@@ -174,11 +171,12 @@ static int allocate(const ps_input *in, size_t m, ps_surface_fill *out) {
 /* Whether the triangles (normals #F by 3, face_normals) take points:
  * they have area (*total, their sum) and are no rougher than
  * PS_FILL_MAX_ROUGHNESS; -1 when out of memory. */
-static int fillable(const ps_input *in, const double *normal, double *total) {
+static int fillable(const ps_input *in, const ps_dedup *corners, const double *normal,
+                    double *total) {
     *total = 0;
     for (size_t t = 0; t < in->n_faces; t++) *total += area_of(normal + 3 * t);
     if (!(*total > 0) || !isfinite(*total)) return 0;
-    double roughness = roughness_of(in, normal);
+    double roughness = roughness_of(in, corners, normal);
     if (roughness < 0) return -1;
     return roughness <= PS_FILL_MAX_ROUGHNESS;
 }
@@ -206,15 +204,15 @@ int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n) {
            dim == 3 && n < PS_DENSITY_REFERENCE_POINTS;
 }
 
-ps_status ps_surface_fill_build(const ps_input *in, size_t target, int fills,
-                                ps_surface_fill *out, ps_error *err) {
+ps_status ps_surface_fill_build(const ps_input *in, const ps_dedup *corners, size_t target,
+                                int fills, ps_surface_fill *out, ps_error *err) {
     memset(out, 0, (size_t)fills * sizeof *out);
     if (in->dim != 3 || !in->faces || in->n_faces == 0 || in->n >= target) return PS_OK;
     double *normal = malloc(3 * in->n_faces * sizeof *normal), total = 0;
     int ok = normal != NULL, take = 0;
     if (ok) {
         face_normals(in, normal);
-        take = fillable(in, normal, &total);
+        take = fillable(in, corners, normal, &total);
         ok = take >= 0;
     }
     for (int j = 0; ok && take && j < fills; j++)

@@ -36,6 +36,7 @@
 #ifndef PS_SURFACE_FILL_H
 #define PS_SURFACE_FILL_H
 
+#include "graph/dedup.h"
 #include "pointseg.h"
 
 typedef struct ps_surface_fill {
@@ -49,9 +50,10 @@ typedef struct ps_surface_fill {
 
 #define PS_FILL_MAX_ROUGHNESS 0.01
 
-/* The roughness of in's triangles (above; in->dim 3); 0 without faces,
- * -1 when out of memory. */
-double ps_surface_fill_roughness(const ps_input *in);
+/* The roughness of in's triangles (above; in->dim 3), corners: in's
+ * distinct points (ps_dedup_build on in->points); 0 without faces, -1
+ * when out of memory. */
+double ps_surface_fill_roughness(const ps_input *in, const ps_dedup *corners);
 
 /* Whether params (method auto, centrality not exact: exact is quadratic
  * in the points and runs on the input as given) let a mesh of n points of
@@ -67,9 +69,10 @@ int ps_surface_fill_wanted(const ps_params *params, int dim, size_t n);
  * once for all.  A fill adds nothing when #P >= target, when the faces
  * have no area, or when they are rougher than PS_FILL_MAX_ROUGHNESS: then
  * its n_added is 0 and its arrays are NULL.  Face indices must be < #P
- * (the caller checks). */
-ps_status ps_surface_fill_build(const ps_input *in, size_t target, int fills,
-                                ps_surface_fill *out, ps_error *err);
+ * (the caller checks).  corners: in's distinct points, as for the
+ * roughness. */
+ps_status ps_surface_fill_build(const ps_input *in, const ps_dedup *corners, size_t target,
+                                int fills, ps_surface_fill *out, ps_error *err);
 
 void ps_surface_fill_free(ps_surface_fill *s);
 

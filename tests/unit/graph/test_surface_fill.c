@@ -37,6 +37,26 @@ typedef struct tube {
     uint32_t faces[3 * N_BAND_FACES];
 } tube;
 
+/* ps_surface_fill_build with in's distinct points found first. */
+static ps_status fill_build(const ps_input *in, size_t target, int fills, ps_surface_fill *out,
+                            ps_error *err) {
+    ps_dedup corners;
+    ps_status st = ps_dedup_build(in->points, in->n, in->dim, &corners, err);
+    if (st == PS_OK) st = ps_surface_fill_build(in, &corners, target, fills, out, err);
+    ps_dedup_free(&corners);
+    return st;
+}
+
+/* ps_surface_fill_roughness with in's distinct points found first; -1 when
+ * out of memory. */
+static double roughness(const ps_input *in) {
+    ps_dedup corners;
+    if (ps_dedup_build(in->points, in->n, in->dim, &corners, NULL) != PS_OK) return -1;
+    double r = ps_surface_fill_roughness(in, &corners);
+    ps_dedup_free(&corners);
+    return r;
+}
+
 static uint32_t at(int ring, int i) { return (uint32_t)(ring * RING + (i % RING)); }
 
 /* Points in rings with radial normals; each band between two rings in two
@@ -68,7 +88,7 @@ static void test_fills_the_tube_evenly(void) {
     ps_input in = tube_input(&t);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
+    REQUIRE(fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     /* the dither's rounding: 1,280 triangles of 15.1 points each */
     REQUIRE(s.n_added > TARGET - N_TUBE - 100 && s.n_added < TARGET - N_TUBE + 100);
     CHECK(s.normals == NULL);
@@ -99,7 +119,7 @@ static void test_normals_interpolated(void) {
     in.normals = t.normals;
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
+    REQUIRE(fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     REQUIRE(s.normals != NULL);
     for (size_t a = 0; a < s.n_added; a++) {
         const double *p = s.points + 3 * (N_TUBE + a), *n = s.normals + 3 * (N_TUBE + a);
@@ -128,8 +148,8 @@ static void test_moves_with_the_mesh(void) {
     ps_input a = tube_input(&t), b = tube_input(&moved);
     ps_surface_fill sa, sb;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&a, TARGET, 1, &sa, &err) == PS_OK);
-    REQUIRE(ps_surface_fill_build(&b, TARGET, 1, &sb, &err) == PS_OK);
+    REQUIRE(fill_build(&a, TARGET, 1, &sa, &err) == PS_OK);
+    REQUIRE(fill_build(&b, TARGET, 1, &sb, &err) == PS_OK);
     REQUIRE(sa.n_added == sb.n_added);
     size_t same = 0;
     for (size_t i = 0; i < sa.n_added; i++) {
@@ -151,15 +171,15 @@ static void test_nothing_to_add(void) {
     ps_input in = tube_input(&t);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, N_TUBE, 1, &s, &err) == PS_OK);
+    REQUIRE(fill_build(&in, N_TUBE, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL && s.host == NULL);
     uint32_t flat[6] = {0, 0, 1, 2, 2, 2}; /* two triangles without area */
     in.faces = flat, in.n_faces = 2;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
+    REQUIRE(fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL);
     in = tube_input(&t);
     in.faces = NULL, in.n_faces = 0;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
+    REQUIRE(fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0);
 }
 
@@ -170,16 +190,16 @@ static void test_noisy_mesh_not_filled(void) {
     static tube t;
     tube_make(&t);
     ps_input in = tube_input(&t);
-    CHECK(ps_surface_fill_roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
+    CHECK(roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
     uint64_t state = 88172645463325252ull;
     for (size_t i = 0; i < 3 * N_TUBE; i++) {
         state ^= state << 13, state ^= state >> 7, state ^= state << 17;
         t.points[i] += 0.1 * ((double)(state >> 11) / 9007199254740992.0 - 0.5);
     }
-    CHECK(ps_surface_fill_roughness(&in) > PS_FILL_MAX_ROUGHNESS);
+    CHECK(roughness(&in) > PS_FILL_MAX_ROUGHNESS);
     ps_surface_fill s;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
+    REQUIRE(fill_build(&in, TARGET, 1, &s, &err) == PS_OK);
     CHECK(s.n_added == 0 && s.points == NULL);
 }
 
@@ -192,8 +212,8 @@ static void test_seeds_fill_independently(void) {
     ps_input in = tube_input(&t);
     ps_surface_fill fills[2], one;
     ps_error err;
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 2, fills, &err) == PS_OK);
-    REQUIRE(ps_surface_fill_build(&in, TARGET, 1, &one, &err) == PS_OK);
+    REQUIRE(fill_build(&in, TARGET, 2, fills, &err) == PS_OK);
+    REQUIRE(fill_build(&in, TARGET, 1, &one, &err) == PS_OK);
     ps_surface_fill a = fills[0], b = fills[1];
     REQUIRE(one.n_added == a.n_added);
     CHECK(memcmp(one.points, a.points, 3 * (N_TUBE + a.n_added) * sizeof *a.points) == 0);
@@ -322,7 +342,7 @@ static void test_unwelded_roughness(void) {
     size_t n;
     ps_input in = unwelded(&t, 1, &points, &faces, &n);
     REQUIRE(in.points);
-    CHECK(ps_surface_fill_roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
+    CHECK(roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
     free(points), free(faces);
     uint64_t state = 88172645463325252ull;
     for (size_t i = 0; i < 3 * N_TUBE; i++) {
@@ -331,8 +351,8 @@ static void test_unwelded_roughness(void) {
     }
     in = unwelded(&t, 1, &points, &faces, &n);
     REQUIRE(in.points);
-    CHECK_MSG(ps_surface_fill_roughness(&in) > PS_FILL_MAX_ROUGHNESS, "roughness %g",
-              ps_surface_fill_roughness(&in));
+    CHECK_MSG(roughness(&in) > PS_FILL_MAX_ROUGHNESS, "roughness %g",
+              roughness(&in));
     free(points), free(faces);
 }
 
