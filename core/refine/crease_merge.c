@@ -76,11 +76,24 @@ static int cavity(const ps_segment_graph *sg, int s) {
     return ps_segment_bulge(sg, s) < -PS_CREASE_MERGE_CAVITY;
 }
 
-/* Whether the smaller segment of record i protrudes: it is no cavity, and
+/* The core: the segment that holds the least f (ties: the lowest id),
+ * the shape's centre; -1 when there is none. */
+static int core_of(const ps_segment_graph *sg) {
+    int core = -1;
+    for (int s = 0; s < sg->n_groups; s++)
+        if (sg->alias[s] == s && sg->size[s] > 0 && (core < 0 || sg->f_min[s] < sg->f_min[core]))
+            core = s;
+    return core;
+}
+
+/* Whether record i's part protrudes: its smaller segment, or the other
+ * when the smaller is the core (the centre of a plus sign can be smaller
+ * than each of its arms, and sticks out of nothing), is no cavity and
  * its feature size is over PS_CREASE_MERGE_PROTRUSION times the width of
  * its boundary. */
-static int protrudes(const ps_segment_graph *sg, size_t i) {
+static int protrudes(const ps_segment_graph *sg, size_t i, int core) {
     int s = smaller_of(sg, i);
+    if (s == core) s = s == sg->list[i].a ? sg->list[i].b : sg->list[i].a;
     double width = ps_boundary_width(&sg->list[i]);
     return !cavity(sg, s) && sg->f_max[s] - sg->f_min[s] > PS_CREASE_MERGE_PROTRUSION * width;
 }
@@ -97,9 +110,10 @@ static double creased_fraction(const ps_segment_graph *sg, size_t i) {
 static long weakest_boundary(const ps_segment_graph *sg, double threshold) {
     long best = -1;
     double best_fraction = threshold;
+    int core = core_of(sg);
     for (size_t i = 0; i < sg->count; i++) {
         double fraction = creased_fraction(sg, i);
-        if (fraction < best_fraction && !protrudes(sg, i)) best = (long)i, best_fraction = fraction;
+        if (fraction < best_fraction && !protrudes(sg, i, core)) best = (long)i, best_fraction = fraction;
     }
     return best;
 }
@@ -111,42 +125,11 @@ static int merge_pair(ps_segment_graph *sg, size_t i, ps_merge **merges, int *n_
     return ps_segment_graph_merge(sg, loser, winner, merges, n_merges);
 }
 
-/* The area about point p: the mean squared length of its kNN edges. */
-static double area_about(const ps_merge_input *in, size_t p) {
-    const ps_graph *g = in->graph;
-    size_t begin = g->offsets[p], end = g->offsets[p + 1];
-    double sum = 0;
-    for (size_t e = begin; e < end; e++) {
-        const double *a = in->points + 3 * p, *b = in->points + 3 * (size_t)g->neighbors[e];
-        for (int i = 0; i < 3; i++) sum += (b[i] - a[i]) * (b[i] - a[i]);
-    }
-    return end > begin ? sum / (double)(end - begin) : 0;
-}
-
-/* Whether the surface closes on itself: its normals, each weighted by the
- * area about its point (so that the sampling's density does not count),
- * sum to less than PS_CREASE_MERGE_CLOSED times that area.  The normals of
- * a closed surface integrate to 0 (Gauss), whichever way each component
- * is oriented; a sheet's do not, bent or not. */
-static int closed_surface(const ps_merge_input *in) {
-    double sum[3] = {0, 0, 0}, area = 0;
-    for (size_t p = 0; p < in->graph->n; p++) {
-        double w = area_about(in, p);
-        for (int i = 0; i < 3; i++) sum[i] += w * in->normals[3 * p + i];
-        area += w;
-    }
-    return sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) <
-           PS_CREASE_MERGE_CLOSED * area;
-}
-
 ps_status ps_crease_merge(const ps_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
     ps_crease_test test = ps_crease_test_of(in);
-    if (in->mean_angular < PS_CREASE_FLAT) {
-        if (!closed_surface(in)) return PS_OK; /* a sheet: its parts are its outline's */
-        test.crease = INFINITY;                /* no edge creased: protrusions alone stay */
-    }
+    if (in->mean_angular < PS_CREASE_FLAT) test.crease = INFINITY; /* protrusions alone stay */
     ps_segment_graph sg;
     ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .points = in->points,
                                   .normals = in->normals, .group = group_of_point,

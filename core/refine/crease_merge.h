@@ -18,21 +18,24 @@
  * While some pair's creased fraction is below PS_CREASE_MERGE_FRACTION,
  * the pair with the lowest (ties: lowest ids) merges: the segment with fewer
  * points goes into the other (ties: the higher id into the lower), its
- * boundaries adding up with the survivor's.  A pair whose smaller segment
+ * boundaries adding up with the survivor's.  A pair one of whose segments
  * protrudes stays apart whatever its creases: people also cut off what
  * sticks out (Hoffman and Singh, 1997), such as a limb joined to the body
- * over smooth surface; a segment protrudes when its feature size (max f -
- * min f) is over PS_CREASE_MERGE_PROTRUSION times the width of the
- * boundary (ps_boundary_width).  A cavity is no part either: a smaller
- * segment that curves inwards, its outward normals pointing towards its
- * centre (ps_segment_bulge below -PS_CREASE_MERGE_CAVITY; the inside of a
- * cup), merges as if none of its boundary were creased, since the concave
- * bend of its own surface marks its boundary edges as creased wherever
- * they run.  A surface without concave edges (crease.h, PS_CREASE_FLAT: a
- * plane, a ball, a cube) has no creases to judge by.  A sheet is left
- * alone: its parts are its outline's, bent or not.  A closed one (its
- * normals cancel) merges every pair but the protruding: on a ball or an
- * egg f is flat and its basins are the sampling's noise.
+ * over smooth surface.  The segment that may stick out is the smaller,
+ * or the other when the smaller is the core (the segment holding the
+ * least f: the centre of a plus sign can be smaller than each arm); it
+ * protrudes when its feature size (max f - min f) is over
+ * PS_CREASE_MERGE_PROTRUSION times the width of the boundary
+ * (ps_boundary_width).  A cavity is no part
+ * either: a smaller segment that curves inwards, its outward normals
+ * pointing towards its centre (ps_segment_bulge below
+ * -PS_CREASE_MERGE_CAVITY; the inside of a cup), merges as if none of its
+ * boundary were creased, since the concave bend of its own surface marks
+ * its boundary edges as creased wherever they run.  A surface without concave edges (crease.h, PS_CREASE_FLAT: a
+ * plane, a ball, a cube) has no creases to judge by: every pair merges
+ * but the protruding, so that a ball, an egg, a disc or a square sheet
+ * is one part (on a ball f is flat, its basins the sampling's noise)
+ * and the fingers of a flat hand or the arms of a plus sign stay apart.
  * Deterministic; no threads.
  */
 #ifndef PS_CREASE_MERGE_H
@@ -53,9 +56,6 @@
 #define PS_CREASE_MERGE_PROTRUSION 1.0
 /* A smaller segment whose bulge is below minus this is a cavity. */
 #define PS_CREASE_MERGE_CAVITY 0.35
-/* A surface is closed when its area-weighted normals sum to less than this
- * fraction of its area (a hemisphere's: 0.5, a plane's: 1). */
-#define PS_CREASE_MERGE_CLOSED 0.25
 
 /* The test of a boundary edge above, for the other merges that weigh
  * creases (convex_merge.h): a ps_boundary_mark_fn, ps_crease_marked_edge,

@@ -322,17 +322,19 @@ static void test_two_balls_two_parts(void) {
     free(part);
 }
 
-/* A plus-shaped sheet (arms 2 wide reaching 3 from the centre) bent round a
- * cylinder of radius 3: an open surface with no concave edge, whose parts
- * are its outline's.  Part 0 the centre square, 1..4 the arms. */
-static double *bent_plus(size_t *n, int **part) {
+/* A plus-shaped sheet (arms 2 wide reaching `reach` from the centre) bent
+ * round a cylinder of radius 3: an open surface with no concave edge,
+ * whose parts are its outline's.  Part 0 the centre square, 1..4 the
+ * arms. */
+static double *bent_plus(double reach, size_t *n, int **part) {
     const size_t total = 20000;
     double *pts = malloc(total * 3 * sizeof *pts);
     *part = malloc(total * sizeof **part);
     unsigned long long state = 0x9E3779B97F4A7C15ULL;
     size_t k = 0;
     while (pts && *part && k < total) {
-        double u = 6 * uniform_next(&state) - 3, v = 6 * uniform_next(&state) - 3;
+        double u = reach * (2 * uniform_next(&state) - 1);
+        double v = reach * (2 * uniform_next(&state) - 1);
         if (fabs(u) >= 1 && fabs(v) >= 1) continue;
         int arm = fabs(u) < 1 && fabs(v) < 1 ? 0 : fabs(u) >= 1 ? (u > 0 ? 1 : 2) : (v > 0 ? 3 : 4);
         pts[3 * k] = 3 * sin(u / 3), pts[3 * k + 1] = v, pts[3 * k + 2] = 3 * cos(u / 3);
@@ -342,13 +344,53 @@ static double *bent_plus(size_t *n, int **part) {
     return pts;
 }
 
-/* The bent sheet keeps its four arms: a closed surface without creases
- * merges what does not protrude, a sheet is left alone. */
+/* The bent sheet keeps its four arms: on a surface without creases what
+ * protrudes stays.  With arms reaching 4 each arm is larger than the
+ * centre, and it is the arm, the outer segment, that protrudes. */
 static void test_bent_sheet_keeps_its_arms(void) {
-    size_t n;
-    int *part;
-    double *pts = bent_plus(&n, &part);
-    check_shape_parts(pts, n, part, 1, 4, 0.7);
+    const double reaches[] = {3.0, 4.0};
+    for (int i = 0; i < 2; i++) {
+        size_t n;
+        int *part;
+        double *pts = bent_plus(reaches[i], &n, &part);
+        check_shape_parts(pts, n, part, 1, 4, 0.7);
+    }
+}
+
+/* n points drawn at random on a sheet without parts, by `kind`: 0 a
+ * square, 1 a disc, 2 a hemisphere (a cap, open at its rim). */
+static double *plain_sheet(int kind, size_t n) {
+    double *pts = malloc(n * 3 * sizeof *pts);
+    unsigned long long state = 0x2545F4914F6CDD1DULL + (unsigned)kind;
+    for (size_t k = 0; pts && k < n;) {
+        double x = 2 * uniform_next(&state) - 1, y = 2 * uniform_next(&state) - 1;
+        double r2 = x * x + y * y;
+        if (kind > 0 && r2 >= 1) continue;
+        double z = 0;
+        if (kind == 2) { /* the disc lifted onto the cap, area-preserving (Lambert) */
+            double s = sqrt(2 - r2);
+            x *= s, y *= s, z = 1 - r2;
+        }
+        pts[3 * k] = x, pts[3 * k + 1] = y, pts[3 * k + 2] = z, k++;
+    }
+    return pts;
+}
+
+/* A square sheet, a disc and a hemisphere have no parts: their corners
+ * and rims are f's maxima, but nothing sticks out (a square came out in
+ * 5 segments, a disc and a cap in 3). */
+static void test_plain_sheets_one_part(void) {
+    const char *names[] = {"square", "disc", "hemisphere"};
+    for (int kind = 0; kind < 3; kind++) {
+        const size_t n = 10000;
+        double *pts = plain_sheet(kind, n);
+        REQUIRE(pts);
+        ps_result *r = segment_default(pts, n);
+        REQUIRE(r);
+        CHECK_MSG(r->n_segments == 1, "%s: %d segments", names[kind], r->n_segments);
+        ps_result_free(r);
+        free(pts);
+    }
 }
 
 /* Fraction of points whose label differs from b's after mapping each label
@@ -687,7 +729,7 @@ static void test_steps_named_and_timed(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms),
+             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms), TEST(test_plain_sheets_one_part),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_agree),
              TEST(test_threads_exact),

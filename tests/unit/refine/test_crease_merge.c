@@ -214,6 +214,48 @@ static void test_bend_along_boundary_merges(void) {
     CHECK(merges_with_bend(beside) == 1);
 }
 
+/* A flat plus sign on a grid of unit spacing: the centre |u|, |v| <= 1
+ * (segment 0, 9 points) and four arms 3 wide from 2 to 5 out (segments 1
+ * to 4, 12 points each), f = max(|u|, |v|), normals all up: no creases.
+ * The centre is the smallest segment, but it is the core; each arm sticks
+ * out (feature size 3, boundary width 1.6), so nothing merges.  Judged by
+ * the smaller segment alone, the centre (feature size 1) merged into an
+ * arm. */
+static void test_plus_centre_smaller_than_arms(void) {
+    double points[3 * 57], normals[3 * 57], f[57];
+    int group[57], at[11][11], edges[120][2], n = 0, n_edges = 0;
+    for (int u = -5; u <= 5; u++)
+        for (int v = -5; v <= 5; v++) {
+            at[u + 5][v + 5] = -1;
+            if (abs(u) > 1 && abs(v) > 1) continue;
+            points[3 * n] = u, points[3 * n + 1] = v, points[3 * n + 2] = 0;
+            normals[3 * n] = normals[3 * n + 1] = 0, normals[3 * n + 2] = 1;
+            f[n] = abs(u) > abs(v) ? abs(u) : abs(v);
+            group[n] = abs(u) <= 1 && abs(v) <= 1 ? 0 : u > 1 ? 1 : u < -1 ? 2 : v > 1 ? 3 : 4;
+            at[u + 5][v + 5] = n++;
+        }
+    for (int u = 0; u < 11; u++)
+        for (int v = 0; v < 11; v++) {
+            if (at[u][v] < 0) continue;
+            if (u + 1 < 11 && at[u + 1][v] >= 0)
+                edges[n_edges][0] = at[u][v], edges[n_edges++][1] = at[u + 1][v];
+            if (v + 1 < 11 && at[u][v + 1] >= 0)
+                edges[n_edges][0] = at[u][v], edges[n_edges++][1] = at[u][v + 1];
+        }
+    REQUIRE(n == 57);
+    ps_hand_graph h;
+    ps_hand_graph_edges(&h, (size_t)n, (const int(*)[2])edges, n_edges, 1.0);
+    ps_merge_input in = {.graph = &h.g, .points = points, .normals = normals, .f = f,
+                         .mean_angular = 0, .n_groups = 5, .threads = 1};
+    int leaf[5] = {0, 1, 2, 3, 4}, n_merges = 0;
+    ps_merge *merges = NULL;
+    ps_error err = {0};
+    CHECK(ps_crease_merge(&in, group, leaf, &merges, &n_merges, &err) == PS_OK);
+    CHECK_MSG(n_merges == 0, "%d merges", n_merges);
+    free(merges);
+}
+
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_smooth_cuts_merge_back),
              TEST(test_protruding_half_stays), TEST(test_tunnels_merge), TEST(test_deterministic),
-             TEST(test_bend_across_boundary_keeps_apart), TEST(test_bend_along_boundary_merges))
+             TEST(test_bend_across_boundary_keeps_apart), TEST(test_bend_along_boundary_merges),
+             TEST(test_plus_centre_smaller_than_arms))
