@@ -113,7 +113,8 @@ static long weakest_boundary(const ps_segment_graph *sg, double threshold) {
     int core = core_of(sg);
     for (size_t i = 0; i < sg->count; i++) {
         double fraction = creased_fraction(sg, i);
-        if (fraction < best_fraction && !protrudes(sg, i, core)) best = (long)i, best_fraction = fraction;
+        if (fraction < best_fraction && !protrudes(sg, i, core))
+            best = (long)i, best_fraction = fraction;
     }
     return best;
 }
