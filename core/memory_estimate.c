@@ -68,6 +68,9 @@ static size_t table_bytes(size_t n, const ps_params *params) {
 }
 
 size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
+    /* method auto segments 2-D points as a 3-D copy (segment.c) */
+    size_t lifted = params->method == PS_METHOD_AUTO && dim == 2 ? n * 3 * sizeof(double) : 0;
+    if (lifted) dim = 3;
     /* a mesh may be segmented in fills up to the reference sampling, side by side */
     int fills = ps_surface_fill_wanted(params, dim, n);
     if (fills) n = PS_ENSEMBLE_FILLS * (size_t)PS_DENSITY_REFERENCE_POINTS;
@@ -79,5 +82,5 @@ size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
                        (draws ? DRAWS_BYTES_PER_NEIGHBOUR : BYTES_PER_NEIGHBOUR) * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
     size_t table = fills ? PS_ENSEMBLE_FILLS * table_bytes(per_pipeline, params) : table_bytes(n, params);
-    return BASE_BYTES + n * per_point + table + cut_workers_bytes(per_pipeline, params);
+    return BASE_BYTES + lifted + n * per_point + table + cut_workers_bytes(per_pipeline, params);
 }

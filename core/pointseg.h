@@ -117,8 +117,11 @@ const char *ps_method_name(ps_method method);
 typedef struct ps_input {
     const double *points;  /* #P by dim, row major */
     size_t n;              /* #P */
-    int dim;               /* 2 <= dim <= PS_MAX_DIM */
-    const double *normals; /* optional #P by dim, row major; NULL if absent */
+    int dim;               /* 2 <= dim <= PS_MAX_DIM; method auto segments 2-D
+                              points as the plane z = 0 in 3-D (a flat surface,
+                              whose parts stick out of its outline) */
+    const double *normals; /* optional #P by dim, row major; NULL if absent
+                              (2-D normals are dropped with the lift) */
     const uint32_t *faces; /* optional #F by 3 triangles of a mesh (indices into
                               points); NULL if absent.  Method auto, dim 3,
                               centrality not exact: a mesh of fewer than

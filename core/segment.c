@@ -2,8 +2,9 @@
  * segment.c: ps_segment, the method as a list of steps (steps[] below, in
  * the order docs/method.md describes them), each a call into pipeline.c.
  *
- * ps_segment validates the input and the parameters, removes duplicate
- * points, then runs the five phases
+ * ps_segment validates the input and the parameters (method auto takes
+ * 2-D points as the plane z = 0 in 3-D), removes duplicate points, then
+ * runs the five phases
  * (ps_phase, pointseg.h) one after the other, each its steps in the table's
  * order: those of every method (the paper's: kNN graph, centrality, flow
  * to sinks, normalized cuts, feature-size merge), those of method auto,
@@ -186,6 +187,24 @@ static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) 
     return ps_ensemble_segment(pl, draws, distinct, out, err);
 }
 
+/* A 2-D point set is the flat surface it is in 3-D (z = 0), so that
+ * method auto's surface steps judge it as they judge a plane: a square or
+ * a disc one part, a silhouette's limbs apart.  *lifted is in with 3-D
+ * points in *storage (the caller frees it); 2-D normals, an outline's,
+ * are dropped. */
+static ps_status lift_to_3d(const ps_input *in, ps_input *lifted, double **storage,
+                            ps_error *err) {
+    double *points = malloc(in->n * 3 * sizeof *points);
+    if (!points) return ps_fail(err, PS_ERR_NOMEM, "out of memory (3-D copy of 2-D points)");
+    for (size_t i = 0; i < in->n; i++)
+        points[3 * i] = in->points[2 * i], points[3 * i + 1] = in->points[2 * i + 1],
+        points[3 * i + 2] = 0;
+    *lifted = *in;
+    lifted->points = points, lifted->dim = 3, lifted->normals = NULL;
+    *storage = points;
+    return PS_OK;
+}
+
 ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_control *ctl,
                      ps_result **out, ps_error *err) {
     double start = ps_now_ms();
@@ -197,12 +216,21 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     apply_method(&pl.params);
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
+    ps_input lifted;
+    double *lifted_points = NULL;
+    if (pl.params.method == PS_METHOD_AUTO && in->dim == 2) {
+        st = lift_to_3d(in, &lifted, &lifted_points, err);
+        if (st != PS_OK) return st;
+        pl.in = &lifted;
+    }
     pl.n_input = in->n;
-    pl.points = (double *)in->points;
+    pl.points = (double *)pl.in->points;
     pl.threads = ps_parallel_threads(pl.params.threads);
     st = segment_input(&pl, out, err);
     ps_pipeline_free(&pl);
+    free(lifted_points);
     if (st == PS_OK) {
+        (*out)->dim = in->dim;
         (*out)->timings = pl.timings;
         (*out)->timings.total_ms = ps_now_ms() - start;
     }

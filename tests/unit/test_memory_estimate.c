@@ -96,6 +96,7 @@ static void test_estimate_grows(void) {
     CHECK(ps_segment_memory_estimate(2000000, 3, &p) > base);
     CHECK(ps_segment_memory_estimate(1000000, 3, &more_k) > base);
     CHECK(ps_segment_memory_estimate(1000000, 3, &more_samples) > base);
+    CHECK(ps_segment_memory_estimate(1000000, 2, &p) > base); /* auto: a 3-D copy */
 }
 
 /* A small mesh may be segmented in fills up to the reference sampling:

@@ -393,6 +393,40 @@ static void test_plain_sheets_one_part(void) {
     }
 }
 
+/* 2-D points are segmented as the plane z = 0 in 3-D (method auto): the
+ * same labels as the flat 3-D copy, the caller's dimension in the result,
+ * a square one part (its corners came out as 4 more) and a flat hand's
+ * fingers apart. */
+static void test_2d_points_as_a_flat_surface(void) {
+    size_t n;
+    int *part;
+    double *flat = flat_hand(&n, &part);
+    REQUIRE(flat && part);
+    double *plane = malloc(n * 2 * sizeof *plane);
+    REQUIRE(plane);
+    for (size_t i = 0; i < n; i++) plane[2 * i] = flat[3 * i], plane[2 * i + 1] = flat[3 * i + 1];
+    ps_params p;
+    ps_params_default(&p);
+    ps_input in = {.points = plane, .n = n, .dim = 2};
+    ps_result *r = NULL, *r3 = segment_default(flat, n);
+    ps_error err = {0};
+    REQUIRE(ps_segment(&in, &p, NULL, &r, &err) == PS_OK && r3);
+    CHECK(r->dim == 2 && r3->dim == 3);
+    CHECK(r->n_segments == r3->n_segments &&
+          memcmp(r->labels, r3->labels, n * sizeof *r->labels) == 0);
+    ps_check_parts_separate(r, part, 1, 5, 0.7);
+    ps_result_free(r), ps_result_free(r3);
+    double *square = plain_sheet(0, 10000);
+    REQUIRE(square);
+    for (size_t i = 0; i < 10000; i++)
+        square[2 * i] = square[3 * i], square[2 * i + 1] = square[3 * i + 1];
+    in = (ps_input){.points = square, .n = 10000, .dim = 2};
+    REQUIRE(ps_segment(&in, &p, NULL, &r, &err) == PS_OK);
+    CHECK_MSG(r->n_segments == 1, "a 2-D square: %d segments", r->n_segments);
+    ps_result_free(r);
+    free(square), free(plane), free(flat), free(part);
+}
+
 /* Fraction of points whose label differs from b's after mapping each label
  * of a to the label of b most of its points carry. */
 static double disagreement(const ps_result *a, const int *labels_b, size_t n) {
@@ -729,7 +763,7 @@ static void test_steps_named_and_timed(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms), TEST(test_plain_sheets_one_part),
+             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms), TEST(test_plain_sheets_one_part), TEST(test_2d_points_as_a_flat_surface),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_agree),
              TEST(test_threads_exact),
