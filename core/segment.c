@@ -189,11 +189,10 @@ static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) 
 
 /* A 2-D point set is the flat surface it is in 3-D (z = 0), so that
  * method auto's surface steps judge it as they judge a plane: a square or
- * a disc one part, a silhouette's limbs apart.  *lifted is in with 3-D
- * points in *storage (the caller frees it); 2-D normals, an outline's,
- * are dropped. */
-static ps_status lift_to_3d(const ps_input *in, ps_input *lifted, double **storage,
-                            ps_error *err) {
+ * a disc one part, a silhouette's limbs apart.  *lifted is in with
+ * malloc'ed 3-D points (the caller frees lifted->points); 2-D normals, an
+ * outline's, are dropped. */
+static ps_status lift_to_3d(const ps_input *in, ps_input *lifted, ps_error *err) {
     double *points = malloc(in->n * 3 * sizeof *points);
     if (!points) return ps_fail(err, PS_ERR_NOMEM, "out of memory (3-D copy of 2-D points)");
     for (size_t i = 0; i < in->n; i++)
@@ -201,7 +200,6 @@ static ps_status lift_to_3d(const ps_input *in, ps_input *lifted, double **stora
         points[3 * i + 2] = 0;
     *lifted = *in;
     lifted->points = points, lifted->dim = 3, lifted->normals = NULL;
-    *storage = points;
     return PS_OK;
 }
 
@@ -217,9 +215,8 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
     ps_input lifted;
-    double *lifted_points = NULL;
     if (pl.params.method == PS_METHOD_AUTO && in->dim == 2) {
-        st = lift_to_3d(in, &lifted, &lifted_points, err);
+        st = lift_to_3d(in, &lifted, err);
         if (st != PS_OK) return st;
         pl.in = &lifted;
     }
@@ -228,7 +225,7 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     pl.threads = ps_parallel_threads(pl.params.threads);
     st = segment_input(&pl, out, err);
     ps_pipeline_free(&pl);
-    free(lifted_points);
+    if (pl.in == &lifted) free((double *)lifted.points);
     if (st == PS_OK) {
         (*out)->dim = in->dim;
         (*out)->timings = pl.timings;

@@ -71,6 +71,11 @@ static int smaller_of(const ps_segment_graph *sg, size_t i) {
     return sg->size[b] <= sg->size[a] ? b : a;
 }
 
+/* The segment of record i other than s. */
+static int other_of(const ps_segment_graph *sg, size_t i, int s) {
+    return s == sg->list[i].a ? sg->list[i].b : sg->list[i].a;
+}
+
 /* Whether segment s is a cavity: it curves inwards (ps_segment_bulge). */
 static int cavity(const ps_segment_graph *sg, int s) {
     return ps_segment_bulge(sg, s) < -PS_CREASE_MERGE_CAVITY;
@@ -93,7 +98,7 @@ static int core_of(const ps_segment_graph *sg) {
  * its boundary. */
 static int protrudes(const ps_segment_graph *sg, size_t i, int core) {
     int s = smaller_of(sg, i);
-    if (s == core) s = s == sg->list[i].a ? sg->list[i].b : sg->list[i].a;
+    if (s == core) s = other_of(sg, i, s);
     double width = ps_boundary_width(&sg->list[i]);
     return !cavity(sg, s) && sg->f_max[s] - sg->f_min[s] > PS_CREASE_MERGE_PROTRUSION * width;
 }
@@ -122,8 +127,8 @@ static long weakest_boundary(const ps_segment_graph *sg, double threshold) {
 /* Merges the pair of record i: the smaller segment into the larger (ties:
  * the higher id into the lower). */
 static int merge_pair(ps_segment_graph *sg, size_t i, ps_merge **merges, int *n_merges) {
-    int loser = smaller_of(sg, i), winner = loser == sg->list[i].a ? sg->list[i].b : sg->list[i].a;
-    return ps_segment_graph_merge(sg, loser, winner, merges, n_merges);
+    int loser = smaller_of(sg, i);
+    return ps_segment_graph_merge(sg, loser, other_of(sg, i, loser), merges, n_merges);
 }
 
 ps_status ps_crease_merge(const ps_merge_input *in, int *group_of_point,

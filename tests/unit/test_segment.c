@@ -138,6 +138,12 @@ static void test_star_with_heavy_noise(void) {
     CHECK(check_star_arms(0, 0.07, 0.7, 1) > 0);
 }
 
+/* The next of a xorshift sequence, uniform in [0, 1). */
+static double uniform_next(unsigned long long *state) {
+    *state ^= *state << 13, *state ^= *state >> 7, *state ^= *state << 17;
+    return (double)(*state >> 11) / 9007199254740992.0;
+}
+
 /* A flat hand in the plane z = 0: a unit disc (part 0) and five strips
  * (parts 1..5) fanning out from it, sampled uniformly. */
 static double *flat_hand(size_t *n, int **part) {
@@ -148,10 +154,7 @@ static double *flat_hand(size_t *n, int **part) {
     size_t k = 0;
     while (pts && *part && k < total) {
         double u[2];
-        for (int j = 0; j < 2; j++) {
-            state ^= state << 13, state ^= state >> 7, state ^= state << 17;
-            u[j] = (double)(state >> 11) / 9007199254740992.0;
-        }
+        for (int j = 0; j < 2; j++) u[j] = uniform_next(&state);
         int which = k < palm ? 0 : 1 + (int)((k - palm) / finger);
         double x = 2 * u[0] - 1, y = 2 * u[1] - 1;
         if (which == 0 && x * x + y * y > 1) continue;
@@ -257,12 +260,6 @@ static void test_flat_hand_in_3d(void) {
     check_shape_parts(pts, n, part, 1, 5, 0.7);
 }
 
-/* The next of a xorshift sequence, uniform in [0, 1). */
-static double uniform_next(unsigned long long *state) {
-    *state ^= *state << 13, *state ^= *state >> 7, *state ^= *state << 17;
-    return (double)(*state >> 11) / 9007199254740992.0;
-}
-
 /* n points drawn at random on a unit sphere centred at (cx, 0, 0), its z
  * stretched by `stretch` (an egg above 1), written to pts #n by 3. */
 static void random_ball(double *pts, size_t n, double cx, double stretch,
@@ -346,7 +343,8 @@ static double *bent_plus(double reach, size_t *n, int **part) {
 
 /* The bent sheet keeps its four arms: on a surface without creases what
  * protrudes stays.  With arms reaching 4 each arm is larger than the
- * centre, and it is the arm, the outer segment, that protrudes. */
+ * centre; the centre, holding the least f, is the core, and the arm
+ * beside it is the part judged (crease_merge.h). */
 static void test_bent_sheet_keeps_its_arms(void) {
     const double reaches[] = {3.0, 4.0};
     for (int i = 0; i < 2; i++) {
