@@ -19,7 +19,9 @@
  * --stability also segments a rotated, scaled and shifted copy of every
  * development model and prints those whose partition moved (Rand index
  * below 0.99 or another segment count).  --noise and --strays make the
- * input a noisy or outlier-ridden scan; --seed N draws the random inputs
+ * input a noisy or outlier-ridden scan (--noise moves the mesh's vertices,
+ * so surface samples lie on the noisy triangles; --scan-noise moves every
+ * input point, as a scanner's noise does); --seed N draws the random inputs
  * (surface samples, noise, strays) anew, --seeds K runs K draws of each
  * mode that has any and prints their mean and range, how far two draws'
  * labels disagree and what the medoid draw scores.  See
@@ -74,6 +76,7 @@ typedef struct quality_options {
     int stability;             /* --stability: also a moved copy per dev model */
     int dev_only;              /* --dev-only: skip the validation models */
     double noise;              /* --noise: sigma in mean mesh edge lengths */
+    double scan_noise;         /* --scan-noise: sigma in the input's mean spacing */
     double strays;             /* --strays: stray points per vertex */
     uint64_t seed;             /* --seed: another draw of the random inputs */
     int seeds;                 /* --seeds: draws of each mode that has any */
@@ -114,7 +117,7 @@ static const char usage[] =
     "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N|uneven:N]... [--ids 1,2,21]\n"
     "                     [--param name=value]... [--threads N] [--jobs N] [--single]\n"
     "                     [--dev-only] [--stability] [--out DIR] [--baseline none]\n"
-    "                     [--noise F] [--strays F] [--seed N] [--seeds K] [--against DIR]\n"
+    "                     [--noise F] [--scan-noise F] [--strays F] [--seed N] [--seeds K] [--against DIR]\n"
     "Segments every model of the PSB folders (default: psb-dev and psb-train, see\n"
     "tests/bench/README.md) in each input mode (default: vertices), with the given\n"
     "parameters (default: method auto) and with method=paper.  Validation models\n"
@@ -202,6 +205,8 @@ static int value_flag(quality_options *o, const char *a, const char *v) {
     else if (!strcmp(a, "--jobs") && (o->jobs = atoi(v)) >= 1 && o->jobs <= 64) return 0;
     else if (!strcmp(a, "--baseline") && !strcmp(v, "none")) o->baseline_none = 1, o->runs = 1;
     else if (!strcmp(a, "--noise") && (o->noise = atof(v)) >= 0 && o->noise <= 100) return 0;
+    else if (!strcmp(a, "--scan-noise") && (o->scan_noise = atof(v)) >= 0 && o->scan_noise <= 100)
+        return 0;
     else if (!strcmp(a, "--strays") && (o->strays = atof(v)) >= 0 && o->strays <= 1) return 0;
     else if (!strcmp(a, "--seed")) o->seed = strtoull(v, NULL, 10);
     else if (!strcmp(a, "--seeds") && (o->seeds = atoi(v)) >= 1 && o->seeds <= MAX_SEEDS) return 0;
@@ -217,7 +222,8 @@ static int add_draws(quality_options *o) {
     for (int m = 0; m < given; m++) o->modes[m].seed = o->seed, o->modes[m].first = m;
     for (int m = 0; m < given; m++) {
         const input_mode *base = &o->modes[m];
-        if (!base->surface_points && o->noise == 0 && o->strays == 0) continue;
+        if (!base->surface_points && o->noise == 0 && o->scan_noise == 0 && o->strays == 0)
+            continue;
         for (int j = 1; j < o->seeds; j++) {
             if (o->n_modes == MAX_MODES) return -1;
             input_mode *draw = &o->modes[o->n_modes++];
@@ -354,14 +360,34 @@ static uint64_t draw_key(const input_mode *mode, int id) {
     return (uint64_t)id ^ (mode->seed * 0xD1B54A32D192ED03ull);
 }
 
-/* Gaussian noise of sigma = noise x mean edge on every coordinate
- * (Box-Muller), the same for a given key on every run. */
-static void add_noise(ps_pointset *mesh, double noise, uint64_t key) {
-    double sigma = noise * mean_edge(mesh);
+/* Gaussian noise of sigma on coordinates[0 .. count) (Box-Muller), the
+ * same for a given key on every run. */
+static void add_gaussian(double *coordinates, size_t count, double sigma, uint64_t key) {
     uint64_t state = 0x9E3779B97F4A7C15ull ^ key;
-    for (size_t i = 0; i < 3 * mesh->n; i++)
-        mesh->points[i] += sigma * sqrt(-2 * log(uniform(&state))) *
-                           cos(2 * 3.14159265358979323846 * uniform(&state));
+    for (size_t i = 0; i < count; i++)
+        coordinates[i] += sigma * sqrt(-2 * log(uniform(&state))) *
+                          cos(2 * 3.14159265358979323846 * uniform(&state));
+}
+
+/* --noise: sigma = noise x mean edge on every vertex coordinate. */
+static void add_noise(ps_pointset *mesh, double noise, uint64_t key) {
+    add_gaussian(mesh->points, 3 * mesh->n, noise * mean_edge(mesh), key);
+}
+
+/* The mesh's surface area (the sum of its triangles'). */
+static double surface_area(const ps_pointset *mesh) {
+    double area = 0;
+    for (size_t f = 0; f < mesh->n_faces; f++) {
+        const double *a = mesh->points + 3 * (size_t)mesh->faces[3 * f],
+                     *b = mesh->points + 3 * (size_t)mesh->faces[3 * f + 1],
+                     *c = mesh->points + 3 * (size_t)mesh->faces[3 * f + 2];
+        double u[3], v[3];
+        for (int d = 0; d < 3; d++) u[d] = b[d] - a[d], v[d] = c[d] - a[d];
+        double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
+               z = u[0] * v[1] - u[1] * v[0];
+        area += 0.5 * sqrt(x * x + y * y + z * z);
+    }
+    return area;
 }
 
 /* Appends `extra` stray points, uniform in the vertices' bounding box grown
@@ -379,8 +405,8 @@ static void add_strays(double *points, size_t n_mesh, size_t n, uint64_t key) {
 
 /* The model's input points (malloc'ed #n by 3): the vertices first, then
  * the surface samples of the mode, then the stray points; 0 or -1. */
-static int build_input(const ps_pointset *mesh, const input_mode *mode, double strays, uint64_t key,
-                       double **points, size_t *n) {
+static int build_input(const ps_pointset *mesh, const input_mode *mode, double strays,
+                       double scan_noise, uint64_t key, double **points, size_t *n) {
     size_t n_surface = mode->surface_points > mesh->n ? mode->surface_points - mesh->n : 0;
     size_t n_strays = (size_t)ceil(strays * (double)mesh->n);
     *n = mesh->n + n_surface + n_strays;
@@ -395,6 +421,10 @@ static int build_input(const ps_pointset *mesh, const input_mode *mode, double s
         memcpy(all + 3 * mesh->n, samples, 3 * n_surface * sizeof *all);
         free(samples);
     }
+    if (scan_noise > 0) /* sigma in the scan's mean spacing, sqrt(area / points) */
+        add_gaussian(all, 3 * (mesh->n + n_surface),
+                     scan_noise * sqrt(surface_area(mesh) / (double)(mesh->n + n_surface)),
+                     key ^ 0x7F4A7C159E3779B9ull);
     add_strays(all, mesh->n + n_surface, *n, key);
     *points = all;
     return 0;
@@ -465,7 +495,8 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
     double *points = NULL;
     size_t n = 0;
     int rc = -1;
-    if (build_input(&mesh, mode, o->strays, draw_key(mode, row->id), &points, &n) == 0 &&
+    if (build_input(&mesh, mode, o->strays, o->scan_noise, draw_key(mode, row->id), &points,
+                    &n) == 0 &&
         ps_psb_load_humans(row->dir, row->id, mesh.n_faces, &humans) == 0) {
         row->human_segments = ps_psb_mean_segments(&humans);
         row->people = ps_psb_human_agreement(&humans);
@@ -555,6 +586,9 @@ static void print_params(const quality_options *o, char dirs[][4096], int n_dirs
            p->persistence, p->ncut_threshold, p->feature_threshold, p->use_minima, p->use_f2,
            p->threads, o->jobs);
     if (o->noise > 0) printf("noise: sigma %g mean edge lengths per coordinate\n", o->noise);
+    if (o->scan_noise > 0)
+        printf("scan noise: sigma %g mean input spacings (sqrt(area / points)) per coordinate\n",
+               o->scan_noise);
     if (o->strays > 0) printf("strays: %g stray points per vertex (vertices scored)\n", o->strays);
     if (o->seed) printf("seed: %llu (surface samples, noise and strays drawn anew)\n", (unsigned long long)o->seed);
     if (o->runs > 1) printf("compared with: the same, method=paper\n");
