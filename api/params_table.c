@@ -64,7 +64,7 @@ static const ps_param_spec table[P_COUNT] = {
                   "central regions below the limbs' saddles go to the minima of f"},
     [P_F2] = {"f2", PS_PT_BOOL, "false", 0, 1, NULL,
               "split supernodes at the maxima of f2, the distance to their own sink"},
-    [P_SMOOTH_NORMALS] = {"smooth_normals", PS_PT_BOOL, "false", 0, 1, NULL,
+    [P_SMOOTH_NORMALS] = {"smooth_normals", PS_PT_BOOL, "true", 0, 1, NULL,
                           "smooth estimated normals as much as the scan's measured noise asks"},
     [P_THREADS] = {"threads", PS_PT_INT, "0", 0, 256, NULL,
                    "worker threads; 0 = all cores"},

@@ -38,7 +38,7 @@ void ps_params_default(ps_params *p) {
         .feature_threshold = 0.1,
         .use_minima = 1,
         .use_f2 = 0,
-        .smooth_normals = 0,
+        .smooth_normals = 1,
         .threads = 0,
     };
 }

@@ -99,7 +99,8 @@ typedef struct ps_params {
                                  distance to their own sink (f2_split.h) */
     int smooth_normals;       /* method auto, normals estimated: smooth them as
                                  much as the scan's measured noise asks
-                                 (normals_smooth.h); off by default */
+                                 (normals_smooth.h; clean input is left as
+                                 it is); on by default */
     int threads;              /* worker threads; 0 = all cores */
 } ps_params;
 

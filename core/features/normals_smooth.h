@@ -9,8 +9,8 @@
  * the point's mean kNN edge length.  On clean surfaces that ratio stays
  * below about 0.10 (curvature alone: the 38 PSB dev meshes give 0 to 0.10);
  * noise of 0.1, 0.25, 0.5 spacings gives about 0.09, 0.18, 0.28.  When
- * asked (ps_params.smooth_normals, off by default: docs/method.md says
- * why), above PS_NOISE_FLOOR the oriented normals are averaged with their
+ * asked (ps_params.smooth_normals, on by default: docs/method.md has the
+ * figures), above PS_NOISE_FLOOR the oriented normals are averaged with their
  * kNN neighbours, one iteration per PS_NOISE_STEP of the ratio above the
  * floor, at most PS_SMOOTH_MAX: clean input is left exactly as it was.
  *

@@ -180,7 +180,8 @@ static void test_json_params_and_timings(void) {
     CHECK(num(p, "persistence") == r.params.persistence);
     CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(p, "minima")));
     CHECK(is_true(p, "f2"));
-    CHECK(cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(p, "smooth_normals")));
+    const cJSON *smooth = cJSON_GetObjectItemCaseSensitive(p, "smooth_normals");
+    CHECK(cJSON_IsBool(smooth) && cJSON_IsTrue(smooth) == (r.params.smooth_normals != 0));
     CHECK(cJSON_GetArraySize(p) == 11);
     const cJSON *method = cJSON_GetObjectItemCaseSensitive(p, "method");
     CHECK(cJSON_IsString(method) && strcmp(method->valuestring, "auto") == 0);
