@@ -144,20 +144,19 @@ ps_status ps_pipeline_components(ps_pipeline *pl, const ps_progress_span *span, 
     return PS_OK;
 }
 
-/* The crease split's and merge's normals (crease.h): on a clean surface
- * (noise at most PS_NOISE_FLOOR) the normals smoothed
- * PS_CREASE_SCALE_SMOOTHING more times, so that a crease must hold at that
- * scale; on a noisy one smoothing would turn the noise into blobs that
- * close loops, and they are the normals themselves. */
+/* The crease split's and merge's normals: the normals smoothed to the
+ * crease scale (ps_crease_scale_iterations, crease.h), so that a crease
+ * must hold at that scale. */
 static ps_status crease_scale(ps_pipeline *pl, ps_error *err) {
     pl->crease_normals = pl->normals;
-    if (!ps_noise_clean(pl->normals_report.noise)) return PS_OK;
+    int more = ps_crease_scale_iterations(!ps_noise_clean(pl->normals_report.noise),
+                                          pl->normals_report.smoothing);
+    if (more == 0) return PS_OK;
     size_t u = pl->graph.n;
     pl->crease_normals = malloc(u * 3 * sizeof *pl->crease_normals);
     if (!pl->crease_normals) return ps_fail(err, PS_ERR_NOMEM, "out of memory (normals)");
     memcpy(pl->crease_normals, pl->normals, u * 3 * sizeof *pl->crease_normals);
-    return ps_normals_smooth(&pl->graph, pl->crease_normals, PS_CREASE_SCALE_SMOOTHING,
-                             pl->threads, err);
+    return ps_normals_smooth(&pl->graph, pl->crease_normals, more, pl->threads, err);
 }
 
 /* The input's normals of the distinct points, or NULL (*given; none given

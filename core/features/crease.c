@@ -182,3 +182,8 @@ ps_status ps_crease_strengths(const ps_graph *g, const double *points, const dou
     cp->mean = g->offsets[g->n] ? sums[0] / (double)g->offsets[g->n] : 0;
     return PS_OK;
 }
+
+int ps_crease_scale_iterations(int noisy, int smoothed) {
+    if (noisy && smoothed == 0) return 0;
+    return smoothed >= PS_CREASE_SCALE_SMOOTHING ? 0 : PS_CREASE_SCALE_SMOOTHING - smoothed;
+}

@@ -23,10 +23,11 @@
  * 0.08 degrees. */
 #define PS_CREASE_FLAT 1e-6
 #define PS_CREASE_ETA_CONVEX 0.0 /* eta of a convex edge */
-/* The crease scale: on a clean surface the crease split and merge read
- * normals smoothed this many more times (normals_smooth.h; core/segment.c),
- * so that a crease must hold at that scale and the sharp facet edges of a
- * coarse mesh sampled densely do not cut thin parts into rings. */
+/* The crease scale: the crease split and merge read normals smoothed this
+ * many times in all, counting the smoothing against noise
+ * (normals_smooth.h; ps_crease_scale_iterations), so that a crease must hold at that
+ * scale and the sharp facet edges of a coarse mesh sampled densely do not
+ * cut thin parts into rings.  Noisy normals left unsmoothed stay so. */
 #define PS_CREASE_SCALE_SMOOTHING 2
 #ifndef PS_CREASE_H
 #define PS_CREASE_H
@@ -92,6 +93,13 @@ typedef struct ps_crease_points {
     double *strength;  /* #P */
     double mean;
 } ps_crease_points;
+
+/* The smoothing iterations the crease steps' normals take beyond the
+ * normals themselves: PS_CREASE_SCALE_SMOOTHING in all, counting the
+ * `smoothed` ones against noise (normals_smooth.h); none for noisy
+ * normals left unsmoothed, whose noise smoothing would turn into blobs
+ * that close loops.  noisy: the noise measure is over its floor. */
+int ps_crease_scale_iterations(int noisy, int smoothed);
 
 /* cp->strength: #P, allocated by the caller; both fields are written, on
  * threads threads; the same for any count. */

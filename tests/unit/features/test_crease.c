@@ -148,6 +148,18 @@ static void test_flat_keeps_lengths(void) {
     ps_graph_free(&g);
 }
 
+/* The crease scale counts the smoothing against noise: clean normals
+ * take all of it, normals smoothed once against noise the rest, twice or
+ * more none; noisy normals left unsmoothed none. */
+static void test_crease_scale_counts_noise_smoothing(void) {
+    CHECK(ps_crease_scale_iterations(0, 0) == PS_CREASE_SCALE_SMOOTHING);
+    CHECK(ps_crease_scale_iterations(1, 0) == 0);
+    CHECK(ps_crease_scale_iterations(1, 1) == PS_CREASE_SCALE_SMOOTHING - 1);
+    CHECK(ps_crease_scale_iterations(1, PS_CREASE_SCALE_SMOOTHING) == 0);
+    CHECK(ps_crease_scale_iterations(1, 8) == 0);
+}
+
 PS_TEST_MAIN(TEST(test_valley_ridge_flat), TEST(test_slab_sign_is_no_rounding),
              TEST(test_star_crease_edges_grow),
-             TEST(test_same_for_any_threads), TEST(test_flat_keeps_lengths))
+             TEST(test_same_for_any_threads), TEST(test_flat_keeps_lengths),
+             TEST(test_crease_scale_counts_noise_smoothing))
