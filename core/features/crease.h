@@ -25,9 +25,10 @@
 #define PS_CREASE_ETA_CONVEX 0.0 /* eta of a convex edge */
 /* The crease scale: the crease split and merge read normals smoothed this
  * many times in all, counting the smoothing against noise
- * (normals_smooth.h; ps_crease_scale_iterations), so that a crease must hold at that
- * scale and the sharp facet edges of a coarse mesh sampled densely do not
- * cut thin parts into rings.  Noisy normals left unsmoothed stay so. */
+ * (normals_smooth.h; ps_crease_scale_iterations), so that a crease must
+ * hold at that scale and the sharp facet edges of a coarse mesh sampled
+ * densely do not cut thin parts into rings.  Noisy normals left
+ * unsmoothed stay so. */
 #define PS_CREASE_SCALE_SMOOTHING 2
 #ifndef PS_CREASE_H
 #define PS_CREASE_H

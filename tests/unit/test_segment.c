@@ -130,13 +130,13 @@ static void test_star_with_noise(void) {
  * and the arms still come out whole and apart. */
 static void test_star_dense(void) { CHECK(check_star_arms(1950, 0, 0.8, 0) == 0); }
 
-/* 20%: the arms stay apart as they are (the crease split counts only the
- * strongest 45% of the points as crease points, crease_split.h; before
- * that cap an arm was cut in half, 0.47 of it in one segment; and a noisy
- * surface keeps its normals for the crease split and merge instead of the
- * crease scale's, segment.c: smoothed, an arm was cut, 0.58 of it in one
- * segment), and with smooth_normals (normals_smooth.h), which says it
- * smoothed. */
+/* 20%: the arms stay apart without smoothing (the crease split counts
+ * only the strongest 45% of the points as crease points, crease_split.h;
+ * before that cap an arm was cut in half, 0.47 of it in one segment) and
+ * with it (normals_smooth.h), which says it smoothed.  The crease steps'
+ * normals take no smoothing beyond the noise's own here
+ * (ps_crease_scale_iterations, crease.h): with the crease scale's two
+ * iterations on top, an arm was cut, 0.56 to 0.58 of it in one segment. */
 static void test_star_with_heavy_noise(void) {
     CHECK(check_star_arms(0, 0.07, 0.7, 0) == 0);
     CHECK(check_star_arms(0, 0.07, 0.7, 1) > 0);
