@@ -374,22 +374,6 @@ static void add_noise(ps_pointset *mesh, double noise, uint64_t key) {
     add_gaussian(mesh->points, 3 * mesh->n, noise * mean_edge(mesh), key);
 }
 
-/* The mesh's surface area (the sum of its triangles'). */
-static double surface_area(const ps_pointset *mesh) {
-    double area = 0;
-    for (size_t f = 0; f < mesh->n_faces; f++) {
-        const double *a = mesh->points + 3 * (size_t)mesh->faces[3 * f],
-                     *b = mesh->points + 3 * (size_t)mesh->faces[3 * f + 1],
-                     *c = mesh->points + 3 * (size_t)mesh->faces[3 * f + 2];
-        double u[3], v[3];
-        for (int d = 0; d < 3; d++) u[d] = b[d] - a[d], v[d] = c[d] - a[d];
-        double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2],
-               z = u[0] * v[1] - u[1] * v[0];
-        area += 0.5 * sqrt(x * x + y * y + z * z);
-    }
-    return area;
-}
-
 /* Appends `extra` stray points, uniform in the vertices' bounding box grown
  * by 10% on every side (seeded by key), to points[0 .. 3 n). */
 static void add_strays(double *points, size_t n_mesh, size_t n, uint64_t key) {
@@ -423,7 +407,7 @@ static int build_input(const ps_pointset *mesh, const input_mode *mode, double s
     }
     if (scan_noise > 0) /* sigma in the scan's mean spacing, sqrt(area / points) */
         add_gaussian(all, 3 * (mesh->n + n_surface),
-                     scan_noise * sqrt(surface_area(mesh) / (double)(mesh->n + n_surface)),
+                     scan_noise * sqrt(ps_mesh_area(mesh) / (double)(mesh->n + n_surface)),
                      key ^ 0x7F4A7C159E3779B9ull);
     add_strays(all, mesh->n + n_surface, *n, key);
     *points = all;

@@ -22,6 +22,16 @@ static double triangle_area(const double *a, const double *b, const double *c) {
     return 0.5 * sqrt(x * x + y * y + z * z);
 }
 
+double ps_mesh_area(const ps_pointset *mesh) {
+    double area = 0;
+    for (size_t f = 0; f < mesh->n_faces; f++) {
+        const uint32_t *v = mesh->faces + 3 * f;
+        area += triangle_area(mesh->points + 3 * v[0], mesh->points + 3 * v[1],
+                              mesh->points + 3 * v[2]);
+    }
+    return area;
+}
+
 /* Index of the first cumulative area above target (cumulative increasing). */
 static size_t find_face(const double *cumulative, size_t n_faces, double target) {
     size_t lo = 0, hi = n_faces - 1;

@@ -1,10 +1,12 @@
 /* test_mesh_sample.c: the benchmarks' surface samplers (mesh_sample.h) on
  * a flat rectangle of two triangles: points on the rectangle, uniform by area,
  * the same for the same seed; graded samples whose density falls from the
- * low end of the longest axis to `far` at the high end; bad arguments. */
+ * low end of the longest axis to `far` at the high end; bad arguments; the
+ * area. */
 #include "mesh_sample.h"
 #include "testlib.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -82,5 +84,15 @@ static void test_bad_arguments(void) {
     CHECK(ps_mesh_sample_graded(&mesh, 10, 0.5, 1, &out) == -1 && out == NULL);
 }
 
+/* The 2 by 1 rectangle's area, and none without faces. */
+static void test_area(void) {
+    double corners[12];
+    uint32_t faces[6];
+    ps_pointset mesh = strip(corners, faces);
+    CHECK(fabs(ps_mesh_area(&mesh) - 2.0) < 1e-12);
+    mesh.n_faces = 0;
+    CHECK(ps_mesh_area(&mesh) == 0);
+}
+
 PS_TEST_MAIN(TEST(test_uniform_on_the_surface), TEST(test_graded_falls_along_the_longest_axis),
-             TEST(test_bad_arguments))
+             TEST(test_bad_arguments), TEST(test_area))
