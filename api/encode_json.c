@@ -139,7 +139,8 @@ static int add_merges(cJSON *doc, const ps_result *r) {
         const ps_merge *m = &r->merges[i];
         cJSON *o = append_object(arr);
         if (!o || add_number(o, "segment", m->segment) || add_number(o, "into", m->into) ||
-            add_number(o, "feature_size", m->feature_size))
+            add_number(o, "feature_size", m->feature_size) ||
+            !cJSON_AddStringToObject(o, "step", ps_step_name(m->step)))
             return -1;
     }
     return 0;

@@ -221,6 +221,8 @@ typedef struct ps_merge {
     int segment;          /* hierarchy leaf (tree node id) merged away */
     int into;             /* hierarchy leaf (tree node id) it merged into */
     double feature_size;  /* feature size of the merged segment, in f units */
+    ps_step step;         /* the refinement step that merged it: PS_STEP_FEATURE_MERGE,
+                             _CREASE_MERGE, _CONVEX_MERGE or _PATCH_MERGE */
 } ps_merge;
 
 typedef struct ps_timings {

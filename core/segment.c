@@ -99,6 +99,11 @@ static int wanted(const ps_pipeline *pl, step_when when) {
     }
 }
 
+/* The merges from index first on were made by step id. */
+static void name_merges(ps_pipeline *pl, int first, ps_step id) {
+    for (int m = first; m < pl->n_merges; m++) pl->merges[m].step = id;
+}
+
 ps_status ps_segment_phase(ps_pipeline *pl, ps_phase ph, ps_error *err) {
     double start = ps_now_ms(), at = 0.0;
     if (ps_control_cancelled(pl->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
@@ -109,8 +114,10 @@ ps_status ps_segment_phase(ps_pipeline *pl, ps_phase ph, ps_error *err) {
         if (ps_control_cancelled(pl->ctl)) return ps_fail(err, PS_ERR_CANCELLED, "cancelled");
         ps_progress_span span = {pl->ctl, ph, at, s->done};
         double step_start = ps_now_ms();
+        int merges_before = pl->n_merges;
         ps_status st = s->run(pl, &span, err);
         if (st != PS_OK) return st;
+        name_merges(pl, merges_before, (ps_step)i);
         pl->timings.step_ms[i] = ps_now_ms() - step_start;
         ps_control_progress(pl->ctl, ph, s->done);
         at = s->done;

@@ -105,7 +105,8 @@ export function fillMerges(list, doc) {
     const seg = segmentOfNode(doc, m.into);
     list.append(element('li', {
       textContent: `tree node ${m.segment} into node ${m.into}` +
-        `${seg >= 0 ? ` (segment #${seg})` : ''}, feature size ${formatSize(m.feature_size)}`,
+        `${seg >= 0 ? ` (segment #${seg})` : ''}, feature size ${formatSize(m.feature_size)}` +
+        `${m.step ? ` (${m.step.replace(/_/g, ' ')})` : ''}`,
     }));
   }
 }

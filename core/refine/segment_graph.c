@@ -256,7 +256,9 @@ static int append_merge(ps_merge **merges, int *n_merges, ps_merge merge) {
 
 int ps_segment_graph_merge(ps_segment_graph *sg, int loser, int winner, ps_merge **merges,
                            int *n_merges) {
-    ps_merge merge = {loser, winner, sg->f_max[loser] - sg->f_min[loser]};
+    ps_merge merge = {.segment = loser, .into = winner,
+                      .feature_size = sg->f_max[loser] - sg->f_min[loser],
+                      .step = PS_STEP_COUNT}; /* named by the step that ran it (segment.c) */
     if (!append_merge(merges, n_merges, merge)) return 0;
     sg->size[winner] += sg->size[loser];
     if (sg->f_min[loser] < sg->f_min[winner]) sg->f_min[winner] = sg->f_min[loser];

@@ -126,7 +126,9 @@ ps_status ps_segment_graph_build_along(ps_segment_graph *sg, ps_segment_graph_in
 
 /* Merges segment loser into winner (both surviving, adjacent or not) and
  * appends {loser, winner, loser's feature size} to the malloc'ed list
- * merges / n_merges.  Returns 0 when out of memory (nothing changed). */
+ * merges / n_merges, its step PS_STEP_COUNT until the step that ran the
+ * merge names it (segment.c).  Returns 0 when out of memory (nothing
+ * changed). */
 int ps_segment_graph_merge(ps_segment_graph *sg, int loser, int winner, ps_merge **merges,
                            int *n_merges);
 

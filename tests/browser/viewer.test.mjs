@@ -1,7 +1,7 @@
 // viewer.test.mjs: the web viewer in a real (headless Chromium) browser.
 // Starts pointsegd on a free port serving clients/web, uploads the horse
 // (../shared/data/models, or the synthetic hand when that is absent), and
-// checks the legend, the hierarchy slider, toggles, downloads, a server
+// checks the legend, the merges list, the hierarchy slider, toggles, downloads, a server
 // error, the missing-vendor message, gzip uploads, hover picking in the 3D
 // view and a million-point result.  Prints
 // "PASS browser:<name>" / "FAIL browser:<name>: why" and "N passed, N failed".
@@ -178,6 +178,16 @@ async function mainFlow(context, base) {
     const shown = await page.textContent('#segment-count');
     assert(doc && rows === doc.n_segments, `legend rows ${rows}, JSON n_segments ${doc && doc.n_segments}`);
     assert(Number(shown) === doc.n_segments, `count shows ${shown}`);
+  });
+  await check('merges-list', async () => {
+    const rows = await page.$$eval('#merges li', (r) => r.map((li) => li.textContent));
+    if (!doc.merges.length) {
+      assert(rows.length === 1 && rows[0] === 'none', `no merges, list shows ${JSON.stringify(rows)}`);
+      return;
+    }
+    assert(rows.length === doc.merges.length, `${rows.length} merge rows, JSON ${doc.merges.length}`);
+    doc.merges.forEach((m, i) => assert(m.step && rows[i].includes(`(${m.step.replace(/_/g, ' ')})`),
+      `merge ${i} (${m.step}) shows ${rows[i]}`));
   });
   await check('hierarchy-slider', async () => {
     await setLevel(page, 0);

@@ -58,4 +58,11 @@ void ps_check_result_consistent(const ps_result *r) {
         CHECK(a->parent == t && b->parent == t);
         CHECK(a->n_supernodes + b->n_supernodes == node->n_supernodes);
     }
+    for (int m = 0; m < r->n_merges; m++) { /* named by a refinement step, in the order they ran */
+        ps_step step = r->merges[m].step;
+        CHECK_MSG(step == PS_STEP_FEATURE_MERGE || step == PS_STEP_CREASE_MERGE ||
+                      step == PS_STEP_CONVEX_MERGE || step == PS_STEP_PATCH_MERGE,
+                  "merge %d: step %s", m, ps_step_name(step));
+        if (m > 0) CHECK(step >= r->merges[m - 1].step);
+    }
 }

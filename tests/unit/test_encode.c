@@ -35,7 +35,7 @@ static ps_result small_result(void) {
         {0, -1, {1, 2}, 3, root_sn, 0.05}, {1, 0, {-1, -1}, 1, leaf1_sn, -1},
         {2, 0, {3, 4}, 2, node2_sn, 0.2},  {3, 2, {-1, -1}, 1, leaf3_sn, 0.9},
         {4, 2, {-1, -1}, 1, leaf4_sn, -1}};
-    static ps_merge merges[1] = {{4, 3, 0.0625}};
+    static ps_merge merges[1] = {{4, 3, 0.0625, PS_STEP_CREASE_MERGE}};
     ps_result r;
     memset(&r, 0, sizeof r);
     r.n_points = N;
@@ -164,6 +164,8 @@ static void test_json_hierarchy_and_merges(void) {
     REQUIRE(cJSON_GetArraySize(merges) == 1);
     const cJSON *m = cJSON_GetArrayItem(merges, 0);
     CHECK(num(m, "segment") == 4 && num(m, "into") == 3 && num(m, "feature_size") == 0.0625);
+    const cJSON *step = cJSON_GetObjectItemCaseSensitive(m, "step");
+    CHECK(cJSON_IsString(step) && strcmp(step->valuestring, "crease_merge") == 0);
     cJSON_Delete(doc);
 }
 

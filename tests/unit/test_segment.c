@@ -275,6 +275,35 @@ static void random_ball(double *pts, size_t n, double cx, double stretch,
     }
 }
 
+/* Each merge names the step that made it: a ball's basins (no concave
+ * edge) are joined by the crease merge, with method auto whole (5,000
+ * points) or in a draw (60,000), and by the paper's feature merge with
+ * method paper. */
+static void test_merges_name_their_step(void) {
+    const size_t counts[] = {5000, 60000};
+    for (int i = 0; i < 2; i++) {
+        double *pts = malloc(counts[i] * 3 * sizeof *pts);
+        REQUIRE(pts);
+        random_ball(pts, counts[i], 0, 1.0, 0x2545F4914F6CDD1DULL + (unsigned)i);
+        ps_params p;
+        ps_params_default(&p);
+        for (int method = 0; method < 2; method++) {
+            p.method = method ? PS_METHOD_PAPER : PS_METHOD_AUTO;
+            ps_result *r = segment_with(pts, counts[i], &p);
+            REQUIRE(r);
+            ps_check_result_consistent(r);
+            ps_step expected = method ? PS_STEP_FEATURE_MERGE : PS_STEP_CREASE_MERGE;
+            int named = 0;
+            for (int m = 0; m < r->n_merges; m++) named += r->merges[m].step == expected;
+            CHECK_MSG(r->n_merges > 0 && named > 0, "%zu points, %s: %d merges, %d by %s",
+                      counts[i], ps_method_name(p.method), r->n_merges, named,
+                      ps_step_name(expected));
+            ps_result_free(r);
+        }
+        free(pts);
+    }
+}
+
 /* A ball has no parts, however it is sampled: no concave edge, and f is
  * flat, its basins the sampling's noise (it came out in 8 to 20 segments). */
 static void test_ball_is_one_part(void) {
@@ -799,7 +828,7 @@ static void test_steps_named_and_timed(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms), TEST(test_plain_sheets_one_part), TEST(test_noisy_plain_shapes_one_part), TEST(test_2d_points_as_a_flat_surface),
+             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_merges_name_their_step), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms), TEST(test_plain_sheets_one_part), TEST(test_noisy_plain_shapes_one_part), TEST(test_2d_points_as_a_flat_surface),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_agree),
              TEST(test_threads_exact),
