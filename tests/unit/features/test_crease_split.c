@@ -5,7 +5,9 @@
  * supernode represented by its largest f and keeping is_minimum; a sphere,
  * with no crease, stays one supernode; the answer is the same on every run;
  * noise that puts most points over the mean angular term does not shatter
- * the star (only the strongest points count as crease points).
+ * the star (only the strongest points count as crease points); noise
+ * alone, with no crease standing out of the median strength, splits
+ * nothing.
  */
 #include "features/crease_split.h"
 #include "features/normals.h"
@@ -158,5 +160,29 @@ static void test_noise_does_not_shatter(void) {
     ps_star_free(&s);
 }
 
+/* Noise alone: every point's strength between 1 and 1.5 times the mean
+ * angular term, as on a noisy sheet, where no crease stands out of the
+ * median (under the other two tests, the 45% strongest would be crease
+ * points, scattered over the star).  Nothing is split. */
+static void test_noise_alone_splits_nothing(void) {
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    ps_supernodes sn = {0};
+    double *f = NULL;
+    ps_crease_points creases = {malloc(s.n * sizeof(double)), 0};
+    REQUIRE(creases.strength && whole_supernode(s.n, s.points, &sn, &f));
+    double total = 0;
+    for (size_t p = 0; p < s.n; p++)
+        creases.strength[p] = 1.0 + 0.5 * (double)(p % 97) / 97.0, total += creases.strength[p];
+    creases.mean = 0.8 * total / (double)s.n; /* edges weaker than their points' strongest */
+    ps_error err = {0};
+    CHECK(ps_crease_split(&s.graph, &creases, f, &sn, &err) == PS_OK);
+    CHECK_MSG(sn.m == 1, "%d supernodes", sn.m);
+    ps_supernodes_free(&sn);
+    free(creases.strength), free(f);
+    ps_star_free(&s);
+}
+
 PS_TEST_MAIN(TEST(test_star_splits_into_its_parts), TEST(test_sphere_stays_whole),
-             TEST(test_deterministic), TEST(test_noise_does_not_shatter))
+             TEST(test_deterministic), TEST(test_noise_does_not_shatter),
+             TEST(test_noise_alone_splits_nothing))
