@@ -130,56 +130,55 @@ static void test_deterministic(void) {
     ps_star_free(&s);
 }
 
+/* The star as one supernode with noise in its crease strengths: every
+ * point raised to between 1 and 1.5 times the mean angular term, but, when
+ * keep_creases, its crease points and one point in four; then split. */
+static void split_noisy_star(const ps_star *s, int keep_creases, ps_supernodes *sn, double **f) {
+    ps_crease_points creases = {malloc(s->n * sizeof(double)), 0};
+    REQUIRE(creases.strength && whole_supernode(s->n, s->points, sn, f));
+    REQUIRE(ps_crease_strengths(&s->graph, s->points, s->normals, 1, &creases, NULL) == PS_OK);
+    size_t raised = 0;
+    for (size_t p = 0; p < s->n; p++) {
+        if (keep_creases && (creases.strength[p] >= creases.mean || p % 4 == 0)) continue;
+        creases.strength[p] = creases.mean * (1.0 + 0.5 * (double)(p % 97) / 97.0);
+        raised++;
+    }
+    CHECK(raised > s->n / 2);
+    ps_error err = {0};
+    CHECK(ps_crease_split(&s->graph, &creases, *f, sn, &err) == PS_OK);
+    free(creases.strength);
+}
+
 /* Noise as the crease split sees it: the star's crease points keep their
- * strength, and every point off its creases but one in four is raised to
- * between 1 and 1.5 times the mean angular term (75% of the surface would
- * pass the mean test).  Only the strongest PS_CREASE_SPLIT_MAX_POINTS
- * count, and the star still splits into its seven parts. */
+ * strength, and 75% of the surface would pass the mean test.  Only the
+ * strongest PS_CREASE_SPLIT_MAX_POINTS count, and the star still splits
+ * into its seven parts. */
 static void test_noise_does_not_shatter(void) {
     ps_star s;
     REQUIRE(ps_star_build(&s));
     ps_supernodes sn = {0};
     double *f = NULL;
-    ps_crease_points creases = {malloc(s.n * sizeof(double)), 0};
-    REQUIRE(creases.strength && whole_supernode(s.n, s.points, &sn, &f));
-    REQUIRE(ps_crease_strengths(&s.graph, s.points, s.normals, 1, &creases, NULL) == PS_OK);
-    size_t raised = 0;
-    for (size_t p = 0; p < s.n; p++) {
-        if (creases.strength[p] >= creases.mean || p % 4 == 0) continue;
-        creases.strength[p] = creases.mean * (1.0 + 0.5 * (double)(p % 97) / 97.0);
-        raised++;
-    }
-    CHECK(raised > s.n / 2);
-    ps_error err = {0};
-    CHECK(ps_crease_split(&s.graph, &creases, f, &sn, &err) == PS_OK);
+    split_noisy_star(&s, 1, &sn, &f);
     CHECK_MSG(sn.m == PS_STAR_PARTS, "%d supernodes", sn.m);
     double pure = purity(&s, &sn);
     CHECK_MSG(pure > 0.95, "purity %.3f", pure);
     ps_supernodes_free(&sn);
-    free(creases.strength), free(f);
+    free(f);
     ps_star_free(&s);
 }
 
-/* Noise alone: every point's strength between 1 and 1.5 times the mean
- * angular term, as on a noisy sheet, where no crease stands out of the
- * median (under the other two tests, the 45% strongest would be crease
- * points, scattered over the star).  Nothing is split. */
+/* Noise alone, as on a noisy sheet: no crease stands out of the median
+ * (under the other two tests, the 45% strongest would be crease points,
+ * scattered over the star).  Nothing is split. */
 static void test_noise_alone_splits_nothing(void) {
     ps_star s;
     REQUIRE(ps_star_build(&s));
     ps_supernodes sn = {0};
     double *f = NULL;
-    ps_crease_points creases = {malloc(s.n * sizeof(double)), 0};
-    REQUIRE(creases.strength && whole_supernode(s.n, s.points, &sn, &f));
-    double total = 0;
-    for (size_t p = 0; p < s.n; p++)
-        creases.strength[p] = 1.0 + 0.5 * (double)(p % 97) / 97.0, total += creases.strength[p];
-    creases.mean = 0.8 * total / (double)s.n; /* edges weaker than their points' strongest */
-    ps_error err = {0};
-    CHECK(ps_crease_split(&s.graph, &creases, f, &sn, &err) == PS_OK);
+    split_noisy_star(&s, 0, &sn, &f);
     CHECK_MSG(sn.m == 1, "%d supernodes", sn.m);
     ps_supernodes_free(&sn);
-    free(creases.strength), free(f);
+    free(f);
     ps_star_free(&s);
 }
 
