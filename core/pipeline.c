@@ -336,6 +336,7 @@ ps_status ps_pipeline_boundary_cut(ps_pipeline *pl, const ps_progress_span *span
 static ps_status merge(ps_pipeline *pl, ps_merge_fn *fn, const double *normals, ps_error *err) {
     ps_merge_input in = {.graph = &pl->graph, .points = pl->points, .normals = normals,
                          .f = pl->f, .mean_angular = pl->creases.mean,
+                         .median_strength = pl->creases.median,
                          .n_groups = pl->n_tree, .threads = pl->threads,
                          .boundary = &pl->boundary};
     return fn(&in, pl->group_of_point, pl->group_of_leaf, &pl->merges, &pl->n_merges, err);

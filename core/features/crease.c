@@ -8,8 +8,10 @@
 
 #include "graph/dijkstra.h"
 #include "util/parallel.h"
+#include "util/sort_util.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #define CREASE_BLOCK 4096
 
@@ -173,6 +175,17 @@ ps_status ps_crease_weights(ps_graph *g, const double *points, const double *nor
     return PS_OK;
 }
 
+ps_status ps_crease_median(size_t n, ps_crease_points *cp, ps_error *err) {
+    cp->median = 0;
+    if (n == 0) return PS_OK;
+    double *copy = malloc(n * sizeof *copy);
+    if (!copy) return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease strengths)");
+    memcpy(copy, cp->strength, n * sizeof *copy);
+    cp->median = ps_select_kth(copy, n, (n - 1) / 2);
+    free(copy);
+    return PS_OK;
+}
+
 ps_status ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
                               int threads, ps_crease_points *cp, ps_error *err) {
     crease_pass c = {.g = g, .points = points, .normals = normals, .cp = cp};
@@ -180,7 +193,7 @@ ps_status ps_crease_strengths(const ps_graph *g, const double *points, const dou
     if (over_blocks(&c, threads, strength_blocks, sums) != 0)
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (crease strengths)");
     cp->mean = g->offsets[g->n] ? sums[0] / (double)g->offsets[g->n] : 0;
-    return PS_OK;
+    return ps_crease_median(g->n, cp, err);
 }
 
 int ps_crease_scale_iterations(int noisy, int smoothed) {

@@ -30,6 +30,13 @@
  * densely do not cut thin parts into rings.  Noisy normals left
  * unsmoothed stay so. */
 #define PS_CREASE_SCALE_SMOOTHING 2
+/* A crease must stand out of the surface's own noise: the crease split's
+ * points and the creased edges of the merges (crease_merge.h) are at least
+ * this many times the median crease strength (ps_crease_points.median).
+ * Noise bends the normals everywhere alike; on clean shapes most points
+ * lie on convex or flat surface and the median is 0 or nearly so (under
+ * 0.34 mean angular terms on the PSB models, about 2 on noisy scans). */
+#define PS_CREASE_NOISE 3.0
 #ifndef PS_CREASE_H
 #define PS_CREASE_H
 
@@ -89,10 +96,12 @@ static inline double ps_crease_angular(const double *p, const double *np, const 
 /* How strongly each point lies on a concave crease: strength[p] is p's
  * largest angular term (eta_convex 0) over its incident edges; mean is the
  * mean angular term over all edges (0 for none), the scale the crease
- * steps measure strengths against. */
+ * steps measure strengths against, and median the median strength, the
+ * surface's own noise (PS_CREASE_NOISE). */
 typedef struct ps_crease_points {
     double *strength;  /* #P */
     double mean;
+    double median;
 } ps_crease_points;
 
 /* The smoothing iterations the crease steps' normals take beyond the
@@ -102,9 +111,13 @@ typedef struct ps_crease_points {
  * that close loops.  noisy: the noise measure is over its floor. */
 int ps_crease_scale_iterations(int noisy, int smoothed);
 
-/* cp->strength: #P, allocated by the caller; both fields are written, on
+/* cp->strength: #P, allocated by the caller; all fields are written, on
  * threads threads; the same for any count. */
 ps_status ps_crease_strengths(const ps_graph *g, const double *points, const double *normals,
                               int threads, ps_crease_points *cp, ps_error *err);
+
+/* cp->median from cp->strength (#n; 0 for none), on a copy; after the
+ * strengths change (ps_crease_strengths calls it). */
+ps_status ps_crease_median(size_t n, ps_crease_points *cp, ps_error *err);
 
 #endif

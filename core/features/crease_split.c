@@ -138,7 +138,7 @@ static int work_alloc(split_work *w, size_t n, int m) {
 /* The strength that puts a point on a crease: PS_CREASE_SPLIT_STRENGTH x
  * the mean angular term, raised to the strength of the point at the
  * PS_CREASE_SPLIT_MAX_POINTS quantile from the top when more points than
- * that pass it, and to PS_CREASE_SPLIT_NOISE x the median strength (noise).
+ * that pass it, and to PS_CREASE_NOISE x the median strength (noise).
  * 0 when out of memory. */
 static int crease_threshold(const ps_crease_points *creases, size_t n, double *threshold) {
     double *copy = malloc(n * sizeof *copy);
@@ -146,10 +146,9 @@ static int crease_threshold(const ps_crease_points *creases, size_t n, double *t
     memcpy(copy, creases->strength, n * sizeof *copy);
     size_t rank = (size_t)((1.0 - PS_CREASE_SPLIT_MAX_POINTS) * (double)(n - 1));
     double top = ps_select_kth(copy, n, rank);
-    double median = ps_select_kth(copy, n, (n - 1) / 2);
     free(copy);
     *threshold = fmax(fmax(PS_CREASE_SPLIT_STRENGTH * creases->mean, top),
-                      PS_CREASE_SPLIT_NOISE * median);
+                      PS_CREASE_NOISE * creases->median);
     return 1;
 }
 

@@ -7,12 +7,8 @@
  * PS_CREASE_SPLIT_STRENGTH times the mean angular term, among the
  * PS_CREASE_SPLIT_MAX_POINTS strongest points (creases are lines; on a
  * noisy scan most points pass the first test), and at least
- * PS_CREASE_SPLIT_NOISE times the median strength: noise bends the normals
- * everywhere alike, so a crease must stand out of the surface's own median
- * (on clean shapes most points lie on convex or flat surface and the
- * median is 0 or nearly so, under 0.34 mean angular terms on the PSB
- * models; on noisy scans it reaches 2, and noise creases closed into
- * rings cut pieces out of smooth parts).  Inside each
+ * PS_CREASE_NOISE times the median strength (crease.h): noise creases
+ * closed into rings would cut pieces out of smooth parts.  Inside each
  * supernode, the points off creases fall into connected pieces (kNN edges
  * inside the supernode between two such points); a crease that closes
  * around the surface separates two pieces.  A piece of at least
@@ -37,8 +33,6 @@
 #define PS_CREASE_SPLIT_MIN_FRACTION 0.005
 /* The share of the points, strongest first, that may be crease points. */
 #define PS_CREASE_SPLIT_MAX_POINTS 0.45
-/* A crease point's strength, in median strengths, at least. */
-#define PS_CREASE_SPLIT_NOISE 3.0
 
 /* creases: the crease strengths of the #P points (crease.h); f #P the
  * centrality (picks the representatives).  sn is replaced by its

@@ -46,7 +46,9 @@ static int creased_within(const ps_merge_input *in, const int *group, size_t p, 
 }
 
 ps_crease_test ps_crease_test_of(const ps_merge_input *in) {
-    return (ps_crease_test){in, PS_CREASE_MERGE_STRENGTH * in->mean_angular};
+    double crease = fmax(PS_CREASE_MERGE_STRENGTH * in->mean_angular,
+                         PS_CREASE_NOISE * in->median_strength);
+    return (ps_crease_test){in, crease};
 }
 
 /* Whether the boundary edge p-q is creased (see crease_merge.h). */
@@ -99,8 +101,7 @@ static int core_of(const ps_segment_graph *sg) {
 static int protrudes(const ps_segment_graph *sg, size_t i, int core) {
     int s = smaller_of(sg, i);
     if (s == core) s = other_of(sg, i, s);
-    double width = ps_boundary_width(&sg->list[i]);
-    return !cavity(sg, s) && sg->f_max[s] - sg->f_min[s] > PS_CREASE_MERGE_PROTRUSION * width;
+    return !cavity(sg, s) && ps_segment_protrudes(sg, s, &sg->list[i], PS_CREASE_MERGE_PROTRUSION);
 }
 
 /* The creased fraction of record i's boundary; 0 when its smaller segment

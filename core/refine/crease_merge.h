@@ -10,11 +10,14 @@
  * has an edge into A or B whose angular term ang(p,q) (crease.h; 0 on
  * convex edges) is at least PS_CREASE_MERGE_STRENGTH times the mean of ang
  * over all edges (scale free, and relative to how bumpy the whole surface
- * is), and which runs within 60 degrees of the boundary edge's line (it
- * bends across the boundary).  Edges into a third segment do not count: a
- * wing root running next to the boundary between a nose and a fuselage is
- * the wing's crease, not theirs; nor do edges running along the boundary:
- * the fillet under a wing that the boundary crosses bends along it.
+ * is) and PS_CREASE_NOISE times the median crease strength (it stands out
+ * of the surface's own noise, crease.h: on a noisy scan every boundary
+ * has edges over the mean), and which runs within 60 degrees of the
+ * boundary edge's line (it bends across the boundary).  Edges into a
+ * third segment do not count: a wing root running next to the boundary
+ * between a nose and a fuselage is the wing's crease, not theirs; nor do
+ * edges running along the boundary: the fillet under a wing that the
+ * boundary crosses bends along it.
  * While some pair's creased fraction is below PS_CREASE_MERGE_FRACTION,
  * the pair with the lowest (ties: lowest ids) merges: the segment with fewer
  * points goes into the other (ties: the higher id into the lower), its

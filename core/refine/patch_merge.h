@@ -23,8 +23,11 @@
  * the neighbour it shares the most kNN edges with (ties: the lowest id),
  * unless that neighbour has fewer points: a patch larger than its
  * neighbour is the surface the parts stand on (the palm of a hand scanned
- * from one side), and stays.  Rotation and scale invariant; deterministic;
- * no threads.  A flat surface (crease.h, PS_CREASE_FLAT: 2-D points given
+ * from one side), and stays; nor does a patch merge that sticks out of
+ * that boundary, its feature size over PS_PATCH_MERGE_PROTRUSION times the
+ * boundary's width (ps_segment_protrudes): the fingers of a flat hand or
+ * the arms of a star scanned with noise, every piece of which is flat.
+ * Rotation and scale invariant; deterministic; no threads.  A flat surface (crease.h, PS_CREASE_FLAT: 2-D points given
  * with z = 0) is one patch: only its crumbs merge.
  */
 #ifndef PS_PATCH_MERGE_H
@@ -36,6 +39,11 @@
 /* A segment this flat (a cap of half-angle 37 degrees) is a patch; the
  * sweep is in docs/method.md, "Constants". */
 #define PS_PATCH_MERGE_FLATNESS 0.9
+/* A flat patch this many times longer (feature size, in f) than its
+ * boundary is wide stays: more than the crease merge asks
+ * (PS_CREASE_MERGE_PROTRUSION), since the corner of a noisy square sheet
+ * reaches about as far as it is wide. */
+#define PS_PATCH_MERGE_PROTRUSION 1.5
 /* A crumb's share of the points: one notion of too small to be a part with
  * the crease split's pieces. */
 #define PS_PATCH_MERGE_MIN_SHARE PS_CREASE_SPLIT_MIN_FRACTION

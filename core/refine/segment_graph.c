@@ -35,6 +35,10 @@ double ps_segment_bulge(const ps_segment_graph *sg, int s) {
     return variance > 0 ? (m->dot_sum / n - nc) / sqrt(variance) : 0;
 }
 
+int ps_segment_protrudes(const ps_segment_graph *sg, int s, const ps_boundary *r, double factor) {
+    return sg->f_max[s] - sg->f_min[s] > factor * ps_boundary_width(r);
+}
+
 static int same_pair(const ps_boundary *p, const ps_boundary *q) {
     return p->a == q->a && p->b == q->b;
 }

@@ -86,10 +86,11 @@ typedef struct ps_segment_graph_input {
  * convex_merge.h, patch_merge.h). */
 typedef struct ps_merge_input {
     const ps_graph *graph;   /* kNN graph on #P points (weights not used) */
-    const double *points;    /* #P by 3 (the patch merge does not read them) */
+    const double *points;    /* #P by 3 */
     const double *normals;   /* #P by 3, outward unit normals (normals.h) */
     const double *f;         /* #P centrality, for the merges' feature sizes */
     double mean_angular;     /* mean angular term over all edges (ps_crease_points.mean) */
+    double median_strength;  /* median crease strength (ps_crease_points.median) */
     int n_groups;            /* segment ids are in [0, n_groups) */
     int threads;             /* ps_parallel_threads; the merges are the same for any count */
     ps_edge_list *boundary;  /* in/out, may be NULL: with ends, the edges joining two of
@@ -113,6 +114,12 @@ typedef ps_status ps_merge_fn(const ps_merge_input *in, int *group_of_point, int
  * cavity (the inside of a cup: they point towards it), near 0 for a flat
  * patch; in [-1, 1].  0 without sums. */
 double ps_segment_bulge(const ps_segment_graph *sg, int s);
+
+/* Whether segment s sticks out of boundary r (one of its records): its
+ * feature size (max f - min f, how far it reaches) is over factor times
+ * the boundary's width (Hoffman and Singh's protrusion; the crease merge
+ * and the patch merge keep such parts). */
+int ps_segment_protrudes(const ps_segment_graph *sg, int s, const ps_boundary *r, double factor);
 
 /* On failure sg is freed. */
 ps_status ps_segment_graph_build(ps_segment_graph *sg, const ps_segment_graph_input *in,

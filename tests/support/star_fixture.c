@@ -51,6 +51,7 @@ ps_status ps_star_merge(const ps_star *s, ps_merge_fn *merge, const ps_star_merg
                         .normals = in->normals ? in->normals : s->normals,
                         .f = in->f ? in->f : zeros,
                         .mean_angular = in->mean_angular,
+                        .median_strength = in->median_strength,
                         .n_groups = in->n_groups,
                         .threads = 1};
     for (int t = 0; t < in->n_groups; t++) leaf[t] = t;

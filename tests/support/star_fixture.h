@@ -34,6 +34,7 @@ typedef struct ps_star_merge_input {
     const double *normals;  /* #n by 3, or NULL: the star's */
     const double *f;        /* #n, or NULL: 0 everywhere */
     double mean_angular;    /* ps_merge_input's */
+    double median_strength; /* ps_merge_input's */
     int n_groups;           /* segment ids are in [0, n_groups) */
 } ps_star_merge_input;
 

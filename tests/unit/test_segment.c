@@ -78,6 +78,22 @@ static void check_palm_apart(const ps_result *r, const int *part, double min_pur
         CHECK(ps_majority_label(r, part, finger, &finger_purity) != palm);
 }
 
+/* Segments a hand (part 0 the palm, 1..5 the fingers) with the defaults:
+ * its fingers apart, each with finger_purity of it in one segment, and
+ * its palm apart from them with palm_purity; frees pts and part. */
+static void check_hand(double *pts, size_t n, int *part, double finger_purity,
+                       double palm_purity) {
+    REQUIRE(pts && part);
+    ps_result *r = segment_default(pts, n);
+    REQUIRE(r);
+    ps_check_result_consistent(r);
+    ps_check_parts_separate(r, part, 1, 5, finger_purity);
+    check_palm_apart(r, part, palm_purity);
+    ps_result_free(r);
+    free(pts);
+    free(part);
+}
+
 /* The fingers come out whole and apart; the palm's far end is a maximum of
  * f of its own (like a wrist), so the palm may be two segments, but the
  * one holding most of it holds no finger. */
@@ -85,14 +101,7 @@ static void test_hand_five_fingers(void) {
     size_t n;
     int *part;
     double *pts = ps_shape_hand(0, &n, &part);
-    ps_result *r = segment_default(pts, n);
-    REQUIRE(r);
-    ps_check_result_consistent(r);
-    ps_check_parts_separate(r, part, 1, 5, 0.75);
-    check_palm_apart(r, part, 0.45);
-    ps_result_free(r);
-    free(pts);
-    free(part);
+    check_hand(pts, n, part, 0.75, 0.45);
 }
 
 /* The star's six arms come out apart, each with at least `purity` of it in
@@ -456,6 +465,24 @@ static void test_noisy_plain_shapes_one_part(void) {
     }
     free(ball);
     free(square);
+}
+
+/* A flat hand scanned with noise across its plane of a quarter of its
+ * point spacing keeps its palm apart from its fingers and its fingers
+ * apart from each other.  It came out as one segment: the noise creased
+ * every boundary, so the crease merge merged none, and the patch merge,
+ * for which every piece of a flat hand is flat, folded them all into the
+ * palm.  Now a crease must stand out of the noise (PS_CREASE_NOISE, as in
+ * the crease split) and a flat piece that sticks out stays; a finger may
+ * still come out in two pieces. */
+static void test_noisy_flat_hand_keeps_its_fingers(void) {
+    size_t n;
+    int *part;
+    double *pts = flat_hand(&n, &part);
+    REQUIRE(pts && part);
+    unsigned long long state = 1;
+    for (size_t i = 0; i < n; i++) pts[3 * i + 2] += 0.008 * gaussian_next(&state);
+    check_hand(pts, n, part, 0.4, 0.9);
 }
 
 /* 2-D points are segmented as the plane z = 0 in 3-D (method auto): the
@@ -828,7 +855,8 @@ static void test_steps_named_and_timed(void) {
 }
 
 PS_TEST_MAIN(TEST(test_dumbbell_two_spheres), TEST(test_hand_five_fingers),
-             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_merges_name_their_step), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms), TEST(test_plain_sheets_one_part), TEST(test_noisy_plain_shapes_one_part), TEST(test_2d_points_as_a_flat_surface),
+             TEST(test_hand_scanned_from_one_side), TEST(test_stray_points_left_out), TEST(test_threads_with_strays), TEST(test_star_six_arms), TEST(test_star_with_noise), TEST(test_star_dense), TEST(test_star_with_heavy_noise), TEST(test_flat_hand_in_3d), TEST(test_ball_is_one_part), TEST(test_merges_name_their_step), TEST(test_two_balls_two_parts), TEST(test_bent_sheet_keeps_its_arms), TEST(test_plain_sheets_one_part), TEST(test_noisy_plain_shapes_one_part),
+             TEST(test_noisy_flat_hand_keeps_its_fingers), TEST(test_2d_points_as_a_flat_surface),
              TEST(test_rotation_translation), TEST(test_scale_small),
              TEST(test_scale_large), TEST(test_permutation), TEST(test_exact_approx_agree),
              TEST(test_threads_exact),

@@ -4,7 +4,8 @@
  * however it is turned; on the star the edges where the arms meet the centre
  * (a known concave crease) come out much longer than the rest; the
  * weights and strengths do not depend on the thread count; a flat grid
- * keeps its weights bit for bit. */
+ * keeps its weights bit for bit; the median strength is the strengths'
+ * middle. */
 #include "features/crease.h"
 #include "star_fixture.h"
 #include "testlib.h"
@@ -75,7 +76,7 @@ static void test_same_for_any_threads(void) {
         spacing[t] = malloc(s.n * sizeof *spacing[t]);
         REQUIRE(weights[t] && strength[t] && spacing[t]);
         memcpy(s.graph.weights, base, arcs * sizeof *base);
-        ps_crease_points cp = {strength[t], 0};
+        ps_crease_points cp = {.strength = strength[t]};
         REQUIRE(ps_crease_strengths(&s.graph, s.points, s.normals, threads[t], &cp, NULL) ==
                 PS_OK);
         REQUIRE(ps_crease_weights(&s.graph, s.points, s.normals, threads[t], NULL, spacing[t],
@@ -95,6 +96,34 @@ static void test_same_for_any_threads(void) {
     }
     for (int t = 0; t < 2; t++) free(weights[t]), free(strength[t]), free(spacing[t]);
     free(base);
+    ps_star_free(&s);
+}
+
+/* The median strength is the middle of the sorted strengths (the lower
+ * middle for an even count, 0 for none), taken on a copy; on the star,
+ * whose arms meet its centre in creases, it lies between them: at least
+ * half the points at or under it, at least half at or over it. */
+static void test_median_strength(void) {
+    double strength[6] = {5, 1, 4, 2, 3, 0.5};
+    ps_crease_points cp = {.strength = strength};
+    REQUIRE(ps_crease_median(5, &cp, NULL) == PS_OK);
+    CHECK(cp.median == 3);
+    REQUIRE(ps_crease_median(6, &cp, NULL) == PS_OK);
+    CHECK(cp.median == 2);
+    CHECK(strength[0] == 5 && strength[5] == 0.5);
+    REQUIRE(ps_crease_median(0, &cp, NULL) == PS_OK);
+    CHECK(cp.median == 0);
+    ps_star s;
+    REQUIRE(ps_star_build(&s));
+    ps_crease_points star = {.strength = malloc(s.n * sizeof(double))};
+    REQUIRE(star.strength);
+    REQUIRE(ps_crease_strengths(&s.graph, s.points, s.normals, 1, &star, NULL) == PS_OK);
+    size_t under = 0, over = 0;
+    for (size_t p = 0; p < s.n; p++) under += star.strength[p] <= star.median,
+                                       over += star.strength[p] >= star.median;
+    CHECK(2 * under >= s.n && 2 * over >= s.n);
+    CHECK(star.median < star.mean);
+    free(star.strength);
     ps_star_free(&s);
 }
 
@@ -162,4 +191,4 @@ static void test_crease_scale_counts_noise_smoothing(void) {
 PS_TEST_MAIN(TEST(test_valley_ridge_flat), TEST(test_slab_sign_is_no_rounding),
              TEST(test_star_crease_edges_grow),
              TEST(test_same_for_any_threads), TEST(test_flat_keeps_lengths),
-             TEST(test_crease_scale_counts_noise_smoothing))
+             TEST(test_crease_scale_counts_noise_smoothing), TEST(test_median_strength))

@@ -39,7 +39,7 @@ static int whole_supernode(size_t n, const double *points, ps_supernodes *sn, do
 static ps_status split(const ps_graph *g, const double *points, const double *normals,
                        const double *f, ps_supernodes *sn) {
     ps_error err = {0};
-    ps_crease_points creases = {malloc(g->n * sizeof(double)), 0};
+    ps_crease_points creases = {.strength = malloc(g->n * sizeof(double))};
     if (!creases.strength) return PS_ERR_NOMEM;
     ps_status st = ps_crease_strengths(g, points, normals, 1, &creases, &err);
     if (st == PS_OK) st = ps_crease_split(g, &creases, f, sn, &err);
@@ -134,7 +134,7 @@ static void test_deterministic(void) {
  * point raised to between 1 and 1.5 times the mean angular term, but, when
  * keep_creases, its crease points and one point in four; then split. */
 static void split_noisy_star(const ps_star *s, int keep_creases, ps_supernodes *sn, double **f) {
-    ps_crease_points creases = {malloc(s->n * sizeof(double)), 0};
+    ps_crease_points creases = {.strength = malloc(s->n * sizeof(double))};
     REQUIRE(creases.strength && whole_supernode(s->n, s->points, sn, f));
     REQUIRE(ps_crease_strengths(&s->graph, s->points, s->normals, 1, &creases, NULL) == PS_OK);
     size_t raised = 0;
@@ -145,6 +145,7 @@ static void split_noisy_star(const ps_star *s, int keep_creases, ps_supernodes *
     }
     CHECK(raised > s->n / 2);
     ps_error err = {0};
+    REQUIRE(ps_crease_median(s->n, &creases, &err) == PS_OK);
     CHECK(ps_crease_split(&s->graph, &creases, *f, sn, &err) == PS_OK);
     free(creases.strength);
 }

@@ -8,7 +8,8 @@
  * same answer on every run; but an arm cut halfway keeps its far half,
  * which protrudes (longer than its boundary is wide).  With its normals
  * turned inwards the star is a round room with six tunnels: cavities,
- * which merge into the room although they are long.  On three
+ * which merge into the room although they are long.  Creases no stronger
+ * than the surface's noise keep nothing apart.  On three
  * hand-placed points, a concave bend counts against a merge only when it
  * runs across the boundary.
  */
@@ -38,15 +39,28 @@ static void split_parts(const ps_star *s, double arm_cut, int *group) {
     }
 }
 
-static ps_status run_merge(const ps_star *s, const double *f, int *group, int *leaf,
-                           ps_merge **merges, int *n_merges) {
-    ps_crease_points creases = {malloc(s->n * sizeof(double)), 0};
+/* The crease merge of the star's segments group, its creases measured on
+ * the star; with noise > 0 the median strength is raised to noise times
+ * the strongest point's strength over PS_CREASE_NOISE, as if the star were
+ * that noisy. */
+static ps_status run_noisy_merge(const ps_star *s, const double *f, double noise, int *group,
+                                 int *leaf, ps_merge **merges, int *n_merges) {
+    ps_crease_points creases = {.strength = malloc(s->n * sizeof(double))};
     if (!creases.strength) return PS_ERR_NOMEM;
     ps_status st = ps_crease_strengths(&s->graph, s->points, s->normals, 1, &creases, NULL);
+    double strongest = 0;
+    for (size_t p = 0; p < s->n; p++) strongest = fmax(strongest, creases.strength[p]);
     free(creases.strength);
     if (st != PS_OK) return st;
-    ps_star_merge_input in = {.f = f, .mean_angular = creases.mean, .n_groups = N_PIECES};
+    if (noise > 0) creases.median = noise * strongest / PS_CREASE_NOISE;
+    ps_star_merge_input in = {.f = f, .mean_angular = creases.mean,
+                              .median_strength = creases.median, .n_groups = N_PIECES};
     return ps_star_merge(s, ps_crease_merge, &in, group, leaf, merges, n_merges);
+}
+
+static ps_status run_merge(const ps_star *s, const double *f, int *group, int *leaf,
+                           ps_merge **merges, int *n_merges) {
+    return run_noisy_merge(s, f, 0, group, leaf, merges, n_merges);
 }
 
 /* f = distance from the origin: feature sizes are easy to predict. */
@@ -97,6 +111,28 @@ static void test_true_parts_stay_apart(void) {
     CHECK_MSG(r.n_merges == 0, "%d merges", r.n_merges);
     CHECK(memcmp(r.group, r.s.part, r.s.n * sizeof *r.group) == 0);
     star_run_free(&r);
+}
+
+/* The star's true parts with f = 0, so that none protrudes: their
+ * creases keep them apart, until the surface is so noisy that its median
+ * strength times PS_CREASE_NOISE passes its strongest crease; then no
+ * edge stands out of the noise and the parts merge into one. */
+static void test_creases_stand_out_of_the_noise(void) {
+    const double noise[2] = {0, 1.01};
+    const int expected[2] = {0, PS_STAR_PARTS - 1};
+    for (int i = 0; i < 2; i++) {
+        ps_star s;
+        REQUIRE(ps_star_build(&s));
+        int *group = malloc(s.n * sizeof *group), leaf[N_PIECES], n_merges;
+        REQUIRE(group);
+        memcpy(group, s.part, s.n * sizeof *group);
+        ps_merge *merges;
+        CHECK(run_noisy_merge(&s, NULL, noise[i], group, leaf, &merges, &n_merges) == PS_OK);
+        CHECK_MSG(n_merges == expected[i], "noise %g: %d merges", noise[i], n_merges);
+        free(merges);
+        free(group);
+        ps_star_free(&s);
+    }
 }
 
 static void test_smooth_cuts_merge_back(void) {
@@ -258,4 +294,4 @@ static void test_plus_centre_smaller_than_arms(void) {
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_smooth_cuts_merge_back),
              TEST(test_protruding_half_stays), TEST(test_tunnels_merge), TEST(test_deterministic),
              TEST(test_bend_across_boundary_keeps_apart), TEST(test_bend_along_boundary_merges),
-             TEST(test_plus_centre_smaller_than_arms))
+             TEST(test_plus_centre_smaller_than_arms), TEST(test_creases_stand_out_of_the_noise))

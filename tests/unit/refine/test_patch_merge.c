@@ -4,7 +4,8 @@
  * apart; a cap of the sphere cut off between the arms is a flat patch and
  * merges back into the sphere, recorded as one merge with its leaf
  * renamed; a flat input is left alone.  On a hand-made graph, a patch
- * larger than its neighbour stays (it is the surface the parts stand on).
+ * larger than its neighbour stays (it is the surface the parts stand on),
+ * and so does one that sticks out of its neighbour.
  * A crumb (the tip of an arm, under 0.5% of the points) merges back into
  * its arm, flat input or not.
  */
@@ -85,10 +86,13 @@ static void test_flat_cap_merges_back(void) {
     ps_star_free(&s);
 }
 
-/* Segment 0, four points with normal +z (a flat patch), joined to
- * segment 1, n_other points with normals around the x axis (flatness 0),
- * by one edge per point of segment 1.  Returns how many merges. */
-static int merges_of_patch_beside(int n_other) {
+/* Segment 0, four points with normal +z (a flat patch) at x = 0..3 on the
+ * x axis, joined to segment 1, n_other points at y = 1 with normals around
+ * the x axis (flatness 0), by one edge per point of segment 1 (point i of
+ * segment 1 to point i % 4, beside it).  f is 0 but on the patch's last
+ * point, where it is reach: how far the patch sticks out.  Returns how
+ * many merges. */
+static int merges_of_patch_reaching(int n_other, double reach) {
     double normals[3 * 8] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     int group[8] = {0, 0, 0, 0}, leaf[2] = {0, 1}, n_merges = 0;
     int edges[3 + 4 + 3][2] = {{0, 1}, {1, 2}, {2, 3}};
@@ -100,11 +104,13 @@ static int merges_of_patch_beside(int n_other) {
         edges[n_edges][0] = i % 4, edges[n_edges++][1] = p;
         if (i > 0) edges[n_edges][0] = p - 1, edges[n_edges++][1] = p;
     }
+    double points[3 * 8] = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0};
+    for (int i = 0; i < n_other; i++) points[3 * (4 + i)] = i % 4, points[3 * (4 + i) + 1] = 1;
     ps_hand_graph h;
     ps_hand_graph_edges(&h, (size_t)(4 + n_other), (const int (*)[2])edges, n_edges, 1.0);
-    double f[8] = {0};
-    ps_merge_input in = {.graph = &h.g, .normals = normals, .f = f, .mean_angular = 1.0,
-                         .n_groups = 2};
+    double f[8] = {0, 0, 0, reach};
+    ps_merge_input in = {.graph = &h.g, .points = points, .normals = normals, .f = f,
+                         .mean_angular = 1.0, .n_groups = 2};
     ps_merge *merges = NULL;
     ps_error err = {0};
     CHECK(ps_patch_merge(&in, group, leaf, &merges, &n_merges, &err) == PS_OK);
@@ -113,8 +119,18 @@ static int merges_of_patch_beside(int n_other) {
 }
 
 static void test_patch_larger_than_its_neighbour_stays(void) {
-    CHECK(merges_of_patch_beside(2) == 0);
-    CHECK(merges_of_patch_beside(4) == 1);
+    CHECK(merges_of_patch_reaching(2, 0) == 0);
+    CHECK(merges_of_patch_reaching(4, 0) == 1);
+}
+
+/* A flat patch that sticks out of its neighbour, farther (in f) than
+ * PS_PATCH_MERGE_PROTRUSION times their boundary's width (the midpoints
+ * at x = 0..3: 2 sqrt(1.25) = 2.24), is a part (the arms of a noisy flat
+ * star); one that reaches less is not. */
+static void test_protruding_patch_stays(void) {
+    double width = 2 * sqrt(1.25);
+    CHECK(merges_of_patch_reaching(4, 0.95 * PS_PATCH_MERGE_PROTRUSION * width) == 1);
+    CHECK(merges_of_patch_reaching(4, 1.05 * PS_PATCH_MERGE_PROTRUSION * width) == 0);
 }
 
 static void test_flat_input_left_alone(void) {
@@ -175,5 +191,6 @@ static void test_crumb_merges_into_its_arm(void) {
 }
 
 PS_TEST_MAIN(TEST(test_true_parts_stay_apart), TEST(test_flat_cap_merges_back),
-             TEST(test_patch_larger_than_its_neighbour_stays), TEST(test_flat_input_left_alone),
+             TEST(test_patch_larger_than_its_neighbour_stays),
+             TEST(test_protruding_patch_stays), TEST(test_flat_input_left_alone),
              TEST(test_crumb_merges_into_its_arm))
