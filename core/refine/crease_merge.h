@@ -8,12 +8,13 @@
  * not a part boundary.  The boundary between segments A and B is the set
  * of kNN edges joining them; such an edge is creased when one of its ends
  * has an edge into A or B whose angular term ang(p,q) (crease.h; 0 on
- * convex edges) is at least PS_CREASE_MERGE_STRENGTH times the mean of ang
- * over all edges (scale free, and relative to how bumpy the whole surface
- * is) and PS_CREASE_NOISE times the median crease strength (it stands out
- * of the surface's own noise, crease.h: on a noisy scan every boundary
- * has edges over the mean), and which runs within 60 degrees of the
- * boundary edge's line (it bends across the boundary).  Edges into a
+ * convex edges) is at least PS_CREASE_MERGE_STRENGTH times the crease
+ * scale: the mean of ang over all edges (scale free, and relative to how
+ * bumpy the whole surface is) or, when larger, PS_CREASE_NOISE times the
+ * median crease strength (the surface's own noise, crease.h: on a noisy
+ * scan every boundary has edges over the mean), the scale the crease
+ * split's points reach (crease_split.h); and which runs within 60 degrees
+ * of the boundary edge's line (it bends across the boundary).  Edges into a
  * third segment do not count: a wing root running next to the boundary
  * between a nose and a fuselage is the wing's crease, not theirs; nor do
  * edges running along the boundary: the fillet under a wing that the
@@ -47,7 +48,7 @@
 #include "refine/segment_graph.h"
 
 /* The constants (docs/method.md, "Constants", has their sweeps): */
-/* An edge is creased above this many times the mean angular term. */
+/* An edge is creased above this many times the crease scale (above). */
 #define PS_CREASE_MERGE_STRENGTH 1.5
 /* cos of the widest angle between an edge that can crease a boundary and
  * the boundary edge (60 degrees). */
