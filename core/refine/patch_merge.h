@@ -27,8 +27,9 @@
  * that boundary, its feature size over PS_PATCH_MERGE_PROTRUSION times the
  * boundary's width (ps_segment_protrudes): the fingers of a flat hand or
  * the arms of a star scanned with noise, every piece of which is flat.
- * Rotation and scale invariant; deterministic; no threads.  A flat surface (crease.h, PS_CREASE_FLAT: 2-D points given
- * with z = 0) is one patch: only its crumbs merge.
+ * Rotation and scale invariant; deterministic; no threads.  A flat
+ * surface (crease.h, PS_CREASE_FLAT: 2-D points given with z = 0) is one
+ * patch: only its crumbs merge.
  */
 #ifndef PS_PATCH_MERGE_H
 #define PS_PATCH_MERGE_H

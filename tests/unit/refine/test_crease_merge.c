@@ -120,19 +120,16 @@ static void test_true_parts_stay_apart(void) {
 static void test_creases_stand_out_of_the_noise(void) {
     const double noise[2] = {0, 1.01};
     const int expected[2] = {0, PS_STAR_PARTS - 1};
+    star_run r;
+    REQUIRE(star_run_init(&r));
     for (int i = 0; i < 2; i++) {
-        ps_star s;
-        REQUIRE(ps_star_build(&s));
-        int *group = malloc(s.n * sizeof *group), leaf[N_PIECES], n_merges;
-        REQUIRE(group);
-        memcpy(group, s.part, s.n * sizeof *group);
-        ps_merge *merges;
-        CHECK(run_noisy_merge(&s, NULL, noise[i], group, leaf, &merges, &n_merges) == PS_OK);
-        CHECK_MSG(n_merges == expected[i], "noise %g: %d merges", noise[i], n_merges);
-        free(merges);
-        free(group);
-        ps_star_free(&s);
+        memcpy(r.group, r.s.part, r.s.n * sizeof *r.group);
+        free(r.merges);
+        CHECK(run_noisy_merge(&r.s, NULL, noise[i], r.group, r.leaf, &r.merges, &r.n_merges) ==
+              PS_OK);
+        CHECK_MSG(r.n_merges == expected[i], "noise %g: %d merges", noise[i], r.n_merges);
     }
+    star_run_free(&r);
 }
 
 static void test_smooth_cuts_merge_back(void) {
