@@ -188,6 +188,16 @@ static void test_tunnels_merge(void) {
     star_run_free(&r);
 }
 
+/* Whether the n merges of a and b are the same, field by field (since
+ * ps_merge has a step after its double, memcmp would read padding). */
+static int same_merges(const ps_merge *a, const ps_merge *b, int n) {
+    for (int i = 0; i < n; i++)
+        if (a[i].segment != b[i].segment || a[i].into != b[i].into ||
+            a[i].feature_size != b[i].feature_size || a[i].step != b[i].step)
+            return 0;
+    return 1;
+}
+
 static void test_deterministic(void) {
     ps_star s;
     REQUIRE(ps_star_build(&s));
@@ -203,7 +213,7 @@ static void test_deterministic(void) {
     CHECK(run_merge(&s, f, again, leaf_again, &m2, &n2) == PS_OK);
     CHECK(memcmp(first, again, s.n * sizeof *first) == 0);
     CHECK(memcmp(leaf, leaf_again, sizeof leaf) == 0);
-    CHECK(n1 == n2 && memcmp(m1, m2, (size_t)n1 * sizeof *m1) == 0);
+    CHECK(n1 == n2 && same_merges(m1, m2, n1));
     free(m1);
     free(m2);
     free(first);
