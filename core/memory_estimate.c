@@ -67,12 +67,9 @@ static size_t table_bytes(size_t n, const ps_params *params) {
     return cells * samples * sizeof(float);
 }
 
-size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
-    /* method auto segments 2-D points as a 3-D copy (segment.c) */
-    size_t lifted = params->method == PS_METHOD_AUTO && dim == 2 ? n * 3 * sizeof(double) : 0;
-    if (lifted) dim = 3;
-    /* a mesh may be segmented in fills up to the reference sampling, side by side */
-    int fills = ps_surface_fill_wanted(params, dim, n);
+/* The estimate for n points of dim coordinates run as given: fills below
+ * the reference when fills is set, else one run or draws. */
+static size_t estimate_of(size_t n, int dim, int fills, const ps_params *params) {
     if (fills) n = PS_ENSEMBLE_FILLS * (size_t)PS_DENSITY_REFERENCE_POINTS;
     int n_draws = fills ? PS_ENSEMBLE_FILLS : ps_ensemble_draws(params, n), draws = n_draws > 0;
     size_t per_pipeline = fills      ? PS_DENSITY_REFERENCE_POINTS
@@ -82,5 +79,22 @@ size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params) {
                        (draws ? DRAWS_BYTES_PER_NEIGHBOUR : BYTES_PER_NEIGHBOUR) * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
     size_t table = fills ? PS_ENSEMBLE_FILLS * table_bytes(per_pipeline, params) : table_bytes(n, params);
-    return BASE_BYTES + lifted + n * per_point + table + cut_workers_bytes(per_pipeline, params);
+    return BASE_BYTES + n * per_point + table + cut_workers_bytes(per_pipeline, params);
+}
+
+size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params) {
+    size_t n = in->n;
+    int dim = in->dim;
+    /* method auto segments 2-D points as a 3-D copy (segment.c) */
+    size_t lifted = params->method == PS_METHOD_AUTO && dim == 2 ? n * 3 * sizeof(double) : 0;
+    if (lifted) dim = 3;
+    /* A bare point set under the reference sampling is estimated as a mesh
+     * filled (the estimate does not know which it will be once deduplicated
+     * and covers both); a mesh over it may be filled too, when its distinct
+     * points are fewer (an unwelded mesh repeats each corner per triangle),
+     * so it takes the larger of its own run and the fills. */
+    int fillable = ps_surface_fill_wanted(params, dim, 0);
+    size_t own = estimate_of(n, dim, ps_surface_fill_wanted(params, dim, n), params);
+    size_t filled = fillable && in->n_faces > 0 ? estimate_of(n, dim, 1, params) : 0;
+    return lifted + (own > filled ? own : filled);
 }

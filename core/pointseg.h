@@ -274,12 +274,15 @@ ps_status ps_segment(const ps_input *in, const ps_params *params,
 
 void ps_result_free(ps_result *r);
 
-/* Bytes ps_segment is expected to take at its peak for n points of dim
- * coordinates with params (the input's own arrays not included): an upper
- * estimate from measured runs (memory_estimate.c), for a service to refuse
- * a job that cannot fit before it starts; below 26,667 points it covers a
- * mesh segmented in fills up to that many (ps_input.faces). */
-size_t ps_segment_memory_estimate(size_t n, int dim, const ps_params *params);
+/* Bytes ps_segment is expected to take at its peak for in with params
+ * (the input's own arrays not included; only in->n, in->dim and
+ * in->n_faces are read, so the points may be NULL): an upper estimate from
+ * measured runs (memory_estimate.c), for a service to refuse a job that
+ * cannot fit before it starts.  Below 26,667 points it covers a mesh
+ * segmented in fills up to that many (ps_input.faces); a mesh (n_faces >
+ * 0) of any size is covered too, since its distinct points may be fewer
+ * than the reference (an unwelded mesh repeats its corners). */
+size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params);
 
 /* ---- scoring (Princeton Segmentation Benchmark conventions) ------------ */
 

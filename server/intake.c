@@ -58,8 +58,9 @@ int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_
 int ps_intake_check_memory(const ps_pointset *ps, const ps_request_params *rp, size_t max_memory,
                            ps_api_error *err) {
     size_t coordinates = ps->n * (size_t)ps->dim * sizeof(double);
-    size_t need = ps_segment_memory_estimate(ps->n, ps->dim, &rp->core) + coordinates +
-                  (ps->normals ? coordinates : 0);
+    ps_input in = ps_pointset_input(ps);
+    size_t need = ps_segment_memory_estimate(&in, &rp->core) + coordinates +
+                  (ps->normals ? coordinates : 0) + ps->n_faces * 3 * sizeof *ps->faces;
     if (need <= max_memory) return 0;
     return ps_api_fail(err, 413,
                        "%zu points need about %zu MiB by the service's estimate, over the limit of "

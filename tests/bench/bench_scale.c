@@ -110,7 +110,8 @@ static int measure(const ps_pointset *horse, size_t n, const ps_params *params,
     row->rss_mb = ru.ru_maxrss / 1024.0; /* Linux: kilobytes */
     row->cpu_s = (double)ru.ru_utime.tv_sec + ru.ru_utime.tv_usec / 1e6 + (double)ru.ru_stime.tv_sec +
                  ru.ru_stime.tv_usec / 1e6;
-    row->estimate_mb = ps_segment_memory_estimate(n, 3, params) / 1048576.0 + n * 24.0 / 1048576.0;
+    ps_input in = {.n = n, .dim = 3};
+    row->estimate_mb = (ps_segment_memory_estimate(&in, params) + n * 24.0) / 1048576.0;
     return got == (ssize_t)sizeof row->run && WIFEXITED(status) && !WEXITSTATUS(status) ? 0 : -1;
 }
 
