@@ -31,8 +31,9 @@
  * unsmoothed stay so. */
 #define PS_CREASE_SCALE_SMOOTHING 2
 /* A crease must stand out of the surface's own noise: the crease split's
- * points and the creased edges of the merges (crease_merge.h) are at least
- * this many times the median crease strength (ps_crease_points.median).
+ * points are at least this many times the median crease strength
+ * (ps_crease_points.median; the merges' creased edges have their own
+ * factor, PS_CREASE_MERGE_NOISE in crease_merge.h).
  * Noise bends the normals everywhere alike; on clean shapes most points
  * lie on convex or flat surface and the median is 0 or nearly so (under
  * 0.34 mean angular terms on the PSB models, about 2 on noisy scans). */

@@ -46,7 +46,7 @@ static int creased_within(const ps_merge_input *in, const int *group, size_t p, 
 }
 
 ps_crease_test ps_crease_test_of(const ps_merge_input *in) {
-    double scale = fmax(in->mean_angular, PS_CREASE_NOISE * in->median_strength);
+    double scale = fmax(in->mean_angular, PS_CREASE_MERGE_NOISE * in->median_strength);
     return (ps_crease_test){in, PS_CREASE_MERGE_STRENGTH * scale};
 }
 

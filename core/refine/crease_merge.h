@@ -10,15 +10,16 @@
  * has an edge into A or B whose angular term ang(p,q) (crease.h; 0 on
  * convex edges) is at least PS_CREASE_MERGE_STRENGTH times the crease
  * scale: the mean of ang over all edges (scale free, and relative to how
- * bumpy the whole surface is) or, when larger, PS_CREASE_NOISE times the
- * median crease strength (the surface's own noise, crease.h: on a noisy
- * scan every boundary has edges over the mean), the scale the crease
- * split's points reach (crease_split.h); and which runs within 60 degrees
- * of the boundary edge's line (it bends across the boundary).  Edges into a
- * third segment do not count: a wing root running next to the boundary
- * between a nose and a fuselage is the wing's crease, not theirs; nor do
- * edges running along the boundary: the fillet under a wing that the
- * boundary crosses bends along it.
+ * bumpy the whole surface is) or, when larger, PS_CREASE_MERGE_NOISE times
+ * the median crease strength (the surface's own noise, crease.h: on a noisy
+ * scan every boundary has edges over the mean), a little over the scale
+ * the crease split's points reach (PS_CREASE_NOISE, crease_split.h), since
+ * a noise ring the split cut along must not hold its pieces apart; and
+ * which runs within 60 degrees of the boundary edge's line (it bends
+ * across the boundary).  Edges into a third segment do not count: a wing
+ * root running next to the boundary between a nose and a fuselage is the
+ * wing's crease, not theirs; nor do edges running along the boundary: the
+ * fillet under a wing that the boundary crosses bends along it.
  * While some pair's creased fraction is below PS_CREASE_MERGE_FRACTION,
  * the pair with the lowest (ties: lowest ids) merges: the segment with fewer
  * points goes into the other (ties: the higher id into the lower), its
@@ -50,6 +51,9 @@
 /* The constants (docs/method.md, "Constants", has their sweeps): */
 /* An edge is creased above this many times the crease scale (above). */
 #define PS_CREASE_MERGE_STRENGTH 1.5
+/* The noise term of the crease scale: this many median crease strengths
+ * (crease.h; the crease split uses PS_CREASE_NOISE, 3). */
+#define PS_CREASE_MERGE_NOISE 4.0
 /* cos of the widest angle between an edge that can crease a boundary and
  * the boundary edge (60 degrees). */
 #define PS_CREASE_MERGE_CONE 0.5

@@ -472,9 +472,9 @@ static void test_noisy_plain_shapes_one_part(void) {
  * apart from each other.  It came out as one segment: the noise creased
  * every boundary, so the crease merge merged none, and the patch merge,
  * for which every piece of a flat hand is flat, folded them all into the
- * palm.  Now a crease must stand out of the noise (PS_CREASE_NOISE, as in
- * the crease split) and a flat piece that sticks out stays; a finger may
- * still come out in two pieces. */
+ * palm.  Now a crease must stand out of the noise (PS_CREASE_MERGE_NOISE
+ * times the median crease strength) and a flat piece that sticks out
+ * stays; a finger may still come out in two pieces. */
 static void test_noisy_flat_hand_keeps_its_fingers(void) {
     size_t n;
     int *part;

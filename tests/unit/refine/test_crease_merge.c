@@ -41,7 +41,7 @@ static void split_parts(const ps_star *s, double arm_cut, int *group) {
 
 /* The crease merge of the star's segments group, its creases measured on
  * the star; with noise > 0 the median strength is raised to noise times
- * the strongest point's strength over PS_CREASE_NOISE, as if the star were
+ * the strongest point's strength over PS_CREASE_MERGE_NOISE, as if the star were
  * that noisy. */
 static ps_status run_noisy_merge(const ps_star *s, const double *f, double noise, int *group,
                                  int *leaf, ps_merge **merges, int *n_merges) {
@@ -52,7 +52,7 @@ static ps_status run_noisy_merge(const ps_star *s, const double *f, double noise
     for (size_t p = 0; p < s->n; p++) strongest = fmax(strongest, creases.strength[p]);
     free(creases.strength);
     if (st != PS_OK) return st;
-    if (noise > 0) creases.median = noise * strongest / PS_CREASE_NOISE;
+    if (noise > 0) creases.median = noise * strongest / PS_CREASE_MERGE_NOISE;
     ps_star_merge_input in = {.f = f, .mean_angular = creases.mean,
                               .median_strength = creases.median, .n_groups = N_PIECES};
     return ps_star_merge(s, ps_crease_merge, &in, group, leaf, merges, n_merges);
@@ -115,7 +115,7 @@ static void test_true_parts_stay_apart(void) {
 
 /* The star's true parts with f = 0, so that none protrudes: their
  * creases keep them apart, until the surface is so noisy that its median
- * strength times PS_CREASE_NOISE passes its strongest crease; then no
+ * strength times PS_CREASE_MERGE_NOISE passes its strongest crease; then no
  * edge stands out of the noise and the parts merge into one. */
 static void test_creases_stand_out_of_the_noise(void) {
     const double noise[2] = {0, 1.01};
