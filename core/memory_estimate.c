@@ -90,11 +90,15 @@ size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params) {
     if (lifted) dim = 3;
     /* A bare point set under the reference sampling is estimated as a mesh
      * filled (the estimate does not know which it will be once deduplicated
-     * and covers both); a mesh over it may be filled too, when its distinct
-     * points are fewer (an unwelded mesh repeats each corner per triangle),
-     * so it takes the larger of its own run and the fills. */
-    int fillable = ps_surface_fill_wanted(params, dim, 0);
-    size_t own = estimate_of(n, dim, ps_surface_fill_wanted(params, dim, n), params);
-    size_t filled = fillable && in->n_faces > 0 ? estimate_of(n, dim, 1, params) : 0;
-    return lifted + (own > filled ? own : filled);
+     * and covers both). */
+    int fills = ps_surface_fill_wanted(params, dim, n);
+    size_t run = estimate_of(n, dim, fills, params);
+    /* A mesh over it may be filled too, when its distinct points are fewer
+     * (an unwelded mesh repeats each corner per triangle): the larger of
+     * its own run and the fills. */
+    if (!fills && in->n_faces > 0 && ps_surface_fill_wanted(params, dim, 0)) {
+        size_t filled = estimate_of(n, dim, 1, params);
+        if (filled > run) run = filled;
+    }
+    return lifted + run;
 }
