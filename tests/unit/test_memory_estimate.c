@@ -138,7 +138,7 @@ static void test_estimate_bounds_peak_of_unwelded_mesh(void) {
 }
 
 /* The estimate for n points of dim coordinates without faces. */
-static size_t estimate(size_t n, int dim, const ps_params *p) {
+static size_t bare_estimate(size_t n, int dim, const ps_params *p) {
     return ps_segment_memory_estimate(&(ps_input){.n = n, .dim = dim}, p);
 }
 
@@ -148,11 +148,11 @@ static void test_estimate_grows(void) {
     more_k = more_samples = p;
     more_k.k = 14;
     more_samples.samples = 4000;
-    size_t base = estimate(1000000, 3, &p);
-    CHECK(estimate(2000000, 3, &p) > base);
-    CHECK(estimate(1000000, 3, &more_k) > base);
-    CHECK(estimate(1000000, 3, &more_samples) > base);
-    CHECK(estimate(1000000, 2, &p) > base); /* auto: a 3-D copy */
+    size_t base = bare_estimate(1000000, 3, &p);
+    CHECK(bare_estimate(2000000, 3, &p) > base);
+    CHECK(bare_estimate(1000000, 3, &more_k) > base);
+    CHECK(bare_estimate(1000000, 3, &more_samples) > base);
+    CHECK(bare_estimate(1000000, 2, &p) > base); /* auto: a 3-D copy */
 }
 
 /* A small mesh may be segmented in fills up to the reference sampling:
@@ -164,9 +164,9 @@ static void test_estimate_covers_the_fill(void) {
     exact = p;
     exact.centrality = PS_CENTRALITY_EXACT;
     size_t ref = PS_DENSITY_REFERENCE_POINTS;
-    CHECK(estimate(100, 3, &p) == estimate(ref - 1, 3, &p));
-    CHECK(estimate(100, 3, &p) > estimate(ref, 3, &p));
-    CHECK(estimate(100, 3, &exact) < estimate(ref, 3, &exact));
+    CHECK(bare_estimate(100, 3, &p) == bare_estimate(ref - 1, 3, &p));
+    CHECK(bare_estimate(100, 3, &p) > bare_estimate(ref, 3, &p));
+    CHECK(bare_estimate(100, 3, &exact) < bare_estimate(ref, 3, &exact));
 }
 
 PS_TEST_MAIN(TEST(test_estimate_bounds_measured_peak),

@@ -41,8 +41,8 @@ static void split_parts(const ps_star *s, double arm_cut, int *group) {
 
 /* The crease merge of the star's segments group, its creases measured on
  * the star; with noise > 0 the median strength is raised to noise times
- * the strongest point's strength over PS_CREASE_MERGE_NOISE, as if the star were
- * that noisy. */
+ * the strongest point's strength over PS_CREASE_MERGE_NOISE, as if the
+ * star were that noisy. */
 static ps_status run_noisy_merge(const ps_star *s, const double *f, double noise, int *group,
                                  int *leaf, ps_merge **merges, int *n_merges) {
     ps_crease_points creases = {.strength = malloc(s->n * sizeof(double))};
@@ -115,8 +115,8 @@ static void test_true_parts_stay_apart(void) {
 
 /* The star's true parts with f = 0, so that none protrudes: their
  * creases keep them apart, until the surface is so noisy that its median
- * strength times PS_CREASE_MERGE_NOISE passes its strongest crease; then no
- * edge stands out of the noise and the parts merge into one. */
+ * strength times PS_CREASE_MERGE_NOISE passes its strongest crease; then
+ * no edge stands out of the noise and the parts merge into one. */
 static void test_creases_stand_out_of_the_noise(void) {
     const double noise[2] = {0, 1.01};
     const int expected[2] = {0, PS_STAR_PARTS - 1};
