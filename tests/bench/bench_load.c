@@ -8,9 +8,9 @@
  *      of requests: requests per second, p50/p90/p99 latency, errors
  *      (transport failures, non-200, bad JSON or a wrong point count), and
  *      the daemon's VmRSS at the start, middle and end (plus its VmHWM);
- *   b) the horse: median of 5 POST /segment against the median of 5
+ *   b) the horse: median of 11 POST /segment against the median of 11
  *      in-process decode + ps_segment + encode with the daemon's parameters,
- *      giving the HTTP overhead in percent (target: under 10%);
+ *      alternated, giving the HTTP overhead in percent (target: under 10%);
  *   c) a soak of a fresh daemon: --soak N (default 20,000) mixed valid and
  *      invalid requests (tests/support/load_soak.h) over 8 connections, every
  *      status checked, VmRSS at the start, middle and end (the end must be
@@ -54,7 +54,7 @@
 #define MIN_POINTS 4000
 #define MAX_POINTS 10000
 #define MAX_BODIES 64
-#define HORSE_RUNS 5
+#define HORSE_RUNS 11
 #define REQUEST_TIMEOUT_S 300L
 #define RSS_SAMPLES 3
 #define SOAK_CONNECTIONS 8
@@ -495,7 +495,8 @@ static double horse_http_ms(const daemon_proc *d, const char *bytes, size_t len,
 }
 
 /* One in-process decode + segment + JSON encode with the daemon's default
- * request parameters (one core thread per job); its milliseconds, or -1. */
+ * request parameters (threads 0: every core, as an idle daemon's job takes
+ * them, server/core_share.c); its milliseconds, or -1. */
 static double horse_library_ms(const char *bytes, size_t len, size_t *n_points) {
     ps_request_params rp;
     ps_pointset ps;
@@ -505,7 +506,6 @@ static double horse_library_ms(const char *bytes, size_t len, size_t *n_points) 
     char *doc = NULL;
     size_t doc_len = 0;
     ps_request_params_default(&rp);
-    rp.core.threads = 1;
     double start = now_s();
     if (ps_decode(bytes, len, NULL, &ps, &api_err)) return -1;
     ps_input in = ps_pointset_input(&ps);
