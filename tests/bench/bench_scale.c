@@ -8,13 +8,15 @@
  * time (user + system: comparable on a shared machine), peak RSS, bytes per
  * point and ps_segment_memory_estimate beside it, as the markdown table of
  * docs/benchmarks.md, then the growth from the smallest size to the
- * largest against linear.  --out DIR also writes each size's labels as
+ * largest against linear, and each step's (the steps of a phase summed
+ * over the input's draws) against linear and against n log n.  --out DIR also writes each size's labels as
  * DIR/N.lab (one per line), for cmp against another build's.  See
  * tests/bench/README.md.
  */
 #define _DEFAULT_SOURCE /* wait4 */
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +39,7 @@ typedef struct scale_run {
     int ok;
     int segments;
     double phase_ms[PS_PHASE_COUNT];
+    double step_ms[PS_STEP_COUNT];
     double encode_ms, total_ms; /* total: ps_segment and the encoding */
 } scale_run;
 
@@ -77,6 +80,7 @@ static void run_child(const ps_pointset *horse, size_t n, const ps_params *param
             run.encode_ms = ps_bench_now_ms() - segmented;
             run.total_ms = ps_bench_now_ms() - start;
             memcpy(run.phase_ms, r->timings.ms, sizeof run.phase_ms);
+            memcpy(run.step_ms, r->timings.step_ms, sizeof run.step_ms);
             run.segments = r->n_segments;
             run.ok = labels != NULL && (!out_dir || save_labels(out_dir, n, labels, len) == 0);
             free(labels);
@@ -144,6 +148,21 @@ static void print_growth(const scale_row *first, const scale_row *last) {
     printf("\n%zu -> %zu points (x%.1f): time x%.2f (%.2f of linear), CPU time x%.2f (%.2f), "
            "peak RSS x%.2f (%.2f)\n", first->n, last->n, points, wall, wall / points, cpu,
            cpu / points, rss, rss / points);
+}
+
+/* Each step's time at the first and last size, its growth over linear
+ * and over n log n (steps under 1 ms at the first size are left out). */
+static void print_step_growth(const scale_row *first, const scale_row *last) {
+    double points = (double)last->n / (double)first->n;
+    double nlogn = points * log((double)last->n) / log((double)first->n);
+    printf("\n| step | s at %zu | s at %zu | growth | of linear | of n log n |\n"
+           "|---|---:|---:|---:|---:|---:|\n", first->n, last->n);
+    for (int s = 0; s < PS_STEP_COUNT; s++) {
+        double a = first->run.step_ms[s], b = last->run.step_ms[s];
+        if (a < 1) continue;
+        printf("| %s | %.2f | %.2f | x%.1f | %.2f | %.2f |\n", ps_step_name((ps_step)s), a / 1e3,
+               b / 1e3, b / a, b / a / points, b / a / nlogn);
+    }
 }
 
 static size_t parse_sizes(const char *text, size_t *sizes) {
@@ -217,6 +236,7 @@ int main(int argc, char **argv) {
         print_row(&rows[done++]);
     }
     if (done > 1) print_growth(&rows[0], &rows[done - 1]);
+    if (done > 1) print_step_growth(&rows[0], &rows[done - 1]);
     ps_pointset_free(&horse);
     return 0;
 }
