@@ -8,10 +8,10 @@
  * time (user + system: comparable on a shared machine), peak RSS, bytes per
  * point and ps_segment_memory_estimate beside it, as the markdown table of
  * docs/benchmarks.md, then the growth from the smallest size to the
- * largest against linear, and each step's (the steps of a phase summed
- * over the input's draws) against linear and against n log n.  --out DIR also writes each size's labels as
- * DIR/N.lab (one per line), for cmp against another build's.  See
- * tests/bench/README.md.
+ * largest against linear, and each step's (its time summed over the
+ * input's draws) against linear and against n log n.  --out DIR also
+ * writes each size's labels as DIR/N.lab (one per line), for cmp against
+ * another build's.  See tests/bench/README.md.
  */
 #define _DEFAULT_SOURCE /* wait4 */
 
@@ -235,8 +235,10 @@ int main(int argc, char **argv) {
         }
         print_row(&rows[done++]);
     }
-    if (done > 1) print_growth(&rows[0], &rows[done - 1]);
-    if (done > 1) print_step_growth(&rows[0], &rows[done - 1]);
+    if (done > 1) {
+        print_growth(&rows[0], &rows[done - 1]);
+        print_step_growth(&rows[0], &rows[done - 1]);
+    }
     ps_pointset_free(&horse);
     return 0;
 }
