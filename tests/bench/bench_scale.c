@@ -38,8 +38,7 @@
 typedef struct scale_run {
     int ok;
     int segments;
-    double phase_ms[PS_PHASE_COUNT];
-    double step_ms[PS_STEP_COUNT];
+    ps_timings timings; /* ps_segment's, per phase and per step */
     double encode_ms, total_ms; /* total: ps_segment and the encoding */
 } scale_run;
 
@@ -79,8 +78,7 @@ static void run_child(const ps_pointset *horse, size_t n, const ps_params *param
             char *labels = ps_encode_labels(r, &len);
             run.encode_ms = ps_bench_now_ms() - segmented;
             run.total_ms = ps_bench_now_ms() - start;
-            memcpy(run.phase_ms, r->timings.ms, sizeof run.phase_ms);
-            memcpy(run.step_ms, r->timings.step_ms, sizeof run.step_ms);
+            run.timings = r->timings;
             run.segments = r->n_segments;
             run.ok = labels != NULL && (!out_dir || save_labels(out_dir, n, labels, len) == 0);
             free(labels);
@@ -135,7 +133,7 @@ static void print_header(const ps_params *params) {
 
 static void print_row(const scale_row *r) {
     printf("| %zu | %.2f |", r->n, r->run.total_ms / 1e3);
-    for (int p = 0; p < PS_PHASE_COUNT; p++) printf(" %.2f |", r->run.phase_ms[p] / 1e3);
+    for (int p = 0; p < PS_PHASE_COUNT; p++) printf(" %.2f |", r->run.timings.ms[p] / 1e3);
     printf(" %.2f | %.1f | %d | %.0f MB | %.0f | %.0f MB |\n", r->run.encode_ms / 1e3, r->cpu_s,
            r->run.segments, r->rss_mb, r->rss_mb * 1048576.0 / (double)r->n, r->estimate_mb);
 }
@@ -158,7 +156,7 @@ static void print_step_growth(const scale_row *first, const scale_row *last) {
     printf("\n| step | s at %zu | s at %zu | growth | of linear | of n log n |\n"
            "|---|---:|---:|---:|---:|---:|\n", first->n, last->n);
     for (int s = 0; s < PS_STEP_COUNT; s++) {
-        double a = first->run.step_ms[s], b = last->run.step_ms[s];
+        double a = first->run.timings.step_ms[s], b = last->run.timings.step_ms[s];
         if (a < 1) continue;
         printf("| %s | %.2f | %.2f | x%.1f | %.2f | %.2f |\n", ps_step_name((ps_step)s), a / 1e3,
                b / 1e3, b / a, b / a / points, b / a / nlogn);
