@@ -4,8 +4,9 @@
  *
  * A fill's points are surface_fill.c's (the mesh's own first), so each
  * fill answers the caller's points itself.  The draws' points (and
- * normals) are copied out of the whole input, each
- * draw runs the phases of pipeline.h, a FLANN index over each draw's
+ * normals) are copied out of the whole input, each draw (or fill) runs
+ * the phases of pipeline.h, a phase for several at once with their
+ * progress merged under a lock, a FLANN index over each draw's
  * points (nearest.h, built side by side) finds a point's nearest in a draw
  * it is not in, and the chosen draw's distinct points become the result's:
  * result.c reads every caller's point through unique_of (its point in the
@@ -25,16 +26,24 @@
 #include "util/sort_util.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* A draw's progress reported as the whole's: draw j of count covers the
- * j-th share of each phase; *last (per phase, shared by the draws) keeps
- * the rounding of a share from ever reporting less than before. */
-typedef struct progress_share {
+/* The draws' progress reported as the whole's: a phase's fraction is the
+ * mean of the draws' fractions in it, reported under a lock, since draws
+ * run side by side (ps_control's callback is never called concurrently
+ * with itself). */
+typedef struct progress_board {
     const ps_control *whole;
-    int j, count;
-    double *last; /* #PS_PHASE_COUNT */
+    int count;
+    pthread_mutex_t lock;
+    double fraction[PS_PHASE_COUNT][PS_ENSEMBLE_MAX_DRAWS];
+} progress_board;
+
+typedef struct progress_share {
+    progress_board *board;
+    int j;
 } progress_share;
 
 typedef struct draw {
@@ -58,7 +67,7 @@ typedef struct ensemble {
                            PS_ENSEMBLE_NONE */
     uint32_t *local_of; /* #P its index within its draw */
     draw d[PS_ENSEMBLE_MAX_DRAWS];
-    double last_progress[PS_PHASE_COUNT];
+    progress_board board;
 } ensemble;
 
 int ps_ensemble_draws(const ps_params *p, size_t n) {
@@ -163,7 +172,15 @@ int ps_ensemble_medoid(const int *labels, int draws, size_t s, double margin) {
     return cost[0] - cost[best] <= margin ? 0 : best;
 }
 
+/* The draws' shared progress board; ensemble_free destroys it. */
+static void ensemble_begin(ensemble *e) {
+    e->board.whole = e->whole->ctl;
+    e->board.count = e->count;
+    pthread_mutex_init(&e->board.lock, NULL);
+}
+
 static void ensemble_free(ensemble *e) {
+    pthread_mutex_destroy(&e->board.lock);
     for (int j = 0; j < e->count; j++) {
         draw *d = &e->d[j];
         if (d->pl.in) ps_pipeline_free(&d->pl);
@@ -224,10 +241,13 @@ static ps_status split(ensemble *e, ps_error *err) {
 
 static void report_share(void *user, ps_phase phase, double fraction) {
     const progress_share *s = user;
-    double whole = (s->j + fraction) / s->count;
-    if (whole < s->last[phase]) whole = s->last[phase];
-    s->last[phase] = whole;
-    ps_control_progress(s->whole, phase, whole);
+    progress_board *b = s->board;
+    pthread_mutex_lock(&b->lock);
+    b->fraction[phase][s->j] = fraction;
+    double sum = 0;
+    for (int j = 0; j < b->count; j++) sum += b->fraction[phase][j];
+    ps_control_progress(b->whole, phase, sum / b->count);
+    pthread_mutex_unlock(&b->lock);
 }
 
 /* Draw j's pipeline: the whole's parameters, its share of the centrality
@@ -236,7 +256,7 @@ static void report_share(void *user, ps_phase phase, double fraction) {
 static void draw_setup(ensemble *e, int j) {
     const ps_pipeline *whole = e->whole;
     draw *d = &e->d[j];
-    d->share = (progress_share){whole->ctl, j, e->count, e->last_progress};
+    d->share = (progress_share){&e->board, j};
     if (whole->ctl) d->ctl = (ps_control){report_share, &d->share, whole->ctl->cancel};
     d->pl = (ps_pipeline){.in = &d->in, .n_input = d->in.n, .ctl = whole->ctl ? &d->ctl : NULL,
                           .params = whole->params, .threads = whole->threads};
@@ -270,8 +290,54 @@ static void add_phase_timings(ps_timings *to, const ps_timings *from, ps_phase p
         if (ps_step_phase((ps_step)s) == ph) to->step_ms[s] += from->step_ms[s];
 }
 
-/* The phases, each over every draw before the next; phase times summed;
- * then each draw keeps only what its answers need. */
+/* One phase of every draw, the draws side by side. */
+typedef struct phase_job {
+    ensemble *e;
+    ps_phase ph;
+    ps_status st[PS_ENSEMBLE_MAX_DRAWS];
+    ps_error err[PS_ENSEMBLE_MAX_DRAWS];
+} phase_job;
+
+static void run_draw_phase(void *ctx, size_t begin, size_t end, int worker) {
+    (void)worker;
+    phase_job *job = ctx;
+    for (size_t j = begin; j < end; j++) {
+        draw *d = &job->e->d[j];
+        job->st[j] = ps_segment_phase(&d->pl, job->ph, &job->err[j]);
+        if (job->st[j] == PS_OK && job->ph == PS_PHASE_KNN) drop_copy(d);
+    }
+}
+
+/* Phase ph of every draw: as many draws at once as the whole has threads,
+ * each on the whole's threads, so that one draw's serial work overlaps
+ * another's (the labels are the same for any thread count).  The phase's
+ * time is its wall time, shared among its steps as the draws' step times
+ * are; the first draw's error that failed. */
+static ps_status run_phase(ensemble *e, ps_pipeline *whole, ps_phase ph, ps_error *err) {
+    phase_job job = {.e = e, .ph = ph};
+    int side_by_side = ps_parallel_threads(whole->threads);
+    double start = ps_now_ms();
+    ps_parallel_for(side_by_side < e->count ? side_by_side : e->count, (size_t)e->count, 1,
+                    run_draw_phase, &job);
+    double wall = ps_now_ms() - start, summed = 0;
+    ps_timings draws = {0};
+    for (int j = 0; j < e->count; j++) {
+        if (job.st[j] != PS_OK) {
+            *err = job.err[j];
+            return job.st[j];
+        }
+        add_phase_timings(&draws, &e->d[j].pl.timings, ph);
+    }
+    summed = draws.ms[ph];
+    for (int s = 0; s < PS_STEP_COUNT; s++)
+        if (ps_step_phase((ps_step)s) == ph)
+            whole->timings.step_ms[s] += summed > 0 ? draws.step_ms[s] * wall / summed : 0;
+    whole->timings.ms[ph] += wall;
+    return PS_OK;
+}
+
+/* The phases, each over every draw before the next; then each draw keeps
+ * only what its answers need. */
 static ps_status run(ensemble *e, ps_pipeline *whole, ps_error *err) {
     ps_status st = PS_OK;
     for (int j = 0; st == PS_OK && j < e->count; j++) {
@@ -279,11 +345,7 @@ static ps_status run(ensemble *e, ps_pipeline *whole, ps_error *err) {
         st = ps_pipeline_dedup(&e->d[j].pl, err);
     }
     for (int ph = 0; st == PS_OK && ph < PS_PHASE_COUNT; ph++)
-        for (int j = 0; st == PS_OK && j < e->count; j++) {
-            st = ps_segment_phase(&e->d[j].pl, (ps_phase)ph, err);
-            add_phase_timings(&whole->timings, &e->d[j].pl.timings, (ps_phase)ph);
-            if (ph == PS_PHASE_KNN) drop_copy(&e->d[j]);
-        }
+        st = run_phase(e, whole, (ps_phase)ph, err);
     for (int j = 0; st == PS_OK && j < e->count; j++) ps_pipeline_shed(&e->d[j].pl);
     return st;
 }
@@ -416,6 +478,7 @@ ps_status ps_ensemble_segment(ps_pipeline *whole, int draws, size_t distinct, ps
                               ps_error *err) {
     ensemble e = {.whole = whole, .count = draws, .distinct = distinct,
                   .size = ps_ensemble_draw_points(distinct)};
+    ensemble_begin(&e);
     ps_status st = split(&e, err);
     if (st == PS_OK) st = segment_all(&e, whole, out, err);
     ensemble_free(&e);
@@ -449,6 +512,7 @@ ps_status ps_ensemble_fill(ps_pipeline *whole, int fills, int *filled, ps_result
                            ps_error *err) {
     ensemble e = {.whole = whole, .count = fills, .fills = 1,
                   .distinct = whole->dedup.n_unique};
+    ensemble_begin(&e);
     ps_status st = fill_all(&e, filled, err);
     if (st == PS_OK && *filled) st = segment_all(&e, whole, out, err);
     ensemble_free(&e);

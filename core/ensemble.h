@@ -1,8 +1,10 @@
 /*
  * ensemble.h: several samplings of one surface segmented side by side (the
- * phases in step), the partition the others agree with most kept: the
- * medoid under the Rand index, compared on about PS_ENSEMBLE_SAMPLE of the
- * caller's points.  Method auto only, at the reference sampling
+ * phases in step, each phase run for as many samplings at once as the
+ * caller has threads, each on all of them, so that one sampling's serial
+ * work overlaps another's), the partition the others agree with most
+ * kept: the medoid under the Rand index, compared on about
+ * PS_ENSEMBLE_SAMPLE of the caller's points.  Method auto only, at the reference sampling
  * (PS_DENSITY_REFERENCE_POINTS, reference_density.h):
  * - a mesh under it: PS_ENSEMBLE_FILLS independent fills of its triangles
  *   (surface_fill.h), each up to the reference with the mesh's points

@@ -8,7 +8,8 @@
  * sample for every cell of about CELL_POINTS points; the cell count stops
  * growing at PS_CELL_SCALE_POINTS, coarse_graph.h), over a fixed base; an
  * input split in draws, or a mesh segmented in fills (their pipelines side
- * by side), has per-point constants of its own; a pipeline small
+ * by side), has per-point constants of its own, and the draws or fills
+ * that run at the same time add their working memory; a pipeline small
  * enough for the boundary cut's pairs side by side adds its further
  * workers' scratch.
  */
@@ -41,6 +42,20 @@
  * 1.15 times the largest of each. */
 #define DRAWS_BYTES_PER_POINT 102
 #define DRAWS_BYTES_PER_NEIGHBOUR 19
+/* Draws and fills run side by side, as many at once as the threads
+ * (ensemble.c); each further one adds its working memory, and its
+ * worker threads' malloc arenas keep what they freed.  Fitted 2026-11-28
+ * to the peaks of the horse sampled at 100,000 to 10M points, k = 7 and
+ * 28 (bench_scale, against the same code with one draw at a time): 375 +
+ * 15 k bytes a point for the first SIDE_SMALL_POINTS of a draw (480 at
+ * k = 7 measured on draws of 50,000 to 120,000 points), 100 + 2 k beyond
+ * (the largest arrays are mapped and unmapped whole: 105 measured on a
+ * draw of 2M). */
+#define SIDE_SMALL_POINTS ((size_t)200000)
+#define SIDE_BYTES_PER_POINT 375
+#define SIDE_BYTES_PER_NEIGHBOUR 15
+#define SIDE_LARGE_BYTES_PER_POINT 100
+#define SIDE_LARGE_BYTES_PER_NEIGHBOUR 2
 /* Each further worker of the boundary cut (boundary_cut.h), up to
  * PS_BOUNDARY_CUT_SIDE_BY_SIDE points a pipeline, holds per-point scratch
  * of its own; what it touches is its distances, band marks and search
@@ -54,6 +69,18 @@ static size_t cut_workers_bytes(size_t n, const ps_params *params) {
     int extra = (threads < PS_BOUNDARY_CUT_WORKERS ? threads : PS_BOUNDARY_CUT_WORKERS) - 1;
     if (extra <= 0 || n > PS_BOUNDARY_CUT_SIDE_BY_SIDE) return 0;
     return (size_t)extra * n * CUT_WORKER_BYTES_PER_POINT;
+}
+
+/* The further pipelines of count (draws or fills) that run side by side,
+ * each of n points. */
+static size_t side_by_side_bytes(int count, size_t n, const ps_params *params) {
+    int threads = ps_parallel_threads(params->threads);
+    int further = (threads < count ? threads : count) - 1;
+    if (further <= 0) return 0;
+    size_t k = (size_t)params->k, small = n < SIDE_SMALL_POINTS ? n : SIDE_SMALL_POINTS;
+    size_t one = small * (SIDE_BYTES_PER_POINT + SIDE_BYTES_PER_NEIGHBOUR * k) +
+                 (n - small) * (SIDE_LARGE_BYTES_PER_POINT + SIDE_LARGE_BYTES_PER_NEIGHBOUR * k);
+    return (size_t)further * one;
 }
 
 /* The two-level centrality's table for a pipeline of n points. */
@@ -79,7 +106,8 @@ static size_t estimate_of(size_t n, int dim, int fills, const ps_params *params)
                        (draws ? DRAWS_BYTES_PER_NEIGHBOUR : BYTES_PER_NEIGHBOUR) * (size_t)params->k +
                        BYTES_PER_COORDINATE * (size_t)dim;
     size_t table = fills ? PS_ENSEMBLE_FILLS * table_bytes(per_pipeline, params) : table_bytes(n, params);
-    return BASE_BYTES + n * per_point + table + cut_workers_bytes(per_pipeline, params);
+    return BASE_BYTES + n * per_point + table + cut_workers_bytes(per_pipeline, params) +
+           side_by_side_bytes(n_draws, per_pipeline, params);
 }
 
 size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params) {

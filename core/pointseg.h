@@ -227,7 +227,9 @@ typedef struct ps_merge {
 
 typedef struct ps_timings {
     double ms[PS_PHASE_COUNT];     /* wall time per phase, milliseconds */
-    double step_ms[PS_STEP_COUNT]; /* ... per step (0 for a step that did not run) */
+    double step_ms[PS_STEP_COUNT]; /* ... per step (0 for a step that did not run); with
+                                      samplings side by side (ensemble.h) a phase's wall
+                                      time shared among its steps by their summed times */
     double total_ms;
 } ps_timings;
 

@@ -4,7 +4,9 @@
  * dense enough for three draws: its arms come out apart, every point is
  * answered consistently, and the answer is the same for any thread count
  * and for a rotated, scaled, moved and reordered copy, with progress that
- * never goes back; repeated points count once.
+ * never goes back and is never reported twice at once while draws run
+ * side by side, phase times that are wall times, and a cancel that stops
+ * draws in flight; repeated points count once.
  */
 #include "ensemble.h"
 #include "graph/reference_density.h"
@@ -14,8 +16,10 @@
 #include "shapes.h"
 #include "testlib.h"
 
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define DENSE_STAR 2500.0   /* ps_shape_star density: about 128,000 points, 3 draws */
 #define ONE_DRAW_STAR 800.0 /* about 41,000 points, one draw */
@@ -319,9 +323,70 @@ static void test_dense_star_progress_and_cancel(void) {
     free(pts);
 }
 
+/* A progress callback that notes whether two calls ever overlapped (it
+ * holds a flag for a moment each time), and raises cancel_at's flag once
+ * the centrality phase is past cancel_at's fraction (never when above 1). */
+typedef struct overlap_probe {
+    atomic_int busy, overlapped, calls;
+    double cancel_at;
+    volatile int cancel;
+} overlap_probe;
+
+static void probe_progress(void *user, ps_phase phase, double fraction) {
+    overlap_probe *o = user;
+    if (atomic_exchange(&o->busy, 1)) atomic_store(&o->overlapped, 1);
+    nanosleep(&(struct timespec){0, 20000}, NULL);
+    atomic_fetch_add(&o->calls, 1);
+    if (phase == PS_PHASE_CENTRALITY && fraction > o->cancel_at) /* as the core reads it */
+        atomic_store_explicit((volatile atomic_int *)&o->cancel, 1, memory_order_relaxed);
+    atomic_store(&o->busy, 0);
+}
+
+/* Two threads run the three draws two at a time: the caller's callback is
+ * still called by one thread at a time, and the phases' times are wall
+ * times that add up to no more than the run's. */
+static void test_draws_side_by_side(void) {
+    size_t n;
+    double *pts = ps_shape_star(DENSE_STAR, &n, NULL);
+    REQUIRE(pts);
+    overlap_probe o = {.cancel_at = 2.0};
+    ps_control ctl = {.progress = probe_progress, .user = &o};
+    ps_result *r = segment_star(pts, n, 2, &ctl);
+    REQUIRE(r);
+    CHECK(atomic_load(&o.calls) > 0);
+    CHECK_MSG(!atomic_load(&o.overlapped), "the progress callback ran twice at once");
+    double phases = 0;
+    for (int p = 0; p < PS_PHASE_COUNT; p++) phases += r->timings.ms[p];
+    CHECK_MSG(phases <= r->timings.total_ms + 1.0, "phases %.1f ms in a run of %.1f ms", phases,
+              r->timings.total_ms);
+    ps_result_free(r);
+    free(pts);
+}
+
+/* A cancel raised while the draws' centrality runs side by side stops
+ * the run with nothing returned. */
+static void test_cancel_while_draws_run(void) {
+    size_t n;
+    double *pts = ps_shape_star(DENSE_STAR, &n, NULL);
+    REQUIRE(pts);
+    overlap_probe o = {.cancel_at = 0.3};
+    ps_control ctl = {.progress = probe_progress, .user = &o, .cancel = &o.cancel};
+    ps_params p;
+    ps_params_default(&p);
+    p.threads = 2;
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_result *r = NULL;
+    ps_error err;
+    CHECK(ps_segment(&in, &p, &ctl, &r, &err) == PS_ERR_CANCELLED);
+    CHECK(r == NULL);
+    CHECK(o.cancel == 1);
+    free(pts);
+}
+
 PS_TEST_MAIN(TEST(test_draws_only_when_each_keeps_the_reference), TEST(test_draw_points),
              TEST(test_keys_invariant), TEST(test_keys_georeferenced),
              TEST(test_assign_partial), TEST(test_assign_tied_keys), TEST(test_medoid_is_the_middle),
              TEST(test_star_in_one_draw), TEST(test_dense_star_in_draws), TEST(test_dense_star_rotated_and_reordered),
-             TEST(test_dense_star_progress_and_cancel),
+             TEST(test_dense_star_progress_and_cancel), TEST(test_draws_side_by_side),
+             TEST(test_cancel_while_draws_run),
              TEST(test_repeated_points_segmented_as_their_distinct_ones), TEST(test_few_points_repeated))
