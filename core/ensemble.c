@@ -312,14 +312,14 @@ static void run_draw_phase(void *ctx, size_t begin, size_t end, int worker) {
  * each on the whole's threads, so that one draw's serial work overlaps
  * another's (the labels are the same for any thread count).  The phase's
  * time is its wall time, shared among its steps as the draws' step times
- * are; the first draw's error that failed. */
+ * are.  On failure, the error of the first draw that failed. */
 static ps_status run_phase(ensemble *e, ps_pipeline *whole, ps_phase ph, ps_error *err) {
     phase_job job = {.e = e, .ph = ph};
     int side_by_side = ps_parallel_threads(whole->threads);
     double start = ps_now_ms();
     ps_parallel_for(side_by_side < e->count ? side_by_side : e->count, (size_t)e->count, 1,
                     run_draw_phase, &job);
-    double wall = ps_now_ms() - start, summed = 0;
+    double wall = ps_now_ms() - start;
     ps_timings draws = {0};
     for (int j = 0; j < e->count; j++) {
         if (job.st[j] != PS_OK) {
@@ -328,7 +328,7 @@ static ps_status run_phase(ensemble *e, ps_pipeline *whole, ps_phase ph, ps_erro
         }
         add_phase_timings(&draws, &e->d[j].pl.timings, ph);
     }
-    summed = draws.ms[ph];
+    double summed = draws.ms[ph];
     for (int s = 0; s < PS_STEP_COUNT; s++)
         if (ps_step_phase((ps_step)s) == ph)
             whole->timings.step_ms[s] += summed > 0 ? draws.step_ms[s] * wall / summed : 0;
