@@ -186,8 +186,14 @@ typedef struct ps_control {
     ps_progress_fn progress;     /* may be NULL */
     void *user;                  /* passed to progress */
     const volatile int *cancel;  /* may be NULL; nonzero = stop soon
-                                    (read with relaxed atomics) */
+                                    (read with relaxed atomics; raise it
+                                    with ps_cancel_raise) */
 } ps_control;
+
+/* Sets *flag, a ps_control cancel flag, to 1 from any thread, also while a
+ * run reads it: an atomic store, as the run's reads are atomic loads (a
+ * plain store from another thread would race with them). */
+void ps_cancel_raise(volatile int *flag);
 
 /* ---- result ------------------------------------------------------------ */
 

@@ -21,7 +21,8 @@ struct ps_job {
     ps_phase phase;
     double fraction;
     double created, started, finished;
-    volatile int cancel;        /* read by the core with relaxed loads */
+    volatile int cancel;        /* read by the core with relaxed loads; raised with
+                                   ps_cancel_raise */
     ps_pointset points;         /* freed once the job is final */
     size_t n_points;
     ps_request_params params;
@@ -148,18 +149,21 @@ static ps_job_state job_state_of(ps_run_state s) {
     return s == PS_RUN_DONE ? PS_JOB_DONE : s == PS_RUN_FAILED ? PS_JOB_FAILED : PS_JOB_CANCELLED;
 }
 
-/* Runs the job outside the lock; fills the outcome fields it alone owns
- * while RUNNING, and returns the final state. */
-static ps_job_state run_job(ps_job *job) {
+/* Runs the job outside the lock (a status read meanwhile sees RUNNING). */
+static void run_job(ps_job *job, ps_run_outcome *out) {
     ps_control ctl = {report_progress, job, &job->cancel};
-    ps_run_outcome out;
-    ps_job_run(&job->points, &job->params, &ctl, &out);
-    job->doc = out.doc;
-    job->doc_len = out.doc_len;
-    job->media_type = out.media_type;
-    job->error_status = out.error_status;
-    memcpy(job->error, out.error, sizeof job->error);
-    return job_state_of(out.state);
+    ps_job_run(&job->points, &job->params, &ctl, out);
+}
+
+/* Records the outcome in the job; the caller holds the lock, so that a
+ * status read never meets a half-written error.  Returns the final state. */
+static ps_job_state record_outcome_locked(ps_job *job, const ps_run_outcome *out) {
+    job->doc = out->doc;
+    job->doc_len = out->doc_len;
+    job->media_type = out->media_type;
+    job->error_status = out->error_status;
+    memcpy(job->error, out->error, sizeof job->error);
+    return job_state_of(out->state);
 }
 
 /* Records a final state; the caller holds the lock.  Returns the callback
@@ -214,10 +218,11 @@ static void *worker_main(void *arg) {
             job->started = now_seconds();
             q->running++;
             pthread_mutex_unlock(&q->lock);
-            ps_job_state final = run_job(job);
+            ps_run_outcome out;
+            run_job(job, &out);
             pthread_mutex_lock(&q->lock);
             q->running--;
-            done = finish_locked(q, job, final, &user);
+            done = finish_locked(q, job, record_outcome_locked(job, &out), &user);
         }
         purge_locked(q, &dead);
         release_locked(job, &dead);
@@ -349,7 +354,7 @@ void ps_job_cancel(ps_job *job) {
     ps_job_done_fn done = NULL;
     void *user = NULL;
     pthread_mutex_lock(&q->lock);
-    job->cancel = 1;
+    ps_cancel_raise(&job->cancel);
     if (job->state == PS_JOB_QUEUED) done = finish_locked(q, job, PS_JOB_CANCELLED, &user);
     pthread_mutex_unlock(&q->lock);
     if (done) done(user);
@@ -392,7 +397,7 @@ void ps_jobs_drain(ps_jobs *q, double drain_seconds) {
     q->stopping = 1;
     pthread_cond_broadcast(&q->work);
     wait_idle_locked(q, drain_seconds);
-    for (ps_job *j = q->first; j; j = j->next) j->cancel = 1;
+    for (ps_job *j = q->first; j; j = j->next) ps_cancel_raise(&j->cancel);
     pthread_mutex_unlock(&q->lock);
     for (int i = 0; i < q->n_threads; i++) pthread_join(q->threads[i], NULL);
     q->n_threads = 0;

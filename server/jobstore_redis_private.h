@@ -39,7 +39,7 @@ typedef struct ps_redis_slot {
     double fraction;
     int lost;             /* another worker took the job over */
     int handback;         /* shutting down: give the job back */
-    volatile int cancel;  /* polled by the core */
+    volatile int cancel;  /* polled by the core; raised with ps_cancel_raise */
 } ps_redis_slot;
 
 struct ps_redis_store {

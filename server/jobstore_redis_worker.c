@@ -400,7 +400,7 @@ static void renew_all(ps_redis_store *s, ps_redis_link *l) {
         int v = renew(l, w, entry, id, phase, fraction);
         pthread_mutex_lock(&s->lock);
         if (w->active && !strcmp(w->entry, entry) && (v == 1 || v == -1)) {
-            w->cancel = 1;
+            ps_cancel_raise(&w->cancel);
             w->lost = v == -1;
         }
         pthread_mutex_unlock(&s->lock);
@@ -475,7 +475,10 @@ void ps_redis_workers_stop(ps_redis_store *s, double seconds) {
     pthread_cond_broadcast(&s->changed);
     while (any_active_locked(s) && pthread_cond_timedwait(&s->changed, &s->lock, &deadline) == 0) continue;
     for (int i = 0; i < s->n_threads; i++)
-        if (s->slots[i].active) s->slots[i].handback = s->slots[i].cancel = 1;
+        if (s->slots[i].active) {
+            s->slots[i].handback = 1;
+            ps_cancel_raise(&s->slots[i].cancel);
+        }
     pthread_mutex_unlock(&s->lock);
     for (int i = 0; i < s->n_threads; i++) pthread_join(s->slots[i].thread, NULL);
     s->n_threads = 0;

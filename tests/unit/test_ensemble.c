@@ -337,8 +337,7 @@ static void probe_progress(void *user, ps_phase phase, double fraction) {
     if (atomic_exchange(&o->busy, 1)) atomic_store(&o->overlapped, 1);
     nanosleep(&(struct timespec){0, 20000}, NULL);
     atomic_fetch_add(&o->calls, 1);
-    if (phase == PS_PHASE_CENTRALITY && fraction > o->cancel_at) /* as the core reads it */
-        atomic_store_explicit((volatile atomic_int *)&o->cancel, 1, memory_order_relaxed);
+    if (phase == PS_PHASE_CENTRALITY && fraction > o->cancel_at) ps_cancel_raise(&o->cancel);
     atomic_store(&o->busy, 0);
 }
 
