@@ -8,6 +8,7 @@
 #   make bench-quality / bench-speed     print the benchmark figures
 #   make bench-scale                     1M to 10M points: times, peak RSS
 #   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
+#   make BUILD=dir TSAN=1 tsan-tests-build  the threaded code's tests under ThreadSanitizer
 #
 # Sources are found by wildcard: a new .c in core/, a folder of core/ or api/
 # joins its library, a new tests/unit/test_*.c (tests/unit/FOLDER/test_*.c
@@ -15,6 +16,7 @@
 
 BUILD ?= build
 SAN ?= 0
+TSAN ?= 0
 CC ?= cc
 PKGS := lapacke libmicrohttpd libcjson libcurl zlib hiredis
 
@@ -36,6 +38,10 @@ LDLIBS := -lflann $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lopenblas -lm 
 ifeq ($(SAN),1)
 ALL_CFLAGS += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 LDFLAGS += -fsanitize=address,undefined
+endif
+ifeq ($(TSAN),1)
+ALL_CFLAGS += -fsanitize=thread -fno-omit-frame-pointer
+LDFLAGS += -fsanitize=thread
 endif
 
 CORE_SRC := $(wildcard core/*.c core/*/*.c)
@@ -60,6 +66,7 @@ BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
 .PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-scale bench-load clean tests-build \
+        tsan-tests-build \
         install uninstall test-scale test-docker web test-browser
 .DEFAULT_GOAL := all
 
@@ -102,18 +109,26 @@ $(BUILD)/bench/%: $(BUILD)/obj/tests/bench/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(A
 # compiling and build/bench/ never holds a stale one.
 tests-build: $(PROGRAMS) $(UNIT_BIN) $(INTEG_BIN) $(BENCH_BIN)
 
+# The tests of the code that runs threads side by side (the parallel loop,
+# the kd-tree queries, the draws, the job queue, the Redis workers), built
+# for ThreadSanitizer: a data race fails them.
+TSAN_TESTS := util/test_parallel util/test_select_parallel graph/test_kdtree_query \
+              test_ensemble test_core_share test_jobs test_jobstore_redis
+tsan-tests-build: $(patsubst %,$(BUILD)/tests/%,$(TSAN_TESTS))
+
 # ---- running --------------------------------------------------------------
 
 run: deps web
 	@$(MAKE) --no-print-directory all
 	@scripts/run.sh $(BUILD)
 
-# The whole suite: unit tests in a plain and a sanitized build, then the
-# integration tests (daemon over HTTP) and short fuzz runs.  The last line
-# is "N passed, N failed".
+# The whole suite: unit tests in a plain and a sanitized build, the
+# threaded code's under ThreadSanitizer, then the integration tests (daemon
+# over HTTP) and short fuzz runs.  The last line is "N passed, N failed".
 test: deps-test
 	@$(MAKE) --no-print-directory tests-build
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san SAN=1 tests-build
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/tsan TSAN=1 tsan-tests-build
 	@tests/run.sh $(BUILD)
 
 unit: tests-build

@@ -1,6 +1,7 @@
 #!/bin/sh
 # run.sh: runs every test binary of a build and prints the count CI reads.
-#   tests/run.sh BUILD             unit tests (plain and BUILD/san), integration
+#   tests/run.sh BUILD             unit tests (plain, BUILD/san, and BUILD/tsan for
+#                                  the threaded code's), integration
 #                                  tests, short fuzz runs, extra suites
 #   tests/run.sh --unit-only BUILD unit tests of BUILD only
 # Each test prints PASS/FAIL/SKIP lines (tests/support/testlib.h); a binary that
@@ -15,6 +16,7 @@ trap 'rm -rf "$log"' EXIT
 passed=0 failed=0 skipped=0
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:exitcode=66}
 
 run_one() { # label command...
     label=$1; shift
@@ -52,6 +54,7 @@ run_dir() { # title dir sources: the binaries of dir and its folders whose sourc
 run_dir "unit" "$BUILD/tests" tests/unit
 if [ "$unit_only" = 0 ]; then
     run_dir "unit (asan+ubsan)" "$BUILD/san/tests" tests/unit
+    run_dir "unit (tsan)" "$BUILD/tsan/tests" tests/unit
     run_dir "integration" "$BUILD/itests" tests/integration
     for suite in tests/layout.sh tests/integration/*.sh tests/fuzz/run.sh; do
         [ -x "$suite" ] || continue
