@@ -324,8 +324,8 @@ static void test_dense_star_progress_and_cancel(void) {
 }
 
 /* A progress callback that notes whether two calls ever overlapped (it
- * holds a flag for a moment each time), and raises cancel_at's flag once
- * the centrality phase is past cancel_at's fraction (never when above 1). */
+ * holds a flag for a moment each time), and raises the probe's cancel flag
+ * once the centrality phase is past cancel_at (never when it is over 1). */
 typedef struct overlap_probe {
     atomic_int busy, overlapped, calls;
     double cancel_at;
