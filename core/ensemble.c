@@ -82,6 +82,11 @@ size_t ps_ensemble_draw_points(size_t n) {
     return share > PS_DENSITY_REFERENCE_POINTS ? share : PS_DENSITY_REFERENCE_POINTS;
 }
 
+int ps_ensemble_side_by_side(int threads, int count) {
+    threads = ps_parallel_threads(threads);
+    return threads < count ? threads : count;
+}
+
 /* splitmix64's finalizer: index i to 64 well-mixed bits. */
 static uint64_t mix(uint64_t x) {
     x += 0x9e3779b97f4a7c15ULL;
@@ -315,9 +320,8 @@ static void run_draw_phase(void *ctx, size_t begin, size_t end, int worker) {
  * are.  On failure, the error of the first draw that failed. */
 static ps_status run_phase(ensemble *e, ps_pipeline *whole, ps_phase ph, ps_error *err) {
     phase_job job = {.e = e, .ph = ph};
-    int side_by_side = ps_parallel_threads(whole->threads);
     double start = ps_now_ms();
-    ps_parallel_for(side_by_side < e->count ? side_by_side : e->count, (size_t)e->count, 1,
+    ps_parallel_for(ps_ensemble_side_by_side(whole->threads, e->count), (size_t)e->count, 1,
                     run_draw_phase, &job);
     double wall = ps_now_ms() - start;
     ps_timings draws = {0};

@@ -4,8 +4,8 @@
  * caller has threads, each on all of them, so that one sampling's serial
  * work overlaps another's), the partition the others agree with most
  * kept: the medoid under the Rand index, compared on about
- * PS_ENSEMBLE_SAMPLE of the caller's points.  Method auto only, at the reference sampling
- * (PS_DENSITY_REFERENCE_POINTS, reference_density.h):
+ * PS_ENSEMBLE_SAMPLE of the caller's points.  Method auto only, at the
+ * reference sampling (PS_DENSITY_REFERENCE_POINTS, reference_density.h):
  * - a mesh under it: PS_ENSEMBLE_FILLS independent fills of its triangles
  *   (surface_fill.h), each up to the reference with the mesh's points
  *   first, so every fill answers every one of them (ps_ensemble_fill);
@@ -59,6 +59,11 @@ int ps_ensemble_draws(const ps_params *p, size_t n);
  * PS_ENSEMBLE_MAX_DRAWS times the reference on and leave the rest out
  * below it. */
 size_t ps_ensemble_draw_points(size_t n);
+
+/* How many of count draws (or fills) run a phase at once on a run of
+ * threads (ps_parallel_threads: 0 = every core): one a thread, at most
+ * count.  The memory estimate counts their working memory with it. */
+int ps_ensemble_side_by_side(int threads, int count);
 
 /* key out: #P each point's distance to the centroid over the largest
  * such distance, quantized to PS_ENSEMBLE_KEY_BITS bits: the same, but

@@ -74,8 +74,7 @@ static size_t cut_workers_bytes(size_t n, const ps_params *params) {
 /* The further pipelines of count (draws or fills) that run side by side,
  * each of n points. */
 static size_t side_by_side_bytes(int count, size_t n, const ps_params *params) {
-    int threads = ps_parallel_threads(params->threads);
-    int further = (threads < count ? threads : count) - 1;
+    int further = ps_ensemble_side_by_side(params->threads, count) - 1;
     if (further <= 0) return 0;
     size_t k = (size_t)params->k, small = n < SIDE_SMALL_POINTS ? n : SIDE_SMALL_POINTS;
     size_t one = small * (SIDE_BYTES_PER_POINT + SIDE_BYTES_PER_NEIGHBOUR * k) +
