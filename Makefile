@@ -8,7 +8,8 @@
 #   make bench-quality / bench-speed     print the benchmark figures
 #   make bench-scale                     1M to 10M points: times, peak RSS
 #   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
-#   make BUILD=dir TSAN=1 tsan-tests-build  the threaded code's tests under ThreadSanitizer
+#   make BUILD=dir TSAN=1 tsan-tests-build  the threaded code's tests and the daemon's
+#                                        under ThreadSanitizer
 #
 # Sources are found by wildcard: a new .c in core/, a folder of core/ or api/
 # joins its library, a new tests/unit/test_*.c (tests/unit/FOLDER/test_*.c
@@ -110,11 +111,12 @@ $(BUILD)/bench/%: $(BUILD)/obj/tests/bench/%.o $(TESTLIB_OBJ) $(CCLIENT_LIB) $(A
 tests-build: $(PROGRAMS) $(UNIT_BIN) $(INTEG_BIN) $(BENCH_BIN)
 
 # The tests of the code that runs threads side by side (the parallel loop,
-# the kd-tree queries, the draws, the job queue, the Redis workers), built
-# for ThreadSanitizer: a data race fails them.
+# the kd-tree queries, the draws, the job queue, the Redis workers), and the
+# daemon with its integration tests, built for ThreadSanitizer: a data race
+# fails them (a raced daemon exits with status 66, its report in its log).
 TSAN_TESTS := util/test_parallel util/test_select_parallel graph/test_kdtree_query \
               test_ensemble test_core_share test_jobs test_jobstore_redis
-tsan-tests-build: $(patsubst %,$(BUILD)/tests/%,$(TSAN_TESTS))
+tsan-tests-build: $(patsubst %,$(BUILD)/tests/%,$(TSAN_TESTS)) $(BUILD)/pointsegd $(INTEG_BIN)
 
 # ---- running --------------------------------------------------------------
 
@@ -124,7 +126,7 @@ run: deps web
 
 # The whole suite: unit tests in a plain and a sanitized build, the
 # threaded code's under ThreadSanitizer, then the integration tests (daemon
-# over HTTP) and short fuzz runs.  The last line is "N passed, N failed".
+# over HTTP, also with the daemon under ThreadSanitizer) and short fuzz runs.  The last line is "N passed, N failed".
 test: deps-test
 	@$(MAKE) --no-print-directory tests-build
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san SAN=1 tests-build

@@ -23,6 +23,7 @@
 #include <netinet/in.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -719,7 +720,7 @@ static int holds_epoll(pid_t pid) {
 
 typedef struct hammer {
     int port;
-    volatile int stop;
+    atomic_int stop;
 } hammer;
 
 /* Opens and resets connections to the daemon until told to stop. */
@@ -728,7 +729,7 @@ static void *hammer_main(void *arg) {
     struct sockaddr_in a = {.sin_family = AF_INET, .sin_port = htons((uint16_t)h->port),
                             .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
     struct linger reset = {1, 0};
-    while (!h->stop) {
+    while (!atomic_load(&h->stop)) {
         int fd = socket(AF_INET, SOCK_STREAM, 0);
         if (fd < 0) continue;
         setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
@@ -749,11 +750,12 @@ static void test_sigterm_under_incoming_connections(void) {
         pthread_t threads[HAMMERS];
         REQUIRE_STARTS(d, "--quiet", NULL);
         if (i == 0) CHECK_MSG(!holds_epoll(d.pid), "pointsegd %d uses epoll", (int)d.pid);
-        hammer h = {d.port, 0};
+        hammer h = {.port = d.port};
+        atomic_init(&h.stop, 0);
         for (int k = 0; k < HAMMERS; k++) pthread_create(&threads[k], NULL, hammer_main, &h);
         ps_test_sleep_ms(20 + i % 4 * 10);
         int stopped = ps_daemon_stop(&d, 20);
-        h.stop = 1;
+        atomic_store(&h.stop, 1);
         for (int k = 0; k < HAMMERS; k++) pthread_join(threads[k], NULL);
         CHECK_MSG(stopped == 0, "cycle %d: %s", i, d.why);
         if (stopped) return;
