@@ -193,10 +193,12 @@ uninstall:
 
 # redis-server, three pointsegd --redis and a real nginx on loopback, as in
 # docker/compose.yaml, with a replica SIGKILLed and Redis restarted mid-run
-# (installs nginx and redis-server when root, else skips).  Not part of
+# (installs nginx and redis-server when root, else skips); then again with
+# the daemons built for ThreadSanitizer (build/tsan).  Not part of
 # `make test` (the script is not executable, so tests/run.sh passes it by).
 test-scale: all
-	@sh tests/integration/scale.sh $(BUILD)
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/tsan TSAN=1 $(BUILD)/tsan/pointseg $(BUILD)/tsan/pointsegd
+	@sh tests/integration/scale.sh $(BUILD) $(BUILD)/tsan
 
 # docker/Dockerfile built and run (the horse through it), then
 # docker/compose.yaml brought up and its replicas and Redis killed

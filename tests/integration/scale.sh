@@ -2,19 +2,22 @@
 # three identical pointsegd --redis on loopback, and a real nginx running
 # docker/nginx.conf with only its replica line, port and file paths
 # rewritten.
-#   sh tests/integration/scale.sh BUILD     (make test-scale)
+#   sh tests/integration/scale.sh BUILD [BUILD...]   (make test-scale: the
+#       plain build, then BUILD/tsan, whose daemons run under ThreadSanitizer)
 # Checks that every path the Dockerfile COPYs exists, then runs
 # scale_driver.py: 300 mixed requests through nginx (sync and async, valid
 # and invalid, cancels), a job read from every replica, a replica SIGKILLed
 # while it runs a job (the job finishes on another), redis-server restarted
-# mid-run, and no job lost or wrong (see the driver's top comment).
+# mid-run, no job lost or wrong, and no sanitizer finding in a replica's log
+# (see the driver's top comment); once for each BUILD, its checks named
+# scale:... for the first and scale(DIR):... for BUILD/DIR after it.
 # Installs nginx and redis-server with apt-get when missing and run as root,
 # else skips.  Prints PASS/FAIL/SKIP lines and "N passed, N failed"; stops
 # itself within about five minutes.  Not executable on purpose: tests/run.sh
 # (make test) runs only executable suites, and this one belongs to make
 # test-scale.
 set -u
-BUILD=${1:-build}
+[ $# -gt 0 ] || set -- build
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d)
 passed=0 failed=0
@@ -61,20 +64,32 @@ need() {
     return 1
 }
 
+# drive BUILD SUITE: the topology with BUILD's programs, its own files in
+# $tmp/SUITE.
+drive() {
+    for f in "$1/pointseg" "$1/pointsegd"; do
+        [ -x "$f" ] || { fail "$2-setup" "$f is not built"; return; }
+    done
+    dir="$tmp/$2"
+    mkdir -p "$dir" && chmod 755 "$dir"
+    timeout 300 python3 "$ROOT/tests/integration/scale_driver.py" "$1" "$dir" "$NGINX" \
+        "$ROOT/docker/nginx.conf" "$2" >"$dir/driver.out"
+    rc=$?
+    cat "$dir/driver.out"
+    passed=$((passed + $(grep -c '^PASS ' "$dir/driver.out")))
+    failed=$((failed + $(grep -c '^FAIL ' "$dir/driver.out")))
+    if [ "$rc" -eq 124 ]; then fail "$2-driver" "timed out after 300 s"
+    elif [ "$rc" -ne 0 ]; then fail "$2-driver" "exit status $rc"; fi
+}
+
 check_docker_copies
-for f in "$BUILD/pointseg" "$BUILD/pointsegd"; do
-    [ -x "$f" ] || { fail setup "$f is not built"; finish; }
-done
 need nginx nginx && need redis-server redis-server || finish
 NGINX=$(PATH=$PATH:/usr/sbin command -v nginx)
 chmod 755 "$tmp"
-
-timeout 300 python3 "$ROOT/tests/integration/scale_driver.py" "$BUILD" "$tmp" "$NGINX" \
-    "$ROOT/docker/nginx.conf" >"$tmp/driver.out"
-rc=$?
-cat "$tmp/driver.out"
-passed=$((passed + $(grep -c '^PASS ' "$tmp/driver.out")))
-failed=$((failed + $(grep -c '^FAIL ' "$tmp/driver.out")))
-if [ "$rc" -eq 124 ]; then fail driver "timed out after 300 s"
-elif [ "$rc" -ne 0 ]; then fail driver "exit status $rc"; fi
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:exitcode=66}
+first=$1
+for build in "$@"; do
+    if [ "$build" = "$first" ]; then suite=scale; else suite="scale(${build#"$first"/})"; fi
+    drive "$build" "$suite"
+done
 finish

@@ -1,6 +1,6 @@
 """scale_driver.py: the body of tests/integration/scale.sh (make test-scale).
 
-    python3 scale_driver.py BUILD TMP NGINX NGINX_CONF_TEMPLATE
+    python3 scale_driver.py BUILD TMP NGINX NGINX_CONF_TEMPLATE [SUITE]
 
 Starts redis-server (append-only file on, as in docker/compose.yaml), three
 pointsegd --redis on loopback and nginx with the template's "server
@@ -17,7 +17,10 @@ pointsegd:8080" line turned into the three replicas; then:
                  it comes back: the daemons recover, jobs from before and
                  after it finish
   no-job-lost    every accepted job ended done (or cancelled when asked)
-Prints PASS/FAIL lines; the shell counts them.
+  no-sanitizer-report  no replica's log reports a sanitizer finding (for a
+                 BUILD made with SAN=1 or TSAN=1)
+Prints PASS/FAIL lines named SUITE:check (SUITE "scale" unless given); the
+shell counts them.
 """
 import concurrent.futures
 import os
@@ -28,12 +31,16 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from http_checks import (call, free_port, inputs, metric, no_job_lost, poll, report,  # noqa: E402
+from http_checks import (SUITE, call, free_port, inputs, metric, no_job_lost, poll, report,  # noqa: E402
                          result_labels, submit, wait_http)
 
 BUILD, TMP, NGINX, TEMPLATE = sys.argv[1:5]
+if len(sys.argv) > 5:
+    SUITE[0] = sys.argv[5]
 PS, PSD = BUILD + "/pointseg", BUILD + "/pointsegd"
 LEASE = 3
+# What an AddressSanitizer, UBSan or ThreadSanitizer build prints on a finding.
+SANITIZER_REPORT = re.compile(r"^(==\d+==ERROR: \w+Sanitizer|WARNING: ThreadSanitizer|.*: runtime error: )", re.M)
 procs = []
 accepted = {}  # job id -> (expected labels or None when cancelled, what)
 
@@ -303,9 +310,25 @@ def main():
     report(all(served), "every-replica-served", "requests per replica %s" % served)
 
 
+def no_sanitizer_report():
+    """Run however the checks ended, so that a replica a sanitizer stopped
+    is named even when the checks above could not finish."""
+    findings = []
+    for name in sorted(os.listdir(TMP)):
+        if re.fullmatch(r"replica-\d+\.log", name):
+            with open(os.path.join(TMP, name), errors="replace") as f:
+                log = f.read()
+            found = SANITIZER_REPORT.search(log)
+            if found:
+                summary = re.search(r"^SUMMARY: .*", log, re.M)
+                findings.append("%s: %s" % (name, (summary or found).group(0).strip()))
+    report(not findings, "no-sanitizer-report", "; ".join(findings))
+
+
 try:
     main()
 finally:
+    no_sanitizer_report()
     for p in procs:
         if p.poll() is None:
             p.terminate()
