@@ -1,8 +1,9 @@
-/* fuzz_text.c: libFuzzer target for format detection and the OFF, OBJ and
- * XYZ/CSV decoders; every input goes through all three and ps_decode
- * (tests/fuzz/run.sh). */
+/* fuzz_text.c: libFuzzer target for format detection, the OFF, OBJ and
+ * XYZ/CSV decoders and the labels decoder (`pointseg score`'s .seg files);
+ * every input goes through all of them and ps_decode (tests/fuzz/run.sh). */
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 #include "decode.h"
 
@@ -19,5 +20,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         if (decoders[i]((const char *)data, size, &lim, &ps, &err) == 0)
             ps_pointset_free(&ps);
     if (ps_decode((const char *)data, size, &lim, &ps, &err) == 0) ps_pointset_free(&ps);
+    int *labels = NULL;
+    size_t count = 0;
+    if (ps_decode_labels((const char *)data, size, &labels, &count, &err) == 0) free(labels);
     return 0;
 }
