@@ -126,7 +126,7 @@ run: deps web
 
 # The whole suite: unit tests in a plain and a sanitized build, the
 # threaded code's under ThreadSanitizer, then the integration tests (daemon
-# over HTTP, also with the daemon under ThreadSanitizer) and short fuzz runs.  The last line is "N passed, N failed".
+# over HTTP, also with the daemon under the sanitizers) and short fuzz runs.  The last line is "N passed, N failed".
 test: deps-test
 	@$(MAKE) --no-print-directory tests-build
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san SAN=1 tests-build
@@ -194,11 +194,13 @@ uninstall:
 # redis-server, three pointsegd --redis and a real nginx on loopback, as in
 # docker/compose.yaml, with a replica SIGKILLed and Redis restarted mid-run
 # (installs nginx and redis-server when root, else skips); then again with
-# the daemons built for ThreadSanitizer (build/tsan).  Not part of
+# the daemons built with AddressSanitizer + UBSan (build/san) and with
+# ThreadSanitizer (build/tsan).  Not part of
 # `make test` (the script is not executable, so tests/run.sh passes it by).
 test-scale: all
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san SAN=1 $(BUILD)/san/pointseg $(BUILD)/san/pointsegd
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/tsan TSAN=1 $(BUILD)/tsan/pointseg $(BUILD)/tsan/pointsegd
-	@sh tests/integration/scale.sh $(BUILD) $(BUILD)/tsan
+	@sh tests/integration/scale.sh $(BUILD) $(BUILD)/san $(BUILD)/tsan
 
 # docker/Dockerfile built and run (the horse through it), then
 # docker/compose.yaml brought up and its replicas and Redis killed

@@ -2,9 +2,9 @@
 # run.sh: runs every test binary of a build and prints the count CI reads.
 #   tests/run.sh BUILD             unit tests (plain, BUILD/san, and BUILD/tsan for
 #                                  the threaded code's), integration
-#                                  tests (plain and BUILD/tsan's, whose daemon
-#                                  is under ThreadSanitizer), short fuzz runs,
-#                                  extra suites
+#                                  tests (plain, then BUILD/san's and
+#                                  BUILD/tsan's, whose daemons run under the
+#                                  sanitizers), short fuzz runs, extra suites
 #   tests/run.sh --unit-only BUILD unit tests of BUILD only
 # Each test prints PASS/FAIL/SKIP lines (tests/support/testlib.h); a binary that
 # dies without saying FAIL counts as one failure.  The last line is
@@ -58,6 +58,7 @@ if [ "$unit_only" = 0 ]; then
     run_dir "unit (asan+ubsan)" "$BUILD/san/tests" tests/unit
     run_dir "unit (tsan)" "$BUILD/tsan/tests" tests/unit
     run_dir "integration" "$BUILD/itests" tests/integration
+    run_dir "integration (asan+ubsan)" "$BUILD/san/itests" tests/integration
     run_dir "integration (tsan)" "$BUILD/tsan/itests" tests/integration
     for suite in tests/layout.sh tests/integration/*.sh tests/fuzz/run.sh; do
         [ -x "$suite" ] || continue

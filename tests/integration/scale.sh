@@ -3,7 +3,8 @@
 # docker/nginx.conf with only its replica line, port and file paths
 # rewritten.
 #   sh tests/integration/scale.sh BUILD [BUILD...]   (make test-scale: the
-#       plain build, then BUILD/tsan, whose daemons run under ThreadSanitizer)
+#       plain build, then BUILD/san and BUILD/tsan, whose daemons run under
+#       AddressSanitizer + UBSan and ThreadSanitizer)
 # Checks that every path the Dockerfile COPYs exists, then runs
 # scale_driver.py: 300 mixed requests through nginx (sync and async, valid
 # and invalid, cancels), a job read from every replica, a replica SIGKILLed
@@ -13,7 +14,7 @@
 # scale:... for the first and scale(DIR):... for BUILD/DIR after it.
 # Installs nginx and redis-server with apt-get when missing and run as root,
 # else skips.  Prints PASS/FAIL/SKIP lines and "N passed, N failed"; stops
-# itself within about five minutes.  Not executable on purpose: tests/run.sh
+# each BUILD's run within about five minutes.  Not executable on purpose: tests/run.sh
 # (make test) runs only executable suites, and this one belongs to make
 # test-scale.
 set -u
@@ -86,6 +87,8 @@ check_docker_copies
 need nginx nginx && need redis-server redis-server || finish
 NGINX=$(PATH=$PATH:/usr/sbin command -v nginx)
 chmod 755 "$tmp"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:exitcode=66}
 first=$1
 for build in "$@"; do

@@ -311,8 +311,9 @@ def main():
 
 
 def no_sanitizer_report():
-    """Run however the checks ended, so that a replica a sanitizer stopped
-    is named even when the checks above could not finish."""
+    """Run however the checks ended, after the replicas' shutdown (a race
+    in it counts too), so that a replica a sanitizer stopped is named even
+    when the checks above could not finish."""
     findings = []
     for name in sorted(os.listdir(TMP)):
         if re.fullmatch(r"replica-\d+\.log", name):
@@ -328,7 +329,6 @@ def no_sanitizer_report():
 try:
     main()
 finally:
-    no_sanitizer_report()
     for p in procs:
         if p.poll() is None:
             p.terminate()
@@ -337,3 +337,4 @@ finally:
             p.wait(10)
         except subprocess.TimeoutExpired:
             p.kill()
+    no_sanitizer_report()
