@@ -43,8 +43,9 @@
 #define DRAWS_BYTES_PER_POINT 102
 #define DRAWS_BYTES_PER_NEIGHBOUR 19
 /* Draws and fills run side by side, as many at once as the threads
- * (ensemble.c); each further one adds its working memory, and its
- * worker threads' malloc arenas keep what they freed.  Fitted 2026-11-28
+ * (ensemble.c); each further one adds its working memory, and the heap
+ * keeps what it freed of arrays under glibc's mmap threshold
+ * (benchmarks.md, "What the allocator keeps").  Fitted 2026-11-28
  * to the peaks of the horse sampled at 100,000 to 10M points, k = 7 and
  * 28 (bench_scale, against the same code with one draw at a time): 375 +
  * 15 k bytes a point for the first SIDE_SMALL_POINTS of a draw (480 at
