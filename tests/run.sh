@@ -5,6 +5,8 @@
 #                                  tests (plain, then BUILD/san's and
 #                                  BUILD/tsan's, whose daemons run under the
 #                                  sanitizers), short fuzz runs, extra suites
+#                                  (the CLI's, clients' and render's also with
+#                                  BUILD/san's programs)
 #   tests/run.sh --unit-only BUILD unit tests of BUILD only
 # Each test prints PASS/FAIL/SKIP lines (tests/support/testlib.h); a binary that
 # dies without saying FAIL counts as one failure.  The last line is
@@ -64,6 +66,12 @@ if [ "$unit_only" = 0 ]; then
         [ -x "$suite" ] || continue
         echo "== $suite"
         run_one "$suite" "$suite" "$BUILD"
+    done
+    # The suites that run the programs, again with BUILD/san's.
+    for suite in tests/integration/cli.sh tests/integration/clients.sh tests/integration/render.sh; do
+        [ -x "$suite" ] && [ -x "$BUILD/san/pointseg" ] || continue
+        echo "== $suite (asan+ubsan)"
+        run_one "$suite (asan+ubsan)" "$suite" "$BUILD/san"
     done
 fi
 echo "$passed passed, $failed failed, $skipped skipped"
