@@ -8,8 +8,9 @@
 #   make bench-quality / bench-speed     print the benchmark figures
 #   make bench-scale                     1M to 10M points: times, peak RSS
 #   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
-#   make BUILD=dir TSAN=1 tsan-tests-build  the threaded code's tests and the daemon's
-#                                        under ThreadSanitizer
+#   make BUILD=dir TSAN=1 tsan-tests-build
+#                                        the threaded code's tests and the
+#                                        daemon's under ThreadSanitizer
 #
 # Sources are found by wildcard: a new .c in core/, a folder of core/ or api/
 # joins its library, a new tests/unit/test_*.c (tests/unit/FOLDER/test_*.c
@@ -126,7 +127,8 @@ run: deps web
 
 # The whole suite: unit tests in a plain and a sanitized build, the
 # threaded code's under ThreadSanitizer, then the integration tests (daemon
-# over HTTP, also with the daemon under the sanitizers) and short fuzz runs.  The last line is "N passed, N failed".
+# over HTTP, also with the daemon under the sanitizers) and short fuzz runs.
+# The last line is "N passed, N failed".
 test: deps-test
 	@$(MAKE) --no-print-directory tests-build
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/san SAN=1 tests-build
