@@ -26,8 +26,10 @@ passed=0 failed=0
 trap 'rm -rf "$tmp"' EXIT
 trap 'exit 1' INT TERM
 
-pass() { echo "PASS scale:$1"; passed=$((passed + 1)); }
-fail() { echo "FAIL scale:$1: $2"; failed=$((failed + 1)); }
+# A check's name is SUITE:NAME, SUITE "scale" or "scale(DIR)" (below).
+suite=scale
+pass() { echo "PASS $suite:$1"; passed=$((passed + 1)); }
+fail() { echo "FAIL $suite:$1: $2"; failed=$((failed + 1)); }
 finish() {
     echo "$passed passed, $failed failed"
     [ "$failed" -eq 0 ]
@@ -65,22 +67,22 @@ need() {
     return 1
 }
 
-# drive BUILD SUITE: the topology with BUILD's programs, its own files in
-# $tmp/SUITE.
+# drive BUILD: the topology with BUILD's programs, its checks named
+# $suite:..., its files in $tmp/$suite.
 drive() {
     for f in "$1/pointseg" "$1/pointsegd"; do
-        [ -x "$f" ] || { fail "$2-setup" "$f is not built"; return; }
+        [ -x "$f" ] || { fail setup "$f is not built"; return; }
     done
-    dir="$tmp/$2"
+    dir="$tmp/$suite"
     mkdir -p "$dir" && chmod 755 "$dir"
     timeout 300 python3 "$ROOT/tests/integration/scale_driver.py" "$1" "$dir" "$NGINX" \
-        "$ROOT/docker/nginx.conf" "$2" >"$dir/driver.out"
+        "$ROOT/docker/nginx.conf" "$suite" >"$dir/driver.out"
     rc=$?
     cat "$dir/driver.out"
     passed=$((passed + $(grep -c '^PASS ' "$dir/driver.out")))
     failed=$((failed + $(grep -c '^FAIL ' "$dir/driver.out")))
-    if [ "$rc" -eq 124 ]; then fail "$2-driver" "timed out after 300 s"
-    elif [ "$rc" -ne 0 ]; then fail "$2-driver" "exit status $rc"; fi
+    if [ "$rc" -eq 124 ]; then fail driver "timed out after 300 s"
+    elif [ "$rc" -ne 0 ]; then fail driver "exit status $rc"; fi
 }
 
 check_docker_copies
@@ -93,6 +95,6 @@ export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:exitcode=66}
 first=$1
 for build in "$@"; do
     if [ "$build" = "$first" ]; then suite=scale; else suite="scale(${build#"$first"/})"; fi
-    drive "$build" "$suite"
+    drive "$build"
 done
 finish
