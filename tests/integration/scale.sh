@@ -14,9 +14,9 @@
 # scale:... for the first and scale(DIR):... for BUILD/DIR after it.
 # Installs nginx and redis-server with apt-get when missing and run as root,
 # else skips.  Prints PASS/FAIL/SKIP lines and "N passed, N failed"; stops
-# each BUILD's run within about five minutes.  Not executable on purpose: tests/run.sh
-# (make test) runs only executable suites, and this one belongs to make
-# test-scale.
+# each BUILD's run within about five minutes.  Not executable on purpose:
+# tests/run.sh (make test) runs only executable suites, and this one belongs
+# to make test-scale.
 set -u
 [ $# -gt 0 ] || set -- build
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
@@ -89,9 +89,7 @@ check_docker_copies
 need nginx nginx && need redis-server redis-server || finish
 NGINX=$(PATH=$PATH:/usr/sbin command -v nginx)
 chmod 755 "$tmp"
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
-export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:exitcode=66}
+. "$ROOT/tests/sanitizer_options.sh"
 first=$1
 for build in "$@"; do
     if [ "$build" = "$first" ]; then suite=scale; else suite="scale(${build#"$first"/})"; fi
