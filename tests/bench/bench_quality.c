@@ -5,7 +5,10 @@
  * vertices; `surface:N`: the vertices, then points sampled uniformly by
  * area until N in all, only the vertices scored; `uneven:N`: the same with
  * the samples' density falling tenfold along the model's longest axis, a
- * scan from one side), turns vertex labels into
+ * scan from one side; `seen:N`: only what six views along the axes see,
+ * the seen vertices and samples on the seen surface until N in all, scored
+ * on the faces whose three vertices are seen; `view:N`: the same from the
+ * front alone, one depth image), turns vertex labels into
  * face labels by majority and prints the Rand Index error against the
  * model's human segmentations, and its two parts: over-segmentation (face
  * pairs a human joins and the method splits) and under-segmentation (the
@@ -40,6 +43,7 @@
 
 #include "draw_agreement.h"
 #include "mesh_sample.h"
+#include "mesh_seen.h"
 #include "params_table.h"
 #include "pointseg.h"
 #include "psb_data.h"
@@ -51,6 +55,7 @@
 #define MAX_MODES 32
 #define UNEVEN_FAR 0.1 /* uneven:N: the samples' density at the far end, over the near end's */
 #define MAX_SEEDS 8
+enum { SEEN_ALL, SEEN_SIX, SEEN_FRONT };
 #define STABLE_RI 0.99 /* the least Rand index a moved copy must keep */
 #define PAIRED_SAME 5e-5 /* a smaller change of a model's 1 - RI counts as none */
 
@@ -58,6 +63,8 @@ typedef struct input_mode {
     char name[32];
     size_t surface_points; /* 0: the vertices alone */
     double far;            /* uneven:N: the density at the far end (UNEVEN_FAR), else 1 */
+    int seen;              /* what a scan sees (mesh_seen.h): SEEN_ALL, SEEN_SIX (seen:N),
+                              SEEN_FRONT (view:N) */
     uint64_t seed;         /* the draw of its random inputs (--seed, --seeds) */
     int first;             /* the mode that its other draws repeat (itself) */
 } input_mode;
@@ -114,7 +121,7 @@ typedef struct pool {
 } pool;
 
 static const char usage[] =
-    "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N|uneven:N]... [--ids 1,2,21]\n"
+    "usage: bench_quality [PSB_DIR]... [--input vertices|surface:N|uneven:N|seen:N|view:N]... [--ids 1,2,21]\n"
     "                     [--param name=value]... [--threads N] [--jobs N] [--single]\n"
     "                     [--dev-only] [--stability] [--out DIR] [--baseline none]\n"
     "                     [--noise F] [--scan-noise F] [--strays F] [--seed N] [--seeds K] [--against DIR]\n"
@@ -154,7 +161,8 @@ static int apply_assignment(ps_request_params *rp, const char *assignment) {
     return set_param(rp, name, eq + 1);
 }
 
-/* Parses "vertices", "surface:N" or "uneven:N" into the next mode slot; 0 or -1. */
+/* Parses "vertices", "surface:N", "uneven:N", "seen:N" or "view:N" into the
+ * next mode slot; 0 or -1. */
 static int add_mode(quality_options *o, const char *text) {
     if (o->n_modes == MAX_MODES) return -1;
     input_mode *m = &o->modes[o->n_modes];
@@ -162,12 +170,17 @@ static int add_mode(quality_options *o, const char *text) {
     if (!strcmp(text, "vertices")) {
         m->surface_points = 0;
         m->far = 1.0;
-    } else if (!strncmp(text, "surface:", 8) || !strncmp(text, "uneven:", 7)) {
+        m->seen = SEEN_ALL;
+    } else if (!strncmp(text, "surface:", 8) || !strncmp(text, "uneven:", 7) ||
+               !strncmp(text, "seen:", 5) || !strncmp(text, "view:", 5)) {
         const char *count = strchr(text, ':') + 1;
         long n = strtol(count, &end, 10);
         if (end == count || *end || n < 1 || n > 10000000) return -1;
         m->surface_points = (size_t)n;
-        m->far = text[0] == 'u' ? UNEVEN_FAR : 1.0;
+        m->far = !strncmp(text, "uneven:", 7) ? UNEVEN_FAR : 1.0;
+        m->seen = !strncmp(text, "seen:", 5)   ? SEEN_SIX
+                  : !strncmp(text, "view:", 5) ? SEEN_FRONT
+                                               : SEEN_ALL;
     } else {
         return -1;
     }
@@ -387,10 +400,13 @@ static void add_strays(double *points, size_t n_mesh, size_t n, uint64_t key) {
     }
 }
 
-/* The model's input points (malloc'ed #n by 3): the vertices first, then
- * the surface samples of the mode, then the stray points; 0 or -1. */
-static int build_input(const ps_pointset *mesh, const input_mode *mode, double strays,
-                       double scan_noise, uint64_t key, double **points, size_t *n) {
+/* The model's input points (malloc'ed #n by 3): mesh's vertices first, then
+ * the mode's samples of surface (the mesh itself but in seen:N and view:N,
+ * where mesh is the part of surface the views, bits of mesh_seen.h, see),
+ * then the stray points; 0 or -1. */
+static int build_input(const ps_pointset *mesh, const ps_pointset *surface, unsigned views,
+                       const input_mode *mode, double strays, double scan_noise, uint64_t key,
+                       double **points, size_t *n) {
     size_t n_surface = mode->surface_points > mesh->n ? mode->surface_points - mesh->n : 0;
     size_t n_strays = (size_t)ceil(strays * (double)mesh->n);
     *n = mesh->n + n_surface + n_strays;
@@ -399,9 +415,11 @@ static int build_input(const ps_pointset *mesh, const input_mode *mode, double s
     memcpy(all, mesh->points, 3 * mesh->n * sizeof *all);
     if (n_surface) {
         uint64_t seed = 0x5851F42D4C957F2Dull ^ key;
-        if ((mode->far < 1 ? ps_mesh_sample_graded(mesh, n_surface, mode->far, seed, &samples)
-                           : ps_mesh_sample_surface(mesh, n_surface, seed, &samples)) != 0)
-            return free(all), -1;
+        int rc = views          ? ps_mesh_sample_seen(surface, views, n_surface, seed, &samples)
+                 : mode->far < 1 ? ps_mesh_sample_graded(surface, n_surface, mode->far, seed,
+                                                         &samples)
+                                 : ps_mesh_sample_surface(surface, n_surface, seed, &samples);
+        if (rc != 0) return free(all), -1;
         memcpy(all + 3 * mesh->n, samples, 3 * n_surface * sizeof *all);
         free(samples);
     }
@@ -469,23 +487,69 @@ static int score_runs(const quality_options *o, const input_mode *mode, const ps
     return 0;
 }
 
+/* seen:N, view:N: moves the whole mesh into *whole and leaves in *mesh its
+ * part the views (bits of mesh_seen.h) see: the seen vertices in their
+ * order, the faces whose three vertices are seen; *kept_faces (malloc'ed
+ * #mesh->n_faces) lists each kept face's index in the whole.  0 or -1. */
+static int keep_seen_part(ps_pointset *mesh, unsigned views, ps_pointset *whole,
+                          size_t **kept_faces) {
+    *whole = *mesh;
+    *mesh = (ps_pointset){.dim = 3};
+    unsigned char *seen = malloc(whole->n ? whole->n : 1);
+    uint32_t *index = malloc((whole->n ? whole->n : 1) * sizeof *index);
+    mesh->points = malloc(3 * (whole->n ? whole->n : 1) * sizeof *mesh->points);
+    mesh->faces = malloc(3 * (whole->n_faces ? whole->n_faces : 1) * sizeof *mesh->faces);
+    *kept_faces = malloc((whole->n_faces ? whole->n_faces : 1) * sizeof **kept_faces);
+    int rc = seen && index && mesh->points && mesh->faces && *kept_faces &&
+                     ps_mesh_seen(whole, views, whole->points, whole->n, seen) == 0
+                 ? 0
+                 : -1;
+    for (size_t i = 0; rc == 0 && i < whole->n; i++) {
+        index[i] = (uint32_t)mesh->n;
+        if (seen[i]) memcpy(mesh->points + 3 * mesh->n++, whole->points + 3 * i, 3 * sizeof(double));
+    }
+    for (size_t f = 0; rc == 0 && f < whole->n_faces; f++) {
+        const uint32_t *t = whole->faces + 3 * f;
+        if (!seen[t[0]] || !seen[t[1]] || !seen[t[2]]) continue;
+        for (int k = 0; k < 3; k++) mesh->faces[3 * mesh->n_faces + (size_t)k] = index[t[k]];
+        (*kept_faces)[mesh->n_faces++] = f;
+    }
+    free(seen);
+    free(index);
+    return rc;
+}
+
+/* Keeps of every human segmentation the labels of the kept faces. */
+static void keep_human_faces(ps_psb_humans *humans, const size_t *kept_faces, size_t n_kept) {
+    for (int h = 0; h < humans->n_humans; h++)
+        for (size_t f = 0; f < n_kept; f++) humans->labels[h][f] = humans->labels[h][kept_faces[f]];
+    humans->n_faces = n_kept;
+}
+
 /* Loads, segments and scores one model; 0 or -1. */
 static int run_model(const quality_options *o, const input_mode *mode, model_row *row) {
-    ps_pointset mesh;
+    ps_pointset mesh, whole = {0};
     ps_psb_humans humans;
+    size_t *kept_faces = NULL;
     if (ps_psb_load_mesh(row->dir, row->id, &mesh) != 0) return -1;
     if (o->noise > 0) add_noise(&mesh, o->noise, draw_key(mode, row->id));
-    row->points = mesh.n;
     double *points = NULL;
     size_t n = 0;
-    int rc = -1;
-    if (build_input(&mesh, mode, o->strays, o->scan_noise, draw_key(mode, row->id), &points,
-                    &n) == 0 &&
-        ps_psb_load_humans(row->dir, row->id, mesh.n_faces, &humans) == 0) {
+    unsigned views = mode->seen == SEEN_SIX     ? PS_SEEN_SIX
+                     : mode->seen == SEEN_FRONT ? ps_mesh_front_view(&mesh)
+                                                : 0;
+    int rc = views ? keep_seen_part(&mesh, views, &whole, &kept_faces) : 0;
+    row->points = mesh.n;
+    if (rc == 0 &&
+        build_input(&mesh, views ? &whole : &mesh, views, mode, o->strays, o->scan_noise,
+                    draw_key(mode, row->id), &points, &n) == 0 &&
+        ps_psb_load_humans(row->dir, row->id, views ? whole.n_faces : mesh.n_faces,
+                           &humans) == 0) {
+        if (views) keep_human_faces(&humans, kept_faces, mesh.n_faces);
         row->human_segments = ps_psb_mean_segments(&humans);
         row->people = ps_psb_human_agreement(&humans);
         ps_input in = {.points = points, .n = n, .dim = 3};
-        if (n == mesh.n) { /* the mesh itself; sampled surface is a scan: points only */
+        if (n == mesh.n && !views) { /* the mesh itself; a scan is points only */
             in.normals = mesh.normals;
             in.faces = mesh.faces;
             in.n_faces = mesh.n_faces;
@@ -493,9 +557,13 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
         rc = score_runs(o, mode, &in, &mesh, &humans, row);
         if (rc == 0 && o->against_dir) score_earlier(o, mode, &mesh, &humans, row);
         ps_psb_humans_free(&humans);
+    } else {
+        rc = -1;
     }
     free(points);
+    free(kept_faces);
     ps_pointset_free(&mesh);
+    ps_pointset_free(&whole);
     return rc;
 }
 
@@ -771,13 +839,18 @@ static void print_totals(const quality_options *o, const input_mode *modes, cons
             print_mean(all, nd + nv);
             printf("\n");
         }
-    printf("people among themselves (each pair of a model's human segmentations, the same "
-           "metric):");
-    for (int v = 0; v < 2; v++)
-        if (s[0].people_models[v])
-            printf(" %s %.4f (%d)", v ? "validation" : "development", s[0].people[v],
-                   s[0].people_models[v]);
-    printf("\nreference (1-RI): PCL CPC 0.124 (unseen PSB models, scan-like input; issue 14)\n");
+    int partial = 0; /* seen:N and view:N score the seen faces alone, people too */
+    for (int m = 0; m < n_modes; m++) partial |= modes[m].seen != SEEN_ALL;
+    for (int m = 0; m < (partial ? n_modes : 1); m++) {
+        printf("people among themselves (each pair of a model's human segmentations, the same "
+               "metric)%s%s:", partial ? " on " : "", partial ? modes[m].name : "");
+        for (int v = 0; v < 2; v++)
+            if (s[m].people_models[v])
+                printf(" %s %.4f (%d)", v ? "validation" : "development", s[m].people[v],
+                       s[m].people_models[v]);
+        printf("\n");
+    }
+    printf("reference (1-RI): PCL CPC 0.124 (unseen PSB models, scan-like input; issue 14)\n");
     printf("\n== 1-RI = over + under: pairs of faces split where people join them, and joined "
            "where people split them ==\n");
     printf("%-16s %-6s %-17s %-17s\n", "input", "method", "development", "validation");

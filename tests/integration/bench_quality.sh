@@ -6,8 +6,10 @@
 # every vertex in one segment (--baseline none) the default must be better
 # on both models; --dev-only must print "-" for the absent validation
 # split, never nan; --out makes missing parent folders; people among
-# themselves are printed; the uneven:N mode runs; --seeds 3 prints the
-# draws' agreement.  SKIP (loud) without ../shared/data/psb-dev.  Prints
+# themselves are printed; the uneven:N mode runs; the seen:N and view:N
+# modes score only what their views see (fewer vertices from one view
+# than from six, people's figure per mode); --seeds 3 prints the draws'
+# agreement.  SKIP (loud) without ../shared/data/psb-dev.  Prints
 # "PASS bench_quality:NAME" / "FAIL ..."; exits 1 on any failure.
 SUITE=bench_quality
 . "$(dirname "$0")/lib.sh"
@@ -95,6 +97,23 @@ if bq --input uneven:20000 --out "$tmp/uneven" >"$tmp/uneven.txt" 2>&1 &&
     pass uneven_mode
 else
     fail uneven_mode "$(tail -n 3 "$tmp/uneven.txt")"
+fi
+
+# seen:N and view:N: labels for the seen vertices alone, fewer from the
+# front than from six sides, and people among themselves once per mode.
+if bq --input seen:20000 --input view:20000 --out "$tmp/seen" >"$tmp/seen.txt" 2>&1 &&
+    grep -q '^seen:20000  *auto  *0\.[0-9]* (  2)' "$tmp/seen.txt" &&
+    grep -q '^view:20000  *auto  *0\.[0-9]* (  2)' "$tmp/seen.txt" &&
+    [ "$(grep -c '^people among themselves .* on [a-z]*:20000: development 0\.[0-9]\{4\} (2)$' "$tmp/seen.txt")" -eq 2 ]; then
+    six=$(wc -w <"$tmp/seen/1.seen:20000.lab")
+    front=$(wc -w <"$tmp/seen/1.view:20000.lab")
+    if [ "$front" -gt 0 ] && [ "$front" -lt "$six" ]; then
+        pass seen_and_view_modes
+    else
+        fail seen_and_view_modes "labels of model 1: $six seen from six sides, $front from the front"
+    fi
+else
+    fail seen_and_view_modes "$(tail -n 3 "$tmp/seen.txt")"
 fi
 
 [ "$failures" -eq 0 ]
