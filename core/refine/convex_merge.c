@@ -71,6 +71,14 @@ static double dot3(const double *u, const double *v) {
     return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
 }
 
+/* Whether a point at offset d from a surface point lies behind its tangent
+ * plane: d . n <= 0, up to PS_CONVEX_MERGE_TOLERANCE |d|. */
+static int behind(const double *d, const double *n) {
+    double along = dot3(d, n);
+    return along <= 0 ||
+           along * along <= PS_CONVEX_MERGE_TOLERANCE * PS_CONVEX_MERGE_TOLERANCE * dot3(d, d);
+}
+
 /* The fraction of sample pairs (p of a, q of b) each behind the other's
  * tangent plane. */
 static double convexity(const ps_merge_input *in, const samples *s, int a, int b) {
@@ -83,7 +91,8 @@ static double convexity(const ps_merge_input *in, const samples *s, int a, int b
         for (int j = 0; j < cb; j++) {
             const double *y = in->points + 3 * (size_t)pb[j];
             double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
-            pass += dot3(d, nx) <= 0 && dot3(d, in->normals + 3 * (size_t)pb[j]) >= 0;
+            double back[3] = {-d[0], -d[1], -d[2]};
+            pass += behind(d, nx) && behind(back, in->normals + 3 * (size_t)pb[j]);
         }
     }
     return (double)pass / ((double)ca * (double)cb);

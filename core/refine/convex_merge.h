@@ -9,7 +9,10 @@
  * two parts: a face's features crease the head of a bust everywhere.  Two
  * segments A and B together are convex when each lies behind the other's
  * tangent planes: for points p of A and q of B, (q - p) . n_p <= 0 and
- * (p - q) . n_q <= 0, with n the outward normals.  A limb fails it against
+ * (p - q) . n_q <= 0, with n the outward normals, each up to
+ * PS_CONVEX_MERGE_TOLERANCE times |q - p| (a pair on one flat side, such
+ * as the two halves of a beam have by the thousand, would pass or fail by
+ * the estimated normals' last fraction of a degree).  A limb fails it against
  * its body (it stands above the body's tangent planes near its root), as do
  * a table's legs against its top and a wing against its fuselage.
  *
@@ -39,6 +42,10 @@
 
 /* Sample points per segment. */
 #define PS_CONVEX_MERGE_SAMPLES 48
+/* How far in front of a tangent plane a point still counts as behind it,
+ * in its distance (about 1 degree).  Chosen on synthetic beams and boards
+ * and the 228 development models (docs/method.md). */
+#define PS_CONVEX_MERGE_TOLERANCE 0.02
 /* Convexity at which a pair merges.  Chosen on the 228 development models
  * (docs/method.md). */
 #define PS_CONVEX_MERGE_FRACTION 0.95
