@@ -401,12 +401,12 @@ static void add_strays(double *points, size_t n_mesh, size_t n, uint64_t key) {
 }
 
 /* The model's input points (malloc'ed #n by 3): mesh's vertices first, then
- * the mode's samples of surface (the mesh itself but in seen:N and view:N,
- * where mesh is the part of surface the views, bits of mesh_seen.h, see),
- * then the stray points; 0 or -1. */
-static int build_input(const ps_pointset *mesh, const ps_pointset *surface, unsigned views,
-                       const input_mode *mode, double strays, double scan_noise, uint64_t key,
-                       double **points, size_t *n) {
+ * the mode's samples of its surface (in seen:N and view:N, where mesh is
+ * the seen part, of the whole mesh's part that `seen` sees), then the stray
+ * points; 0 or -1. */
+static int build_input(const ps_pointset *mesh, const ps_seen *seen, const input_mode *mode,
+                       double strays, double scan_noise, uint64_t key, double **points,
+                       size_t *n) {
     size_t n_surface = mode->surface_points > mesh->n ? mode->surface_points - mesh->n : 0;
     size_t n_strays = (size_t)ceil(strays * (double)mesh->n);
     *n = mesh->n + n_surface + n_strays;
@@ -415,10 +415,10 @@ static int build_input(const ps_pointset *mesh, const ps_pointset *surface, unsi
     memcpy(all, mesh->points, 3 * mesh->n * sizeof *all);
     if (n_surface) {
         uint64_t seed = 0x5851F42D4C957F2Dull ^ key;
-        int rc = views          ? ps_mesh_sample_seen(surface, views, n_surface, seed, &samples)
-                 : mode->far < 1 ? ps_mesh_sample_graded(surface, n_surface, mode->far, seed,
+        int rc = seen            ? ps_seen_sample(seen, n_surface, seed, &samples)
+                 : mode->far < 1 ? ps_mesh_sample_graded(mesh, n_surface, mode->far, seed,
                                                          &samples)
-                                 : ps_mesh_sample_surface(surface, n_surface, seed, &samples);
+                                 : ps_mesh_sample_surface(mesh, n_surface, seed, &samples);
         if (rc != 0) return free(all), -1;
         memcpy(all + 3 * mesh->n, samples, 3 * n_surface * sizeof *all);
         free(samples);
@@ -488,33 +488,31 @@ static int score_runs(const quality_options *o, const input_mode *mode, const ps
 }
 
 /* seen:N, view:N: moves the whole mesh into *whole and leaves in *mesh its
- * part the views (bits of mesh_seen.h) see: the seen vertices in their
- * order, the faces whose three vertices are seen; *kept_faces (malloc'ed
+ * part `seen` (built on the whole) sees: the seen vertices in their order,
+ * the faces whose three vertices are seen; *kept_faces (malloc'ed
  * #mesh->n_faces) lists each kept face's index in the whole.  0 or -1. */
-static int keep_seen_part(ps_pointset *mesh, unsigned views, ps_pointset *whole,
+static int keep_seen_part(ps_pointset *mesh, const ps_seen *seen, ps_pointset *whole,
                           size_t **kept_faces) {
     *whole = *mesh;
     *mesh = (ps_pointset){.dim = 3};
-    unsigned char *seen = malloc(whole->n ? whole->n : 1);
+    unsigned char *flags = malloc(whole->n ? whole->n : 1);
     uint32_t *index = malloc((whole->n ? whole->n : 1) * sizeof *index);
     mesh->points = malloc(3 * (whole->n ? whole->n : 1) * sizeof *mesh->points);
     mesh->faces = malloc(3 * (whole->n_faces ? whole->n_faces : 1) * sizeof *mesh->faces);
     *kept_faces = malloc((whole->n_faces ? whole->n_faces : 1) * sizeof **kept_faces);
-    int rc = seen && index && mesh->points && mesh->faces && *kept_faces &&
-                     ps_mesh_seen(whole, views, whole->points, whole->n, seen) == 0
-                 ? 0
-                 : -1;
+    int rc = flags && index && mesh->points && mesh->faces && *kept_faces ? 0 : -1;
+    if (rc == 0) ps_seen_flags(seen, whole->points, whole->n, flags);
     for (size_t i = 0; rc == 0 && i < whole->n; i++) {
         index[i] = (uint32_t)mesh->n;
-        if (seen[i]) memcpy(mesh->points + 3 * mesh->n++, whole->points + 3 * i, 3 * sizeof(double));
+        if (flags[i]) memcpy(mesh->points + 3 * mesh->n++, whole->points + 3 * i, 3 * sizeof(double));
     }
     for (size_t f = 0; rc == 0 && f < whole->n_faces; f++) {
         const uint32_t *t = whole->faces + 3 * f;
-        if (!seen[t[0]] || !seen[t[1]] || !seen[t[2]]) continue;
+        if (!flags[t[0]] || !flags[t[1]] || !flags[t[2]]) continue;
         for (int k = 0; k < 3; k++) mesh->faces[3 * mesh->n_faces + (size_t)k] = index[t[k]];
         (*kept_faces)[mesh->n_faces++] = f;
     }
-    free(seen);
+    free(flags);
     free(index);
     return rc;
 }
@@ -535,21 +533,24 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
     if (o->noise > 0) add_noise(&mesh, o->noise, draw_key(mode, row->id));
     double *points = NULL;
     size_t n = 0;
-    unsigned views = mode->seen == SEEN_SIX     ? PS_SEEN_SIX
-                     : mode->seen == SEEN_FRONT ? ps_mesh_front_view(&mesh)
-                                                : 0;
-    int rc = views ? keep_seen_part(&mesh, views, &whole, &kept_faces) : 0;
+    ps_seen *seen = NULL; /* seen:N, view:N: the views' depth buffers of the whole mesh */
+    int rc = 0;
+    if (mode->seen != SEEN_ALL) {
+        unsigned views = mode->seen == SEEN_SIX ? PS_SEEN_SIX : ps_mesh_front_view(&mesh);
+        seen = ps_seen_build(&mesh, views);
+        rc = seen ? keep_seen_part(&mesh, seen, &whole, &kept_faces) : -1;
+    }
     row->points = mesh.n;
     if (rc == 0 &&
-        build_input(&mesh, views ? &whole : &mesh, views, mode, o->strays, o->scan_noise,
-                    draw_key(mode, row->id), &points, &n) == 0 &&
-        ps_psb_load_humans(row->dir, row->id, views ? whole.n_faces : mesh.n_faces,
+        build_input(&mesh, seen, mode, o->strays, o->scan_noise, draw_key(mode, row->id),
+                    &points, &n) == 0 &&
+        ps_psb_load_humans(row->dir, row->id, seen ? whole.n_faces : mesh.n_faces,
                            &humans) == 0) {
-        if (views) keep_human_faces(&humans, kept_faces, mesh.n_faces);
+        if (seen) keep_human_faces(&humans, kept_faces, mesh.n_faces);
         row->human_segments = ps_psb_mean_segments(&humans);
         row->people = ps_psb_human_agreement(&humans);
         ps_input in = {.points = points, .n = n, .dim = 3};
-        if (n == mesh.n && !views) { /* the mesh itself; a scan is points only */
+        if (n == mesh.n && !seen) { /* the mesh itself; a scan is points only */
             in.normals = mesh.normals;
             in.faces = mesh.faces;
             in.n_faces = mesh.n_faces;
@@ -562,6 +563,7 @@ static int run_model(const quality_options *o, const input_mode *mode, model_row
     }
     free(points);
     free(kept_faces);
+    ps_seen_free(seen);
     ps_pointset_free(&mesh);
     ps_pointset_free(&whole);
     return rc;

@@ -1,5 +1,5 @@
 /* mesh_sample.c: area sampling of a triangle mesh, uniform or graded along
- * an axis (mesh_sample.h). */
+ * an axis, its area and bounding box (mesh_sample.h). */
 #include "mesh_sample.h"
 
 #include <math.h>
@@ -43,15 +43,19 @@ static size_t find_face(const double *cumulative, size_t n_faces, double target)
     return lo;
 }
 
-/* The slot and extent of the longest axis of the mesh's bounding box. */
-static int longest_axis(const ps_pointset *mesh, double *low, double *extent) {
-    double lo[3], hi[3];
+void ps_mesh_bounds(const ps_pointset *mesh, double lo[3], double hi[3]) {
     for (int d = 0; d < 3; d++) lo[d] = hi[d] = mesh->n ? mesh->points[d] : 0;
     for (size_t i = 0; i < mesh->n; i++)
         for (int d = 0; d < 3; d++) {
             lo[d] = fmin(lo[d], mesh->points[3 * i + d]);
             hi[d] = fmax(hi[d], mesh->points[3 * i + d]);
         }
+}
+
+/* The slot and extent of the longest axis of the mesh's bounding box. */
+static int longest_axis(const ps_pointset *mesh, double *low, double *extent) {
+    double lo[3], hi[3];
+    ps_mesh_bounds(mesh, lo, hi);
     int axis = 0;
     for (int d = 1; d < 3; d++)
         if (hi[d] - lo[d] > hi[axis] - lo[axis]) axis = d;

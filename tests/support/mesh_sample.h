@@ -21,6 +21,10 @@ int ps_mesh_sample_surface(const ps_pointset *mesh, size_t n, uint64_t seed, dou
 /* The mesh's surface area: the sum of its #F triangles' areas. */
 double ps_mesh_area(const ps_pointset *mesh);
 
+/* The low and high corners of the bounding box of the mesh's #P vertices
+ * (both 0 without vertices). */
+void ps_mesh_bounds(const ps_pointset *mesh, double lo[3], double hi[3]);
+
 /* The same, but with the density falling linearly along the longest axis
  * of the mesh's bounding box, from 1 at its low end to `far` (0 < far <= 1)
  * at its high end, like a scan taken from one side: uniform samples kept

@@ -13,15 +13,16 @@
 /* Six depth buffers: view v looks along axis v / 2 from its high (v even)
  * or low end; depth is the coordinate along the axis towards the viewer,
  * so the nearest surface has the largest; -INFINITY where no triangle is. */
-typedef struct views {
-    unsigned used; /* the views' bits */
-    double lo[3];  /* the bounding box's low corner */
-    double pixel;  /* a pixel's side */
-    double *depth; /* #N_VIEWS by PS_SEEN_PIXELS^2 */
-} views;
+struct ps_seen {
+    ps_pointset mesh; /* the arrays borrowed */
+    unsigned used;    /* the views' bits */
+    double lo[3];     /* the bounding box's low corner */
+    double pixel;     /* a pixel's side */
+    double *depth;    /* #N_VIEWS by PS_SEEN_PIXELS^2 */
+};
 
 /* The pixel of coordinates (a, b) on the view's two other axes. */
-static int pixel_of(const views *w, double a, double b, int axis_a, int axis_b, int *i, int *j) {
+static int pixel_of(const ps_seen *w, double a, double b, int axis_a, int axis_b, int *i, int *j) {
     double x = (a - w->lo[axis_a]) / w->pixel, y = (b - w->lo[axis_b]) / w->pixel;
     *i = (int)floor(x), *j = (int)floor(y);
     if (*i == PS_SEEN_PIXELS) *i = PS_SEEN_PIXELS - 1;
@@ -31,7 +32,7 @@ static int pixel_of(const views *w, double a, double b, int axis_a, int axis_b, 
 
 /* Writes triangle (p, q, r) into view v's buffer: at every pixel centre
  * inside it, the largest depth of the triangle there. */
-static void raster_triangle(views *w, int v, const double *p, const double *q, const double *r) {
+static void raster_triangle(ps_seen *w, int v, const double *p, const double *q, const double *r) {
     int axis = v / 2, ax = (axis + 1) % 3, bx = (axis + 2) % 3;
     double sign = v % 2 ? -1 : 1;
     double x[3] = {p[ax], q[ax], r[ax]}, y[3] = {p[bx], q[bx], r[bx]};
@@ -60,49 +61,45 @@ static void raster_triangle(views *w, int v, const double *p, const double *q, c
         }
 }
 
-/* The low and high corners of mesh's bounding box. */
-static void bounding_box(const ps_pointset *mesh, double *lo, double *hi) {
-    for (int d = 0; d < 3; d++) lo[d] = hi[d] = mesh->n ? mesh->points[d] : 0;
-    for (size_t i = 0; i < mesh->n; i++)
-        for (int d = 0; d < 3; d++) {
-            lo[d] = fmin(lo[d], mesh->points[3 * i + d]);
-            hi[d] = fmax(hi[d], mesh->points[3 * i + d]);
-        }
-}
-
 unsigned ps_mesh_front_view(const ps_pointset *mesh) {
     double lo[3], hi[3];
-    bounding_box(mesh, lo, hi);
+    ps_mesh_bounds(mesh, lo, hi);
     int axis = 0;
     for (int d = 1; d < 3; d++)
         if (hi[d] - lo[d] < hi[axis] - lo[axis]) axis = d;
     return 1u << (2 * axis);
 }
 
-/* The used views' buffers of mesh; 0 or -1. */
-static int views_build(const ps_pointset *mesh, unsigned used, views *w) {
+ps_seen *ps_seen_build(const ps_pointset *mesh, unsigned used) {
+    size_t cells = (size_t)N_VIEWS * PS_SEEN_PIXELS * PS_SEEN_PIXELS;
+    ps_seen *w = malloc(sizeof *w);
+    double *depth = malloc(cells * sizeof *depth);
+    if (!w || !depth) { free(w); free(depth); return NULL; }
     double hi[3];
-    w->used = used;
-    bounding_box(mesh, w->lo, hi);
+    *w = (ps_seen){.mesh = *mesh, .used = used, .depth = depth};
+    ps_mesh_bounds(mesh, w->lo, hi);
     double extent = fmax(hi[0] - w->lo[0], fmax(hi[1] - w->lo[1], hi[2] - w->lo[2]));
     w->pixel = extent > 0 ? extent / PS_SEEN_PIXELS : 1;
-    size_t cells = (size_t)N_VIEWS * PS_SEEN_PIXELS * PS_SEEN_PIXELS;
-    w->depth = malloc(cells * sizeof *w->depth);
-    if (!w->depth) return -1;
-    for (size_t c = 0; c < cells; c++) w->depth[c] = -INFINITY;
+    for (size_t c = 0; c < cells; c++) depth[c] = -INFINITY;
     for (int v = 0; v < N_VIEWS; v++)
         for (size_t f = 0; (used >> v & 1) && f < mesh->n_faces; f++) {
             const uint32_t *t = mesh->faces + 3 * f;
             raster_triangle(w, v, mesh->points + 3 * t[0], mesh->points + 3 * t[1],
                             mesh->points + 3 * t[2]);
         }
-    return 0;
+    return w;
+}
+
+void ps_seen_free(ps_seen *seen) {
+    if (!seen) return;
+    free(seen->depth);
+    free(seen);
 }
 
 /* The nearest depth at pixel (i, j) of view v; at a pixel no triangle
  * covers (a point on the outline, seen edge-on), the nearest of its
  * covered neighbours'. */
-static double nearest_depth(const views *w, int v, int i, int j) {
+static double nearest_depth(const ps_seen *w, int v, int i, int j) {
     const double *buffer = w->depth + (size_t)v * PS_SEEN_PIXELS * PS_SEEN_PIXELS;
     double own = buffer[(size_t)i * PS_SEEN_PIXELS + (size_t)j], around = -INFINITY;
     if (own > -INFINITY) return own;
@@ -114,7 +111,7 @@ static double nearest_depth(const views *w, int v, int i, int j) {
 }
 
 /* 1 when one of the used views sees point p. */
-static int views_see(const views *w, const double *p) {
+static int views_see(const ps_seen *w, const double *p) {
     for (int v = 0; v < N_VIEWS; v++) {
         int axis = v / 2, ax = (axis + 1) % 3, bx = (axis + 2) % 3, i, j;
         if (!(w->used >> v & 1)) continue;
@@ -125,33 +122,24 @@ static int views_see(const views *w, const double *p) {
     return 0;
 }
 
-int ps_mesh_seen(const ps_pointset *mesh, unsigned used, const double *points, size_t n,
-                 unsigned char *seen) {
-    views w;
-    if (views_build(mesh, used, &w) != 0) return -1;
-    for (size_t i = 0; i < n; i++) seen[i] = (unsigned char)views_see(&w, points + 3 * i);
-    free(w.depth);
-    return 0;
+void ps_seen_flags(const ps_seen *seen, const double *points, size_t n, unsigned char *flags) {
+    for (size_t i = 0; i < n; i++) flags[i] = (unsigned char)views_see(seen, points + 3 * i);
 }
 
-int ps_mesh_sample_seen(const ps_pointset *mesh, unsigned used, size_t n, uint64_t seed,
-                        double **out) {
+int ps_seen_sample(const ps_seen *seen, size_t n, uint64_t seed, double **out) {
     *out = NULL;
-    views w;
-    if (views_build(mesh, used, &w) != 0) return -1;
     double *points = malloc(3 * (n ? n : 1) * sizeof *points), *candidates = NULL;
     size_t batch = 2 * n + 16, kept = 0;
     for (uint64_t round = 0; points && kept < n && round < 64; round++) {
-        if (ps_mesh_sample_surface(mesh, batch, seed + round, &candidates) != 0) break;
+        if (ps_mesh_sample_surface(&seen->mesh, batch, seed + round, &candidates) != 0) break;
         for (size_t i = 0; i < batch && kept < n; i++)
-            if (views_see(&w, candidates + 3 * i)) {
+            if (views_see(seen, candidates + 3 * i)) {
                 for (int d = 0; d < 3; d++) points[3 * kept + d] = candidates[3 * i + d];
                 kept++;
             }
         free(candidates);
         candidates = NULL;
     }
-    free(w.depth);
     if (!points || kept < n) { free(points); return -1; }
     *out = points;
     return 0;

@@ -27,18 +27,23 @@
  * mesh's bounding box, where the mesh shows its largest outline. */
 unsigned ps_mesh_front_view(const ps_pointset *mesh);
 
-/* seen[i] = 1 when point i of the #n by 3 points (on mesh's #F by 3
- * triangles) is within two pixels' depth of the nearest surface at its
- * pixel in one of the views (bits), else 0.  0, or -1 when memory runs
- * out. */
-int ps_mesh_seen(const ps_pointset *mesh, unsigned views, const double *points, size_t n,
-                 unsigned char *seen);
+/* The depth buffers of some views of a mesh. */
+typedef struct ps_seen ps_seen;
 
-/* n points uniform by area on the part of mesh the views see, into the
- * malloc'ed #n by 3 array *out (seeded by seed).  0, or -1 when the mesh
- * has no faces of positive area, the views see almost none of it, or
+/* The buffers of the views (bits) of mesh's #F by 3 triangles; it borrows
+ * the mesh's arrays, which must outlive it.  NULL when memory runs out. */
+ps_seen *ps_seen_build(const ps_pointset *mesh, unsigned views);
+void ps_seen_free(ps_seen *seen);
+
+/* flags[i] = 1 when point i of the #n by 3 points (on the mesh's surface)
+ * is within two pixels' depth of the nearest surface at its pixel in one
+ * of the views, else 0. */
+void ps_seen_flags(const ps_seen *seen, const double *points, size_t n, unsigned char *flags);
+
+/* n points uniform by area on the part of the mesh the views see, into
+ * the malloc'ed #n by 3 array *out (seeded by seed).  0, or -1 when the
+ * mesh has no faces of positive area, the views see almost none of it, or
  * memory runs out. */
-int ps_mesh_sample_seen(const ps_pointset *mesh, unsigned views, size_t n, uint64_t seed,
-                        double **out);
+int ps_seen_sample(const ps_seen *seen, size_t n, uint64_t seed, double **out);
 
 #endif

@@ -31,17 +31,20 @@ static void test_six_views_see_the_outside_only(void) {
     double corners[24];
     uint32_t faces[36];
     ps_pointset mesh = box(corners, faces);
+    ps_seen *six = ps_seen_build(&mesh, PS_SEEN_SIX);
+    REQUIRE(six);
     unsigned char seen[8];
-    REQUIRE(ps_mesh_seen(&mesh, PS_SEEN_SIX, corners, 8, seen) == 0);
+    ps_seen_flags(six, corners, 8, seen);
     int all = 1;
     for (int c = 0; c < 8; c++) all &= seen[c];
     CHECK(all);
     double *samples = NULL;
-    REQUIRE(ps_mesh_sample_seen(&mesh, PS_SEEN_SIX, SAMPLES, 3, &samples) == 0);
+    REQUIRE(ps_seen_sample(six, SAMPLES, 3, &samples) == 0);
     free(samples);
     const double inside[6] = {1, 0.75, 0.5, 0.2, 0.2, 0.2};
-    REQUIRE(ps_mesh_seen(&mesh, PS_SEEN_SIX, inside, 2, seen) == 0);
+    ps_seen_flags(six, inside, 2, seen);
     CHECK(!seen[0] && !seen[1]);
+    ps_seen_free(six);
 }
 
 static void test_front_view_sees_the_top(void) {
@@ -51,18 +54,21 @@ static void test_front_view_sees_the_top(void) {
     unsigned front = ps_mesh_front_view(&mesh);
     CHECK_MSG(front == 1u << 4, "front view bit %u", front);
     const double probes[12] = {1, 0.75, 1, 1, 0.75, 0, 0, 0.75, 0.5, 1, 0, 0.5};
+    ps_seen *view = ps_seen_build(&mesh, front);
+    REQUIRE(view);
     unsigned char seen[4];
-    REQUIRE(ps_mesh_seen(&mesh, front, probes, 4, seen) == 0);
+    ps_seen_flags(view, probes, 4, seen);
     CHECK_MSG(seen[0] && !seen[1] && !seen[2] && !seen[3], "top %d bottom %d sides %d %d",
               seen[0], seen[1], seen[2], seen[3]);
     double *a = NULL, *b = NULL;
-    REQUIRE(ps_mesh_sample_seen(&mesh, front, SAMPLES, 5, &a) == 0);
-    REQUIRE(ps_mesh_sample_seen(&mesh, front, SAMPLES, 5, &b) == 0);
+    REQUIRE(ps_seen_sample(view, SAMPLES, 5, &a) == 0);
+    REQUIRE(ps_seen_sample(view, SAMPLES, 5, &b) == 0);
     CHECK(memcmp(a, b, 3 * SAMPLES * sizeof *a) == 0);
     int on_top = 1;
     for (size_t i = 0; i < SAMPLES; i++) on_top &= a[3 * i + 2] > 1 - RIM;
     CHECK(on_top);
     free(a), free(b);
+    ps_seen_free(view);
 }
 
 static void test_no_faces(void) {
@@ -70,8 +76,11 @@ static void test_no_faces(void) {
     uint32_t faces[36];
     ps_pointset mesh = box(corners, faces);
     mesh.n_faces = 0;
+    ps_seen *six = ps_seen_build(&mesh, PS_SEEN_SIX);
+    REQUIRE(six);
     double *out = corners;
-    CHECK(ps_mesh_sample_seen(&mesh, PS_SEEN_SIX, 10, 1, &out) == -1 && out == NULL);
+    CHECK(ps_seen_sample(six, 10, 1, &out) == -1 && out == NULL);
+    ps_seen_free(six);
 }
 
 PS_TEST_MAIN(TEST(test_six_views_see_the_outside_only), TEST(test_front_view_sees_the_top),
