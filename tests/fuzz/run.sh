@@ -56,12 +56,27 @@ export FUZZ_CFLAGS OUT
 # The object of source $1 (instrumented for the fuzzers, not linked with them).
 object_of() { echo "$OUT/obj/$(echo "$1" | tr / _ | sed 's/\.c$/.o/')"; }
 
-# Compiles every source once, JOBS at a time; 0 or non-zero with the log in
-# $OUT/objects.log.
+# Sets sources and libs to target $1's.
+sources_of() {
+    case "$1" in
+    multipart | head) sources=$DAEMON_SOURCES libs=$DAEMON_LIBS ;;
+    redis_url) sources=$REDIS_SOURCES libs=$REDIS_LIBS ;;
+    segment) sources=$CORE_SOURCES libs=$CORE_LIBS ;;
+    *) sources=$DECODER_SOURCES libs=$DECODER_LIBS ;;
+    esac
+}
+
+# Compiles once each source the targets need, JOBS at a time; 0 or non-zero
+# with the log in $OUT/objects.log.
 # shellcheck disable=SC2016 # the xargs child's shell expands $1, $2
 compile_objects() {
+    needed=""
+    for t in $TARGETS; do
+        sources_of "$t"
+        needed="$needed $sources"
+    done
     # shellcheck disable=SC2086
-    for src in $(printf '%s\n' $DAEMON_SOURCES $DECODER_SOURCES $REDIS_SOURCES | sort -u); do
+    for src in $(printf '%s\n' $needed | sort -u); do
         echo "$src $(object_of "$src")"
     done | xargs -n 2 -P "$JOBS" sh -c \
         'clang $FUZZ_CFLAGS -fsanitize=fuzzer-no-link,address,undefined -c "$1" -o "$2"' sh \
@@ -70,18 +85,12 @@ compile_objects() {
 
 # Links target $1 from its sources' objects; 0 or non-zero with the log.
 link_target() {
-    t=$1
-    case "$t" in
-    multipart | head) sources=$DAEMON_SOURCES libs=$DAEMON_LIBS ;;
-    redis_url) sources=$REDIS_SOURCES libs=$REDIS_LIBS ;;
-    segment) sources=$CORE_SOURCES libs=$CORE_LIBS ;;
-    *) sources=$DECODER_SOURCES libs=$DECODER_LIBS ;;
-    esac
+    sources_of "$1"
     objects=""
     for src in $sources; do objects="$objects $(object_of "$src")"; done
     # shellcheck disable=SC2086
-    clang $FUZZ_CFLAGS -fsanitize=fuzzer,address,undefined "tests/fuzz/fuzz_$t.c" $objects $libs \
-        -o "$OUT/fuzz_$t" >"$OUT/fuzz_$t.log" 2>&1
+    clang $FUZZ_CFLAGS -fsanitize=fuzzer,address,undefined "tests/fuzz/fuzz_$1.c" $objects $libs \
+        -o "$OUT/fuzz_$1" >"$OUT/fuzz_$1.log" 2>&1
 }
 
 # Fuzzes target $1 (built); its one result line goes to $OUT/fuzz_$1.result.
