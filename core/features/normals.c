@@ -4,6 +4,7 @@
  */
 #include "features/normals.h"
 
+#include "features/normals_outward.h"
 #include "features/normals_smooth.h"
 #include "util/control.h"
 
@@ -184,25 +185,6 @@ static int component_centers(size_t n, const double *points, const int *componen
     return 0;
 }
 
-/* Flips every normal of a component whose normals point inward on the
- * whole: by the divergence theorem, outward normals of a closed surface
- * sampled evenly have sum n . (x - centroid) > 0.  A vote over all the
- * points, so that no single point (an extreme one on a thin fin, whose
- * normal is sideways) decides the sign, and no rotation changes it. */
-static void point_outward(size_t n, const double *points, const int *component,
-                          int n_components, const double *centroid, double *vote,
-                          double *normals) {
-    memset(vote, 0, (size_t)n_components * sizeof *vote);
-    for (size_t p = 0; p < n; p++) {
-        const double *c = centroid + 3 * component[p];
-        double d[3] = {points[3 * p] - c[0], points[3 * p + 1] - c[1], points[3 * p + 2] - c[2]};
-        vote[component[p]] += dot3(d, normals + 3 * p);
-    }
-    for (size_t p = 0; p < n; p++)
-        if (vote[component[p]] < 0)
-            for (int i = 0; i < 3; i++) normals[3 * p + i] = -normals[3 * p + i];
-}
-
 /* PCA normals: each component's orientation spreads from its root over
  * the tree. */
 static ps_status orient_components(const ps_graph *g, const uint32_t *root, int n_components,
@@ -263,7 +245,7 @@ static ps_status orient_outward(const ps_normals_input *in, const ps_progress_sp
                                 double *normals, ps_error *err) {
     size_t n = in->graph->n;
     int n_components = in->n_components;
-    double *centroid = calloc(4 * (size_t)n_components, sizeof *centroid); /* then the votes */
+    double *centroid = calloc(3 * (size_t)n_components, sizeof *centroid);
     uint32_t *root = malloc((size_t)n_components * sizeof *root);
     ps_status st = centroid && root &&
                            component_centers(n, in->points, in->component, n_components,
@@ -272,9 +254,9 @@ static ps_status orient_outward(const ps_normals_input *in, const ps_progress_sp
                        : ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
     if (st == PS_OK && !in->given)
         st = orient_components(in->graph, root, n_components, span, normals, err);
-    if (st == PS_OK)
-        point_outward(n, in->points, in->component, n_components, centroid,
-                      centroid + 3 * (size_t)n_components, normals);
+    if (st == PS_OK && ps_normals_point_outward(in->graph, in->points, in->component,
+                                                n_components, centroid, normals) != 0)
+        st = ps_fail(err, PS_ERR_NOMEM, "normals: out of memory");
     free(centroid), free(root);
     return st;
 }

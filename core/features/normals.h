@@ -6,9 +6,9 @@
  * neighbours.  Orientation is then made consistent by propagation over a
  * minimum spanning tree of the kNN graph with edge cost 1 - |n_p . n_q|
  * (Hoppe et al. 1992), rooted at the point farthest from the component's
- * centroid, and made outward per component by a vote of all its points:
- * sum n . (x - centroid) > 0 (the divergence theorem for a closed surface;
- * input normals that point inward, as some meshes' do, are flipped).  No
+ * centroid, and made outward per component by two votes, the divergence
+ * theorem's and the surface's convexity (normals_outward.h; input normals
+ * that point inward, as some meshes' do, are flipped).  No
  * rotation, scaling or reordering of the points changes the result.
  * When asked, estimated normals are then smoothed over the kNN graph, as
  * much as the scan's measured noise asks and not at all on clean input

@@ -1,7 +1,9 @@
 /* test_normals.c: PCA normals on a sphere come out unit and outward, given
  * normals that point inward are flipped outward, a shifted, rotated copy
  * keeps its orientation (also when its most extreme point lies on a thin
- * fin, whose normal is sideways), and the normals of a noisy sphere are
+ * fin, whose normal is sideways), a bowl with a rounded rim seen from
+ * above (open, where the divergence vote alone turns it inside out) comes
+ * out pointing at the viewer, and the normals of a noisy sphere are
  * smoothed close to the true ones; the PCA's thread count changes no
  * byte, and the tracked build reports progress and stops when cancelled. */
 #include "features/normals.h"
@@ -24,6 +26,25 @@ static double outward_share(const double *pts, const double *nrm, size_t n, cons
         out += d > 0;
     }
     return (double)out / (double)n;
+}
+
+/* *out: the oriented PCA normals (#n by 3, malloc'ed; not smoothed; NULL
+ * on failure) of #n by 3 points over their kNN graph (k = 7);
+ * *n_components (may be NULL): the graph's components. */
+static void pca_normals(const double *pts, size_t n, double **out, int *n_components) {
+    *out = NULL;
+    ps_graph g;
+    REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
+    int *comp = malloc(n * sizeof *comp);
+    double *nrm = malloc(n * 3 * sizeof *nrm);
+    REQUIRE(comp && nrm);
+    int nc = ps_graph_components(&g, comp);
+    ps_normals_input in = {.graph = &g, .points = pts, .component = comp, .n_components = nc};
+    REQUIRE(ps_normals_build(&in, nrm, NULL, NULL) == PS_OK);
+    if (n_components) *n_components = nc;
+    ps_graph_free(&g);
+    free(comp);
+    *out = nrm;
 }
 
 static void check_sphere(double shift, double angle) {
@@ -79,18 +100,12 @@ static void test_fin_does_not_decide_the_sign(void) {
         REQUIRE(pts);
         const double t[3] = {1, 2, 3}, angle = 0.3 + 0.6 * turn;
         ps_shape_transform(pts, n, 0.3, 0.5, 0.81, angle, 2.0, t);
-        ps_graph g;
-        REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
-        int *comp = malloc(n * sizeof *comp);
-        double *nrm = malloc(n * 3 * sizeof *nrm);
-        REQUIRE(comp && nrm);
-        int nc = ps_graph_components(&g, comp);
-        ps_normals_input in = {.graph = &g, .points = pts, .component = comp, .n_components = nc};
-        REQUIRE(ps_normals_build(&in, nrm, NULL, NULL) == PS_OK);
+        double *nrm;
+        pca_normals(pts, n, &nrm, NULL);
+        REQUIRE(nrm);
         double share = outward_share(pts, nrm, n_sphere, t);
         CHECK_MSG(share > 0.99, "angle %g: only %.3f of the sphere outward", angle, share);
-        ps_graph_free(&g);
-        free(pts), free(comp), free(nrm);
+        free(pts), free(nrm);
     }
 }
 
@@ -168,6 +183,63 @@ static void test_noisy_sphere_smoothed(void) {
     free(clean), free(pts), free(comp), free(nrm);
 }
 
+/* What a scanner above a bowl sees: the inside of a hemisphere of radius 1
+ * opening upwards (a Fibonacci lattice, z < 0) and the upper half of its
+ * rim, a tube of radius RIM round the circle of radius 1 + RIM at z = 0.
+ * truth #n by 3: the outward normals (out of the bowl's wall, towards the
+ * viewer).  The bowl's centroid lies above its bottom, so the outward
+ * normals have sum n . (x - centroid) < 0: the divergence vote alone
+ * would flip them (normals_outward.h). */
+#define RIM 0.12
+#define PI 3.14159265358979323846
+static double *bowl_seen_from_above(size_t *n, double **truth) {
+    const size_t lattice = 16000, around = 250, across = 13;
+    double *pts = malloc((lattice / 2 + around * across) * 3 * sizeof *pts);
+    double *nrm = malloc((lattice / 2 + around * across) * 3 * sizeof *nrm);
+    size_t k = 0;
+    for (size_t i = 0; pts && nrm && i < lattice; i++) {
+        double z = 1 - (2 * (double)i + 1) / (double)lattice, r = sqrt(1 - z * z);
+        double phi = 2.39996322972865332 * (double)i;
+        if (z >= 0) continue;
+        double p[3] = {r * cos(phi), r * sin(phi), z};
+        for (int d = 0; d < 3; d++) pts[3 * k + d] = p[d], nrm[3 * k + d] = -p[d];
+        k++;
+    }
+    for (size_t i = 0; pts && nrm && i < around; i++)
+        for (size_t j = 0; j < across; j++) {
+            double u = 2 * PI * (double)i / (double)around, v = PI * ((double)j + 0.5) / (double)across;
+            double out[3] = {-cos(v) * cos(u), -cos(v) * sin(u), sin(v)};
+            for (int d = 0; d < 3; d++) nrm[3 * k + d] = out[d];
+            pts[3 * k] = (1 + RIM) * cos(u) + RIM * out[0];
+            pts[3 * k + 1] = (1 + RIM) * sin(u) + RIM * out[1];
+            pts[3 * k + 2] = RIM * out[2];
+            k++;
+        }
+    *n = k, *truth = nrm;
+    return pts;
+}
+
+/* The bowl, turned and moved: (nearly) every normal points out of its wall. */
+static void test_open_bowl_points_at_viewer(void) {
+    size_t n;
+    double *truth, *pts = bowl_seen_from_above(&n, &truth);
+    REQUIRE(pts && truth);
+    const double shift[3] = {5, -3, 2}, none[3] = {0, 0, 0};
+    ps_shape_transform(pts, n, 2.0 / 3, -2.0 / 3, 1.0 / 3, 2.0, 4.0, shift);
+    ps_shape_transform(truth, n, 2.0 / 3, -2.0 / 3, 1.0 / 3, 2.0, 1.0, none);
+    int nc;
+    double *nrm;
+    pca_normals(pts, n, &nrm, &nc);
+    REQUIRE(nrm);
+    CHECK(nc == 1);
+    size_t agree = 0;
+    for (size_t p = 0; p < n; p++)
+        agree += nrm[3 * p] * truth[3 * p] + nrm[3 * p + 1] * truth[3 * p + 1] +
+                     nrm[3 * p + 2] * truth[3 * p + 2] > 0;
+    CHECK_MSG(agree > 0.99 * (double)n, "%zu of %zu normals point out", agree, n);
+    free(pts), free(truth), free(nrm);
+}
+
 /* The PCA on 1 or 3 threads gives the same bytes; progress rises through
  * the span to its end; a raised cancel flag stops the build. */
 static void test_threads_identical_with_progress(void) {
@@ -199,5 +271,6 @@ static void test_threads_identical_with_progress(void) {
 
 PS_TEST_MAIN(TEST(test_pca_sphere_outward), TEST(test_pca_moved_sphere_outward),
              TEST(test_fin_does_not_decide_the_sign),
-             TEST(test_given_inward_flipped), TEST(test_noisy_sphere_smoothed),
+             TEST(test_given_inward_flipped), TEST(test_open_bowl_points_at_viewer),
+             TEST(test_noisy_sphere_smoothed),
              TEST(test_threads_identical_with_progress))
