@@ -1,5 +1,5 @@
-/* result_checks.c: the end-to-end tests' checks of a ps_result
- * (result_checks.h). */
+/* result_checks.c: the end-to-end tests' runs of ps_segment and checks of
+ * a ps_result (result_checks.h). */
 #include "result_checks.h"
 
 #include "testlib.h"
@@ -65,4 +65,54 @@ void ps_check_result_consistent(const ps_result *r) {
                   "merge %d: step %s", m, ps_step_name(step));
         if (m > 0) CHECK(step >= r->merges[m - 1].step);
     }
+}
+
+ps_result *ps_segment_with(const double *pts, size_t n, const ps_params *p) {
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_result *r = NULL;
+    ps_error err = {0};
+    ps_status st = ps_segment(&in, p, NULL, &r, &err);
+    CHECK_MSG(st == PS_OK, "ps_segment failed: %s", err.message);
+    return r;
+}
+
+ps_result *ps_segment_default(const double *pts, size_t n) {
+    ps_params p;
+    ps_params_default(&p);
+    return ps_segment_with(pts, n, &p);
+}
+
+int ps_check_parts_with(double *pts, size_t n, int *part, int first, int last,
+                        double min_purity, const ps_params *p) {
+    if (!pts || !part) {
+        CHECK(pts && part);
+        return -1;
+    }
+    ps_result *r = ps_segment_with(pts, n, p);
+    int smoothing = r ? r->normal_smoothing : -1;
+    CHECK(r != NULL);
+    if (r) {
+        ps_check_result_consistent(r);
+        ps_check_parts_separate(r, part, first, last, min_purity);
+    }
+    ps_result_free(r);
+    free(pts);
+    free(part);
+    return smoothing;
+}
+
+int ps_check_shape_parts(double *pts, size_t n, int *part, int first, int last,
+                         double min_purity) {
+    ps_params p;
+    ps_params_default(&p);
+    return ps_check_parts_with(pts, n, part, first, last, min_purity, &p);
+}
+
+void ps_check_one_part(double *pts, size_t n, const char *name) {
+    REQUIRE(pts);
+    ps_result *r = ps_segment_default(pts, n);
+    REQUIRE(r);
+    CHECK_MSG(r->n_segments == 1, "%s: %d segments", name, r->n_segments);
+    ps_result_free(r);
+    free(pts);
 }

@@ -1,7 +1,8 @@
 /*
- * result_checks.h: checks of a ps_result for the end-to-end tests
- * (test_segment.c, test_ensemble.c): that it is self-consistent, and that
- * known parts of a synthetic shape come out in segments of their own.
+ * result_checks.h: ps_segment run and its ps_result checked, for the
+ * end-to-end tests (test_segment*.c, test_ensemble.c): that the result is
+ * self-consistent, that known parts of a synthetic shape come out in
+ * segments of their own, and that a shape without parts comes out whole.
  * Failures are reported through testlib.h's CHECK, at this file's lines.
  */
 #ifndef PS_RESULT_CHECKS_H
@@ -23,5 +24,28 @@ void ps_check_parts_separate(const ps_result *r, const int *part, int first, int
  * the points (segments largest first), and a hierarchy whose children
  * split their parent's supernodes. */
 void ps_check_result_consistent(const ps_result *r);
+
+/* ps_segment of the #n by 3 points with params p, CHECKed to succeed:
+ * the result (ps_result_free it), NULL when it failed. */
+ps_result *ps_segment_with(const double *pts, size_t n, const ps_params *p);
+
+/* The same with the defaults. */
+ps_result *ps_segment_default(const double *pts, size_t n);
+
+/* Segments a synthetic shape (#n by 3 pts, part #n each point's true
+ * part) with params p and checks that the result is consistent and its
+ * parts first..last come out apart (ps_check_parts_separate, min_purity);
+ * frees pts and part.  Returns the result's normal_smoothing (-1 without
+ * a result). */
+int ps_check_parts_with(double *pts, size_t n, int *part, int first, int last,
+                        double min_purity, const ps_params *p);
+
+/* The same with the defaults. */
+int ps_check_shape_parts(double *pts, size_t n, int *part, int first, int last,
+                         double min_purity);
+
+/* Checks that the default makes one segment of the #n by 3 points (and
+ * frees them); name says which in the message. */
+void ps_check_one_part(double *pts, size_t n, const char *name);
 
 #endif

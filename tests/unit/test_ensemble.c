@@ -233,7 +233,7 @@ static double moved_share(const ps_result *a, const int *b, int nb, size_t n) {
 
 /* Rotated, scaled, moved and reversed: the same partition, but for the
  * points the reversed order moves between draws' tie breaks (as the
- * single run's, test_segment.c's test_permutation). */
+ * single run's, test_segment_invariance.c's test_permutation). */
 static void test_dense_star_rotated_and_reordered(void) {
     size_t n;
     double *pts = ps_shape_star(DENSE_STAR, &n, NULL);
