@@ -3,7 +3,8 @@
  * keeps its orientation (also when its most extreme point lies on a thin
  * fin, whose normal is sideways), a bowl with a rounded rim seen from
  * above (open, where the divergence vote alone turns it inside out) comes
- * out pointing at the viewer, and the normals of a noisy sphere are
+ * out pointing at the viewer, PCA's normals and a scanner's given ones
+ * alike, and the normals of a noisy sphere are
  * smoothed close to the true ones; the PCA's thread count changes no
  * byte, and the tracked build reports progress and stops when cancelled. */
 #include "features/normals.h"
@@ -28,10 +29,12 @@ static double outward_share(const double *pts, const double *nrm, size_t n, cons
     return (double)out / (double)n;
 }
 
-/* *out: the oriented PCA normals (#n by 3, malloc'ed; not smoothed; NULL
- * on failure) of #n by 3 points over their kNN graph (k = 7);
- * *n_components (may be NULL): the graph's components. */
-static void pca_normals(const double *pts, size_t n, double **out, int *n_components) {
+/* *out: the oriented normals (#n by 3, malloc'ed; not smoothed; NULL on
+ * failure) of #n by 3 points over their kNN graph (k = 7): PCA's, or the
+ * #n by 3 given ones when not NULL; *n_components (may be NULL): the
+ * graph's components. */
+static void oriented_normals(const double *pts, size_t n, const double *given, double **out,
+                             int *n_components) {
     *out = NULL;
     ps_graph g;
     REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
@@ -39,7 +42,8 @@ static void pca_normals(const double *pts, size_t n, double **out, int *n_compon
     double *nrm = malloc(n * 3 * sizeof *nrm);
     REQUIRE(comp && nrm);
     int nc = ps_graph_components(&g, comp);
-    ps_normals_input in = {.graph = &g, .points = pts, .component = comp, .n_components = nc};
+    ps_normals_input in = {.graph = &g, .points = pts, .given = given, .component = comp,
+                           .n_components = nc};
     REQUIRE(ps_normals_build(&in, nrm, NULL, NULL) == PS_OK);
     if (n_components) *n_components = nc;
     ps_graph_free(&g);
@@ -101,7 +105,7 @@ static void test_fin_does_not_decide_the_sign(void) {
         const double t[3] = {1, 2, 3}, angle = 0.3 + 0.6 * turn;
         ps_shape_transform(pts, n, 0.3, 0.5, 0.81, angle, 2.0, t);
         double *nrm;
-        pca_normals(pts, n, &nrm, NULL);
+        oriented_normals(pts, n, NULL, &nrm, NULL);
         REQUIRE(nrm);
         double share = outward_share(pts, nrm, n_sphere, t);
         CHECK_MSG(share > 0.99, "angle %g: only %.3f of the sphere outward", angle, share);
@@ -219,7 +223,8 @@ static double *bowl_seen_from_above(size_t *n, double **truth) {
     return pts;
 }
 
-/* The bowl, turned and moved: (nearly) every normal points out of its wall. */
+/* The bowl, turned and moved: (nearly) every normal points out of its
+ * wall, PCA's and the scanner's own (given, pointing at it) alike. */
 static void test_open_bowl_points_at_viewer(void) {
     size_t n;
     double *truth, *pts = bowl_seen_from_above(&n, &truth);
@@ -227,17 +232,21 @@ static void test_open_bowl_points_at_viewer(void) {
     const double shift[3] = {5, -3, 2}, none[3] = {0, 0, 0};
     ps_shape_transform(pts, n, 2.0 / 3, -2.0 / 3, 1.0 / 3, 2.0, 4.0, shift);
     ps_shape_transform(truth, n, 2.0 / 3, -2.0 / 3, 1.0 / 3, 2.0, 1.0, none);
-    int nc;
-    double *nrm;
-    pca_normals(pts, n, &nrm, &nc);
-    REQUIRE(nrm);
-    CHECK(nc == 1);
-    size_t agree = 0;
-    for (size_t p = 0; p < n; p++)
-        agree += nrm[3 * p] * truth[3 * p] + nrm[3 * p + 1] * truth[3 * p + 1] +
-                     nrm[3 * p + 2] * truth[3 * p + 2] > 0;
-    CHECK_MSG(agree > 0.99 * (double)n, "%zu of %zu normals point out", agree, n);
-    free(pts), free(truth), free(nrm);
+    for (int given = 0; given < 2; given++) {
+        int nc;
+        double *nrm;
+        oriented_normals(pts, n, given ? truth : NULL, &nrm, &nc);
+        REQUIRE(nrm);
+        CHECK(nc == 1);
+        size_t agree = 0;
+        for (size_t p = 0; p < n; p++)
+            agree += nrm[3 * p] * truth[3 * p] + nrm[3 * p + 1] * truth[3 * p + 1] +
+                         nrm[3 * p + 2] * truth[3 * p + 2] > 0;
+        CHECK_MSG(agree > 0.99 * (double)n, "given %d: %zu of %zu normals point out", given,
+                  agree, n);
+        free(nrm);
+    }
+    free(pts), free(truth);
 }
 
 /* The PCA on 1 or 3 threads gives the same bytes; progress rises through
