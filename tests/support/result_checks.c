@@ -67,6 +67,23 @@ void ps_check_result_consistent(const ps_result *r) {
     }
 }
 
+double ps_moved_share(const ps_result *a, const int *labels_b, size_t n) {
+    size_t na = (size_t)a->n_segments, nb = 0, agree = 0;
+    for (size_t i = 0; i < n; i++)
+        if ((size_t)labels_b[i] + 1 > nb) nb = (size_t)labels_b[i] + 1;
+    size_t *table = calloc(na * nb, sizeof *table);
+    if (!table) return 1;
+    for (size_t i = 0; i < n; i++) table[(size_t)a->labels[i] * nb + (size_t)labels_b[i]]++;
+    for (size_t s = 0; s < na; s++) {
+        size_t best = 0;
+        for (size_t t = 0; t < nb; t++)
+            if (table[s * nb + t] > best) best = table[s * nb + t];
+        agree += best;
+    }
+    free(table);
+    return 1.0 - (double)agree / (double)n;
+}
+
 ps_result *ps_segment_with(const double *pts, size_t n, const ps_params *p) {
     ps_input in = {.points = pts, .n = n, .dim = 3};
     ps_result *r = NULL;

@@ -2,7 +2,8 @@
  * result_checks.h: ps_segment run and its ps_result checked, for the
  * end-to-end tests (test_segment*.c, test_ensemble.c): that the result is
  * self-consistent, that known parts of a synthetic shape come out in
- * segments of their own, and that a shape without parts comes out whole.
+ * segments of their own, that a shape without parts comes out whole, and
+ * how far two partitions of the same points are apart.
  * Failures are reported through testlib.h's CHECK, at this file's lines.
  */
 #ifndef PS_RESULT_CHECKS_H
@@ -24,6 +25,11 @@ void ps_check_parts_separate(const ps_result *r, const int *part, int first, int
  * the points (segments largest first), and a hierarchy whose children
  * split their parent's supernodes. */
 void ps_check_result_consistent(const ps_result *r);
+
+/* The share of the n points outside the segment of labels_b (#n, ids
+ * from 0) that overlaps most with their segment of a: 0 when b is a's
+ * partition, under any renaming of its labels.  1 without memory. */
+double ps_moved_share(const ps_result *a, const int *labels_b, size_t n);
 
 /* ps_segment of the #n by 3 points with params p, CHECKed to succeed:
  * the result (ps_result_free it), NULL when it failed. */

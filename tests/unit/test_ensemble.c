@@ -214,23 +214,6 @@ static void test_dense_star_in_draws(void) { check_star_in_draws(DENSE_STAR, 3);
  * third of the points answered by their nearest in it. */
 static void test_star_in_one_draw(void) { check_star_in_draws(ONE_DRAW_STAR, 1); }
 
-/* Share of the n points outside the segment of b that overlaps most with
- * their segment of a. */
-static double moved_share(const ps_result *a, const int *b, int nb, size_t n) {
-    size_t na = (size_t)a->n_segments, agree = 0;
-    size_t *table = calloc(na * (size_t)nb, sizeof *table);
-    if (!table) return 1;
-    for (size_t i = 0; i < n; i++) table[(size_t)a->labels[i] * (size_t)nb + (size_t)b[i]]++;
-    for (size_t s = 0; s < na; s++) {
-        size_t best = 0;
-        for (int t = 0; t < nb; t++)
-            if (table[s * (size_t)nb + (size_t)t] > best) best = table[s * (size_t)nb + (size_t)t];
-        agree += best;
-    }
-    free(table);
-    return 1.0 - (double)agree / (double)n;
-}
-
 /* Rotated, scaled, moved and reversed: the same partition, but for the
  * points the reversed order moves between draws' tie breaks (as the
  * single run's, test_segment_invariance.c's test_permutation). */
@@ -248,7 +231,7 @@ static void test_dense_star_rotated_and_reordered(void) {
     int *b_in_a_order = malloc(n * sizeof *b_in_a_order);
     REQUIRE(b_in_a_order);
     for (size_t i = 0; i < n; i++) b_in_a_order[i] = b->labels[n - 1 - i];
-    double moved = moved_share(a, b_in_a_order, b->n_segments, n);
+    double moved = ps_moved_share(a, b_in_a_order, n);
     CHECK_MSG(moved <= 0.005, "%.4f of the points changed segment", moved);
     ps_result_free(a), ps_result_free(b);
     free(pts), free(copy), free(b_in_a_order);

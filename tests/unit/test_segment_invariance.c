@@ -12,25 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Fraction of points whose label differs from b's after mapping each label
- * of a to the label of b most of its points carry. */
-static double disagreement(const ps_result *a, const int *labels_b, size_t n) {
-    int na = a->n_segments, nb = 0;
-    for (size_t i = 0; i < n; i++)
-        if (labels_b[i] + 1 > nb) nb = labels_b[i] + 1;
-    int *table = calloc((size_t)na * (size_t)nb, sizeof *table);
-    for (size_t i = 0; i < n; i++) table[a->labels[i] * nb + labels_b[i]]++;
-    size_t agree = 0;
-    for (int s = 0; s < na; s++) {
-        int best = 0;
-        for (int t = 0; t < nb; t++)
-            if (table[s * nb + t] > best) best = table[s * nb + t];
-        agree += (size_t)best;
-    }
-    free(table);
-    return 1.0 - (double)agree / (double)n;
-}
-
 static void check_invariant(double angle, double scale) {
     size_t n;
     double *pts = ps_shape_hand(0, &n, NULL);
@@ -41,7 +22,7 @@ static void check_invariant(double angle, double scale) {
     REQUIRE(a && b);
     CHECK_MSG(a->n_segments == b->n_segments, "segments %d vs %d (angle %g, scale %g)",
               a->n_segments, b->n_segments, angle, scale);
-    double d = disagreement(a, b->labels, n);
+    double d = ps_moved_share(a, b->labels, n);
     CHECK_MSG(d <= 0.005, "%.4f of the points changed segment (angle %g, scale %g)", d, angle,
               scale);
     ps_result_free(a);
@@ -71,7 +52,7 @@ static void test_permutation(void) {
     int *b_in_a_order = malloc(n * sizeof *b_in_a_order);
     for (size_t i = 0; i < n; i++) b_in_a_order[perm[i]] = b->labels[i];
     CHECK(a->n_segments == b->n_segments);
-    double d = disagreement(a, b_in_a_order, n);
+    double d = ps_moved_share(a, b_in_a_order, n);
     CHECK_MSG(d <= 0.005, "%.4f of the points changed segment", d);
     free(b_in_a_order);
     ps_result_free(a);
@@ -109,7 +90,7 @@ static void check_overlap(const char *what, size_t shape, int *exact, int n_exac
     memset(&as_labels, 0, sizeof as_labels);
     as_labels.labels = exact;
     as_labels.n_segments = n_exact;
-    double d = disagreement(&as_labels, approx, n);
+    double d = ps_moved_share(&as_labels, approx, n);
     CHECK_MSG(d <= 0.10, "shape %zu: %.3f of the points in another of the %s", shape, d, what);
 }
 
