@@ -18,6 +18,8 @@ typedef struct outward_votes {
     int flip;          /* the votes' sum is negative */
 } outward_votes;
 
+/* Point x's share of the divergence vote: n its normal, c its component's
+ * centroid. */
 static void add_divergence(outward_votes *v, const double *x, const double *n, const double *c) {
     double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
     v->divergence += d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
