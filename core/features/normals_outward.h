@@ -19,7 +19,9 @@
  * from above or a bird's spread wings (docs/method.md, section 1, "Which
  * way is out").  Each vote alone is decisive where the other is weak (a
  * noisy sphere's edges are convex and concave alike; an open sheet's
- * divergence is near 0), so the sum needs no threshold.  No rotation,
+ * divergence is near 0), so the sum needs no threshold.  Both are votes
+ * of every point and edge, so that no single point (an extreme one on a
+ * thin fin, whose normal is sideways) decides the sign.  No rotation,
  * scaling or reordering of the points changes the result; no threads.
  */
 #ifndef PS_NORMALS_OUTWARD_H
