@@ -68,10 +68,8 @@ static int check_star_arms(double density, double jitter, double purity, int smo
     int *part;
     double *pts = ps_shape_star(density, &n, &part);
     unsigned long long state = 88172645463325252ULL;
-    for (size_t i = 0; pts && jitter > 0 && i < 3 * n; i++) {
-        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
-        pts[i] += jitter * (2.0 * (double)(state >> 11) / 9007199254740992.0 - 1.0);
-    }
+    for (size_t i = 0; pts && jitter > 0 && i < 3 * n; i++)
+        pts[i] += jitter * (2.0 * ps_uniform_next(&state) - 1.0);
     ps_params p;
     ps_params_default(&p);
     p.smooth_normals = smooth_normals;
