@@ -26,16 +26,17 @@ static void add_divergence(outward_votes *v, const double *x, const double *n, c
     v->spread += sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
-/* Point p's edges (each edge is seen from both ends, alike). */
+/* Point p's edges (each edge is seen from both ends, alike).  With eta
+ * -1 for convex edges the angular term is the bend signed: negative on a
+ * convex edge, positive on a concave one. */
 static void add_convexity(outward_votes *v, const ps_graph *g, const double *points,
                           const double *normals, size_t p) {
     const double *x = points + 3 * p, *n = normals + 3 * p;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) {
         size_t q = g->neighbors[e];
-        double bend = ps_crease_angular(x, n, points + 3 * q, normals + 3 * q, 1.0);
-        double concave = ps_crease_angular(x, n, points + 3 * q, normals + 3 * q, 0.0);
-        v->convexity += bend - 2 * concave;
-        v->bending += bend;
+        double concave = ps_crease_angular(x, n, points + 3 * q, normals + 3 * q, -1.0);
+        v->convexity -= concave;
+        v->bending += fabs(concave);
     }
 }
 
