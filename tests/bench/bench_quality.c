@@ -47,6 +47,7 @@
 #include "params_table.h"
 #include "pointseg.h"
 #include "psb_data.h"
+#include "random_bits.h"
 #include "shapes.h"
 
 #define N_CATEGORIES 20
@@ -363,8 +364,7 @@ static double mean_edge(const ps_pointset *mesh) {
 
 /* A uniform number in (0, 1) from a xorshift64 state. */
 static double uniform(uint64_t *state) {
-    *state ^= *state << 13, *state ^= *state >> 7, *state ^= *state << 17;
-    return ((double)(*state >> 11) + 0.5) / 9007199254740992.0;
+    return ((double)(ps_random_bits(state) >> 11) + 0.5) / 9007199254740992.0;
 }
 
 /* The key of a model's random draws (surface samples, noise, strays): its

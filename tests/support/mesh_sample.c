@@ -1,18 +1,10 @@
 /* mesh_sample.c: area sampling of a triangle mesh, uniform or graded along
  * an axis, its area and bounding box (mesh_sample.h). */
 #include "mesh_sample.h"
+#include "random_bits.h"
 
 #include <math.h>
 #include <stdlib.h>
-
-static uint64_t xorshift64(uint64_t *s) {
-    *s ^= *s << 13;
-    *s ^= *s >> 7;
-    *s ^= *s << 17;
-    return *s;
-}
-
-static double uniform01(uint64_t *s) { return (double)(xorshift64(s) >> 11) * 0x1.0p-53; }
 
 static double triangle_area(const double *a, const double *b, const double *c) {
     double u[3], v[3];
@@ -76,7 +68,7 @@ int ps_mesh_sample_graded(const ps_pointset *mesh, size_t n, double far, uint64_
         for (size_t i = 0; i < batch && kept < n; i++) {
             const double *c = candidates + 3 * i;
             double t = extent > 0 ? (c[axis] - low) / extent : 0;
-            if (uniform01(&state) >= 1 - (1 - far) * t) continue;
+            if (ps_uniform_next(&state) >= 1 - (1 - far) * t) continue;
             for (int d = 0; d < 3; d++) points[3 * kept + d] = c[d];
             kept++;
         }
@@ -105,8 +97,8 @@ int ps_mesh_sample_surface(const ps_pointset *mesh, size_t n, uint64_t seed, dou
     uint64_t state = seed ? seed : 0x9E3779B97F4A7C15ull;
     for (size_t i = 0; i < n; i++) {
         const uint32_t *v = mesh->faces + 3 * find_face(cumulative, mesh->n_faces,
-                                                        uniform01(&state) * total);
-        double r1 = sqrt(uniform01(&state)), r2 = uniform01(&state);
+                                                        ps_uniform_next(&state) * total);
+        double r1 = sqrt(ps_uniform_next(&state)), r2 = ps_uniform_next(&state);
         double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2;
         for (int d = 0; d < 3; d++)
             points[3 * i + d] = wa * mesh->points[3 * v[0] + d] +

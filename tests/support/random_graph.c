@@ -3,20 +3,16 @@
  * and then packed into CSR rows sorted by neighbour.
  */
 #include "random_graph.h"
+#include "random_bits.h"
 
 #include <stdlib.h>
 
-static unsigned long long next_bits(test_rng *r) {
-    r->s ^= r->s << 13, r->s ^= r->s >> 7, r->s ^= r->s << 17;
-    return r->s;
-}
-
 unsigned test_rng_below(test_rng *r, unsigned bound) {
-    return (unsigned)((next_bits(r) >> 20) % bound);
+    return (unsigned)((ps_random_bits(&r->s) >> 20) % bound);
 }
 
 double test_rng_unit(test_rng *r) {
-    return (double)(next_bits(r) >> 11) / 9007199254740992.0;
+    return (double)(ps_random_bits(&r->s) >> 11) / 9007199254740992.0;
 }
 
 static double random_length(test_rng *r, double lo, double hi, int whole) {

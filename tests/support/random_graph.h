@@ -7,9 +7,11 @@
 
 #include "graph/knn_graph.h"
 
-/* A seeded xorshift generator. */
+#include <stdint.h>
+
+/* A seeded generator (random_bits.h's sequence). */
 typedef struct test_rng {
-    unsigned long long s;
+    uint64_t s;
 } test_rng;
 
 /* Uniform in [0, bound). */

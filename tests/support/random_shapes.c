@@ -1,20 +1,11 @@
 /* random_shapes.c: the end-to-end tests' random surfaces (random_shapes.h). */
 #include "random_shapes.h"
+#include "random_bits.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-double ps_uniform_next(unsigned long long *state) {
-    *state ^= *state << 13, *state ^= *state >> 7, *state ^= *state << 17;
-    return (double)(*state >> 11) / 9007199254740992.0;
-}
-
-double ps_gaussian_next(unsigned long long *state) {
-    double u = 1 - ps_uniform_next(state); /* in (0, 1] */
-    return sqrt(-2 * log(u)) * cos(6.283185307179586 * ps_uniform_next(state));
-}
-
-void ps_random_ball(double *pts, size_t n, double cx, double stretch, unsigned long long seed) {
+void ps_random_ball(double *pts, size_t n, double cx, double stretch, uint64_t seed) {
     for (size_t k = 0; k < n; k++) {
         double z = 2 * ps_uniform_next(&seed) - 1, a = 6.283185307179586 * ps_uniform_next(&seed);
         double r = sqrt(1 - z * z);
@@ -24,7 +15,7 @@ void ps_random_ball(double *pts, size_t n, double cx, double stretch, unsigned l
 
 double *ps_plain_sheet(int kind, size_t n) {
     double *pts = malloc(n * 3 * sizeof *pts);
-    unsigned long long state = 0x2545F4914F6CDD1DULL + (unsigned)kind;
+    uint64_t state = 0x2545F4914F6CDD1DULL + (unsigned)kind;
     for (size_t k = 0; pts && k < n;) {
         double x = 2 * ps_uniform_next(&state) - 1, y = 2 * ps_uniform_next(&state) - 1;
         double r2 = x * x + y * y;
@@ -39,7 +30,7 @@ double *ps_plain_sheet(int kind, size_t n) {
     return pts;
 }
 
-double *ps_random_box(double a, double b, double c, size_t n, unsigned long long seed) {
+double *ps_random_box(double a, double b, double c, size_t n, uint64_t seed) {
     double *pts = malloc(n * 3 * sizeof *pts);
     const double side[3] = {a * b, a * c, b * c}, total = 2 * (side[0] + side[1] + side[2]);
     for (size_t k = 0; pts && k < n; k++) {
@@ -59,7 +50,7 @@ double *ps_flat_hand(size_t *n, int **part) {
     const size_t palm = 3000, finger = 500, total = palm + 5 * finger;
     double *pts = malloc(total * 3 * sizeof *pts);
     *part = malloc(total * sizeof **part);
-    unsigned long long state = 2463534242ULL;
+    uint64_t state = 2463534242ULL;
     size_t k = 0;
     while (pts && *part && k < total) {
         double u[2];
@@ -83,7 +74,7 @@ double *ps_bent_plus(double reach, size_t *n, int **part) {
     const size_t total = 20000;
     double *pts = malloc(total * 3 * sizeof *pts);
     *part = malloc(total * sizeof **part);
-    unsigned long long state = 0x9E3779B97F4A7C15ULL;
+    uint64_t state = 0x9E3779B97F4A7C15ULL;
     size_t k = 0;
     while (pts && *part && k < total) {
         double u = reach * (2 * ps_uniform_next(&state) - 1);

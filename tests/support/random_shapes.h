@@ -1,27 +1,20 @@
 /*
  * random_shapes.h: points drawn at random on simple surfaces, for the
  * end-to-end tests (test_segment*.c): balls, plain sheets and box surfaces
- * (shapes without parts), a flat hand and a bent plus (sheets with parts),
- * and the numbers they are drawn from.  Beside shapes.h's unions of
- * primitives, these are the shapes a scan of a sheet or a solid gives.
- * Deterministic: a fixed xorshift sequence, seeded by the caller or by a
- * constant of the shape's.
+ * (shapes without parts), a flat hand and a bent plus (sheets with parts).
+ * Beside shapes.h's unions of primitives, these are the shapes a scan of a
+ * sheet or a solid gives.  Deterministic: random_bits.h's sequence, seeded
+ * by the caller or by a constant of the shape's.
  */
 #ifndef PS_RANDOM_SHAPES_H
 #define PS_RANDOM_SHAPES_H
 
 #include <stddef.h>
-
-/* The next of a xorshift sequence (*state, nonzero, in/out), uniform in
- * [0, 1). */
-double ps_uniform_next(unsigned long long *state);
-
-/* A standard normal number (Box-Muller over ps_uniform_next). */
-double ps_gaussian_next(unsigned long long *state);
+#include <stdint.h>
 
 /* n points drawn at random on a unit sphere centred at (cx, 0, 0), its z
  * stretched by `stretch` (an egg above 1), written to pts #n by 3. */
-void ps_random_ball(double *pts, size_t n, double cx, double stretch, unsigned long long seed);
+void ps_random_ball(double *pts, size_t n, double cx, double stretch, uint64_t seed);
 
 /* n points drawn at random on a sheet without parts, by `kind`: 0 a
  * square, 1 a disc, 2 a hemisphere (a cap, open at its rim).  Returns a
@@ -31,7 +24,7 @@ double *ps_plain_sheet(int kind, size_t n);
 /* n points drawn at random, uniform by area, on the closed surface of an
  * a by b by c box (its six sides).  Returns a malloc'ed #n by 3 array
  * (free it), NULL without memory. */
-double *ps_random_box(double a, double b, double c, size_t n, unsigned long long seed);
+double *ps_random_box(double a, double b, double c, size_t n, uint64_t seed);
 
 /* A flat hand in the plane z = 0: a unit disc (part 0) and five strips
  * (parts 1..5) fanning out from it, sampled uniformly.  Returns a malloc'ed

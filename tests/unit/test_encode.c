@@ -4,6 +4,7 @@
 #include "decode.h"
 #include "encode.h"
 #include "number_text.h"
+#include "random_bits.h"
 #include "testlib.h"
 
 #include <cJSON.h>
@@ -314,14 +315,6 @@ static void test_put_int(void) {
     }
 }
 
-/* Next of a fixed xorshift sequence. */
-static uint64_t next_random(uint64_t *s) {
-    *s ^= *s << 13;
-    *s ^= *s >> 7;
-    *s ^= *s << 17;
-    return *s;
-}
-
 /* ps_put_double against printf's %.9g over values of every magnitude:
  * the same text nearly always, the same value to nine digits always. */
 static void test_put_double_matches_printf(void) {
@@ -336,8 +329,8 @@ static void test_put_double_matches_printf(void) {
         if (i < (int)(sizeof fixed / sizeof fixed[0])) {
             v = fixed[i];
         } else {
-            double mantissa = (double)(next_random(&state) >> 11) / 9007199254740992.0;
-            int e = (int)(next_random(&state) % 80) - 40;
+            double mantissa = (double)(ps_random_bits(&state) >> 11) / 9007199254740992.0;
+            int e = (int)(ps_random_bits(&state) % 80) - 40;
             v = (i & 1 ? -mantissa : mantissa) * pow(10, e);
         }
         *ps_put_double(got, v) = 0;

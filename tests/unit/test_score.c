@@ -8,6 +8,7 @@
 
 #include "pointseg.h"
 #include "psb_data.h"
+#include "random_bits.h"
 #include "testlib.h"
 
 static void test_identical_is_zero(void) {
@@ -58,22 +59,15 @@ static double brute_force_error(const int *a, const int *b, size_t n) {
     return (double)disagree / ((double)n * (double)(n - 1) / 2);
 }
 
-static uint32_t xorshift32(uint32_t *s) {
-    *s ^= *s << 13;
-    *s ^= *s >> 17;
-    *s ^= *s << 5;
-    return *s;
-}
-
 static void test_matches_brute_force(void) {
     enum { N = 600 };
     static int a[N], b[N];
-    uint32_t seed = 12345;
+    uint64_t seed = 12345;
     for (int round = 0; round < 5; round++) {
         uint32_t ka = 1 + round * 3, kb = 2 + round * 7;
         for (int i = 0; i < N; i++) {
-            a[i] = (int)(xorshift32(&seed) % ka) * 1000003;
-            b[i] = (int)(xorshift32(&seed) % kb);
+            a[i] = (int)(ps_random_bits(&seed) % ka) * 1000003;
+            b[i] = (int)(ps_random_bits(&seed) % kb);
         }
         CHECK_NEAR(ps_rand_index_error(a, b, N), brute_force_error(a, b, N), 1e-12);
     }
@@ -92,10 +86,10 @@ static void test_parts(void) {
     CHECK(b_only == 0.0 && a_only == ps_rand_index_error(one, b, 5));
     enum { N = 300 };
     static int x[N], y[N];
-    uint32_t seed = 777;
+    uint64_t seed = 777;
     for (int i = 0; i < N; i++) {
-        x[i] = (int)(xorshift32(&seed) % 4);
-        y[i] = (int)(xorshift32(&seed) % 9);
+        x[i] = (int)(ps_random_bits(&seed) % 4);
+        y[i] = (int)(ps_random_bits(&seed) % 9);
     }
     size_t x_only = 0, y_only = 0;
     for (size_t i = 0; i < N; i++)

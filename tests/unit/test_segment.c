@@ -7,6 +7,7 @@
  * answer test_segment_invariance.c's, the interface test_segment_api.c's.
  */
 #include "pointseg.h"
+#include "random_bits.h"
 #include "random_shapes.h"
 #include "result_checks.h"
 #include "shapes.h"
@@ -67,7 +68,7 @@ static int check_star_arms(double density, double jitter, double purity, int smo
     size_t n;
     int *part;
     double *pts = ps_shape_star(density, &n, &part);
-    unsigned long long state = 88172645463325252ULL;
+    uint64_t state = 88172645463325252ULL;
     for (size_t i = 0; pts && jitter > 0 && i < 3 * n; i++)
         pts[i] += jitter * (2.0 * ps_uniform_next(&state) - 1.0);
     ps_params p;
@@ -238,7 +239,7 @@ static void test_noisy_flat_hand_keeps_its_fingers(void) {
     int *part;
     double *pts = ps_flat_hand(&n, &part);
     REQUIRE(pts && part);
-    unsigned long long state = 1;
+    uint64_t state = 1;
     for (size_t i = 0; i < n; i++) pts[3 * i + 2] += 0.008 * ps_gaussian_next(&state);
     check_hand(pts, n, part, 0.4, 0.9);
 }

@@ -4,6 +4,7 @@
  * sheet): each comes out as one segment.
  */
 #include "pointseg.h"
+#include "random_bits.h"
 #include "random_shapes.h"
 #include "result_checks.h"
 #include "shapes.h"
@@ -74,7 +75,7 @@ static void test_noisy_plain_shapes_one_part(void) {
     double *ball = malloc(n * 3 * sizeof *ball), *square = ps_plain_sheet(0, n);
     REQUIRE(ball && square);
     ps_random_ball(ball, n, 0, 1.0, 0x9E3779B97F4A7C15ULL);
-    unsigned long long state = 7;
+    uint64_t state = 7;
     for (size_t i = 0; i < n; i++) { /* spacings about 0.035 and 0.02 */
         for (int d = 0; d < 3; d++) ball[3 * i + d] += 0.02 * ps_gaussian_next(&state);
         square[3 * i + 2] += 0.01 * ps_gaussian_next(&state);

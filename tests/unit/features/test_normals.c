@@ -11,6 +11,7 @@
 #include "features/normals_smooth.h"
 #include "graph/knn_graph.h"
 #include "progress_seen.h"
+#include "random_bits.h"
 #include "random_shapes.h"
 #include "shapes.h"
 #include "testlib.h"
@@ -161,7 +162,7 @@ static void test_noisy_sphere_smoothed(void) {
     double spacing = 0;
     for (size_t e = 0; e < g.offsets[n]; e++) spacing += g.weights[e] / (double)g.offsets[n];
     ps_graph_free(&g);
-    unsigned long long state = 88172645463325252ULL;
+    uint64_t state = 88172645463325252ULL;
     for (size_t i = 0; i < 3 * n; i++)
         pts[i] = clean[i] + 0.5 * spacing * (2.0 * ps_uniform_next(&state) - 1);
     REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);

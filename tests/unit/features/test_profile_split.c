@@ -7,6 +7,7 @@
  * a supernode with more bands than points is left alone.
  */
 #include "features/profile_split.h"
+#include "random_bits.h"
 #include "testlib.h"
 
 #include <math.h>
@@ -25,10 +26,7 @@ typedef struct cloud {
     uint64_t seed;
 } cloud;
 
-static double uniform(cloud *c) {
-    c->seed = c->seed * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(c->seed >> 11) / 9007199254740992.0;
-}
+static double uniform(cloud *c) { return ps_uniform_next(&c->seed); }
 
 static int add(cloud *c, double x, double y, double z) {
     if (c->n == c->cap) {

@@ -4,6 +4,7 @@
  * components are numbered by lowest vertex. */
 #include "graph/knn_graph.h"
 #include "progress_seen.h"
+#include "random_bits.h"
 #include "shapes.h"
 #include "testlib.h"
 
@@ -13,10 +14,9 @@
 
 static double *random_points(size_t n, int dim, unsigned seed) {
     double *p = malloc(n * (size_t)dim * sizeof *p);
-    unsigned long long s = 88172645463325252ULL ^ seed;
+    uint64_t s = 88172645463325252ULL ^ seed;
     for (size_t i = 0; p && i < n * (size_t)dim; i++) {
-        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-        p[i] = (double)(s >> 11) / 9007199254740992.0;
+        p[i] = ps_uniform_next(&s);
     }
     return p;
 }

@@ -5,6 +5,7 @@
  * declines (graph unchanged) when too few points would remain. */
 #include "graph/knn_graph.h"
 #include "graph/outliers.h"
+#include "random_bits.h"
 #include "testlib.h"
 
 #include <stdlib.h>
@@ -12,10 +13,9 @@
 
 static double *random_points(size_t n, unsigned seed) {
     double *p = malloc(n * 3 * sizeof *p);
-    unsigned long long s = 88172645463325252ULL ^ seed;
+    uint64_t s = 88172645463325252ULL ^ seed;
     for (size_t i = 0; p && i < n * 3; i++) {
-        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-        p[i] = (double)(s >> 11) / 9007199254740992.0;
+        p[i] = ps_uniform_next(&s);
     }
     return p;
 }

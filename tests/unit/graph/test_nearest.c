@@ -3,14 +3,10 @@
  * scan of every point does, the same for any thread count.
  */
 #include "graph/nearest.h"
+#include "random_bits.h"
 #include "testlib.h"
 
 #include <stdlib.h>
-
-static double next_unit(unsigned long long *s) {
-    *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
-    return (double)(*s >> 11) / 9007199254740992.0;
-}
 
 static double squared(const double *a, const double *b) {
     double d = 0;
@@ -20,12 +16,12 @@ static double squared(const double *a, const double *b) {
 
 static void test_nearest_as_a_scan(void) {
     enum { N = 3000, Q = 2500 };
-    unsigned long long s = 88172645463325252ULL;
+    uint64_t s = 88172645463325252ULL;
     double *pts = malloc(3 * N * sizeof *pts), *q = malloc(3 * Q * sizeof *q);
     uint32_t *one = malloc(Q * sizeof *one), *two = malloc(Q * sizeof *two);
     REQUIRE(pts && q && one && two);
-    for (int i = 0; i < 3 * N; i++) pts[i] = next_unit(&s);
-    for (int i = 0; i < 3 * Q; i++) q[i] = 1.2 * next_unit(&s) - 0.1;
+    for (int i = 0; i < 3 * N; i++) pts[i] = ps_uniform_next(&s);
+    for (int i = 0; i < 3 * Q; i++) q[i] = 1.2 * ps_uniform_next(&s) - 0.1;
     ps_nearest_index *index = ps_nearest_build(pts, N, 3);
     REQUIRE(index);
     ps_error err;

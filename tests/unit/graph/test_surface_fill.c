@@ -19,6 +19,7 @@
 #include "graph/reference_density.h"
 #include "graph/surface_fill.h"
 #include "progress_seen.h"
+#include "random_bits.h"
 #include "testlib.h"
 
 #include <math.h>
@@ -193,8 +194,7 @@ static void test_noisy_mesh_not_filled(void) {
     CHECK(roughness(&in) < PS_FILL_MAX_ROUGHNESS / 10);
     uint64_t state = 88172645463325252ull;
     for (size_t i = 0; i < 3 * N_TUBE; i++) {
-        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
-        t.points[i] += 0.1 * ((double)(state >> 11) / 9007199254740992.0 - 0.5);
+        t.points[i] += 0.1 * (ps_uniform_next(&state) - 0.5);
     }
     CHECK(roughness(&in) > PS_FILL_MAX_ROUGHNESS);
     ps_surface_fill s;
@@ -346,8 +346,7 @@ static void test_unwelded_roughness(void) {
     free(points), free(faces);
     uint64_t state = 88172645463325252ull;
     for (size_t i = 0; i < 3 * N_TUBE; i++) {
-        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
-        t.points[i] += 0.1 * ((double)(state >> 11) / 9007199254740992.0 - 0.5);
+        t.points[i] += 0.1 * (ps_uniform_next(&state) - 0.5);
     }
     in = unwelded(&t, 1, &points, &faces, &n);
     REQUIRE(in.points);

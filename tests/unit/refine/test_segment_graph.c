@@ -14,6 +14,7 @@
  */
 #include "hand_graph.h"
 #include "refine/segment_graph.h"
+#include "random_bits.h"
 #include "testlib.h"
 
 #include <math.h>
@@ -209,13 +210,12 @@ static double helix_f[HELIX], helix_points[3 * HELIX];
 /* A path of HELIX points on a helix in 7 segments, labels scattered. */
 static ps_graph helix(void) {
     size_t arcs = 0;
-    unsigned long long s = 99;
+    uint64_t s = 99;
     for (uint32_t p = 0; p < HELIX; p++) {
         helix_offsets[p] = arcs;
         if (p > 0) helix_neighbors[arcs++] = p - 1;
         if (p + 1 < HELIX) helix_neighbors[arcs++] = p + 1;
-        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-        helix_group[p] = (int)(s % 7), helix_f[p] = p;
+        helix_group[p] = (int)(ps_random_bits(&s) % 7), helix_f[p] = p;
         helix_points[3 * p] = cos(p * 0.01), helix_points[3 * p + 1] = sin(p * 0.01);
         helix_points[3 * p + 2] = p * 1e-3;
     }

@@ -1,6 +1,7 @@
 /* test_morton.c: the Morton order is a permutation, sorts points on a line
  * by position, follows the Z curve on a 2 by 2 grid, ties go by index, and
  * on many points with ties it is the order of a comparison sort. */
+#include "random_bits.h"
 #include "testlib.h"
 #include "util/morton.h"
 
@@ -68,8 +69,8 @@ static void test_matches_comparison_sort(void) {
     uint64_t s = 88172645463325252ULL;
     for (size_t i = 0; i < N; i++)
         for (int a = 0; a < 3; a++) {
-            s ^= s << 13, s ^= s >> 7, s ^= s << 17;
-            p[3 * i + a] = i >= 2 && i % 4 == 3 ? p[3 * (i / 2) + a] : (double)(s % (1u << 21));
+            uint64_t bits = ps_random_bits(&s);
+            p[3 * i + a] = i >= 2 && i % 4 == 3 ? p[3 * (i / 2) + a] : (double)(bits % (1u << 21));
         }
     for (int a = 0; a < 3; a++) p[a] = 0.0, p[3 + a] = side;
     REQUIRE(ps_morton_order(p, N, 3, order) == PS_OK);

@@ -3,6 +3,7 @@
  * on arrays above and below its bins' size limit, with many equal values,
  * with most values packed into one bin beside far outliers, and on a
  * constant array, for 1, 2 and 3 threads; the array is left unchanged. */
+#include "random_bits.h"
 #include "testlib.h"
 #include "util/select_parallel.h"
 #include "util/sort_util.h"
@@ -13,11 +14,6 @@
 static int compare_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
-}
-
-static unsigned long long next_bits(unsigned long long *s) {
-    *s ^= *s << 13, *s ^= *s >> 7, *s ^= *s << 17;
-    return *s;
 }
 
 /* Every rank of ranks[] against a sorted copy, for 1 to 3 threads. */
@@ -43,10 +39,10 @@ static void check_ranks(const double *x, size_t n) {
 
 static void test_random_values(void) {
     size_t sizes[] = {10, 1000, 70000, 300001};
-    unsigned long long s = 7;
+    uint64_t s = 7;
     for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
         double *x = malloc(sizes[i] * sizeof *x);
-        for (size_t j = 0; x && j < sizes[i]; j++) x[j] = (double)(next_bits(&s) >> 11) * 1e-9;
+        for (size_t j = 0; x && j < sizes[i]; j++) x[j] = (double)(ps_random_bits(&s) >> 11) * 1e-9;
         if (x) check_ranks(x, sizes[i]);
         free(x);
     }
@@ -54,18 +50,18 @@ static void test_random_values(void) {
 
 static void test_many_equal_values(void) {
     size_t n = 200000;
-    unsigned long long s = 3;
+    uint64_t s = 3;
     double *x = malloc(n * sizeof *x);
-    for (size_t j = 0; x && j < n; j++) x[j] = (double)(next_bits(&s) % 17);
+    for (size_t j = 0; x && j < n; j++) x[j] = (double)(ps_random_bits(&s) % 17);
     if (x) check_ranks(x, n);
     free(x);
 }
 
 static void test_one_crowded_bin(void) {
     size_t n = 150000;
-    unsigned long long s = 11;
+    uint64_t s = 11;
     double *x = malloc(n * sizeof *x);
-    for (size_t j = 0; x && j < n; j++) x[j] = 1.0 + (double)(next_bits(&s) % 1000) * 1e-12;
+    for (size_t j = 0; x && j < n; j++) x[j] = 1.0 + (double)(ps_random_bits(&s) % 1000) * 1e-12;
     if (x) x[5] = 1e9, x[n - 7] = -1e9; /* the range's ends, far from the crowd */
     if (x) check_ranks(x, n);
     free(x);

@@ -4,6 +4,7 @@
  * share their high bytes; the grouping of items by label, with an empty
  * group; and the selection of the k-th smallest value against a sort, with
  * ties. */
+#include "random_bits.h"
 #include "testlib.h"
 #include "util/sort_util.h"
 
@@ -56,8 +57,7 @@ static void check_radix(size_t n, uint32_t mask) {
     REQUIRE(keys && expect && scratch);
     uint64_t state = 88172645463325252ull;
     for (size_t i = 0; i < n; i++) {
-        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
-        keys[i] = (uint32_t)(state >> 20) & mask;
+        keys[i] = (uint32_t)(ps_random_bits(&state) >> 20) & mask;
     }
     if (n > 2) keys[0] = UINT32_MAX & mask, keys[1] = 0;
     memcpy(expect, keys, n * sizeof *keys);
@@ -86,8 +86,7 @@ static void test_order_by_key_stable(void) {
     for (size_t m = 0; m < sizeof masks / sizeof *masks; m++) {
         uint64_t state = 88172645463325252ull;
         for (size_t i = 0; i < N; i++) {
-            state ^= state << 13, state ^= state >> 7, state ^= state << 17;
-            keys[i] = (uint32_t)(state >> 20) & masks[m];
+            keys[i] = (uint32_t)(ps_random_bits(&state) >> 20) & masks[m];
         }
         ps_order_by_u32(keys, N, order, scratch);
         int seen_ok = 1;
