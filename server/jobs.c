@@ -188,20 +188,24 @@ static ps_job_done_fn finish_locked(ps_jobs *q, ps_job *job, ps_job_state state,
 
 /* Waits for the next queued job; NULL when stopping and the queue is empty. */
 static ps_job *next_job_locked(ps_jobs *q) {
-    for (;;) {
-        while (!q->count && !q->stopping) pthread_cond_wait(&q->work, &q->lock);
-        if (!q->count) return NULL;
-        ps_job *job = q->ring[q->head];
-        q->head = (q->head + 1) % (size_t)q->cfg.queue_size;
-        q->count--;
-        if (job->state == PS_JOB_QUEUED) return job;
-        ps_job *dead = unref_locked(job);
-        if (dead) {
-            pthread_mutex_unlock(&q->lock);
-            job_free(dead);
-            pthread_mutex_lock(&q->lock);
-        }
-    }
+    while (!q->count && !q->stopping) pthread_cond_wait(&q->work, &q->lock);
+    if (!q->count) return NULL;
+    ps_job *job = q->ring[q->head];
+    q->head = (q->head + 1) % (size_t)q->cfg.queue_size;
+    q->count--;
+    return job;
+}
+
+/* Takes a queued job out of the ring, the others keeping their order, so
+ * that its slot is free at once.  The ring's reference is dropped; the
+ * caller's and the registry's remain. */
+static void dequeue_locked(ps_jobs *q, ps_job *job) {
+    size_t cap = (size_t)q->cfg.queue_size, i = 0;
+    while (i < q->count && q->ring[(q->head + i) % cap] != job) i++;
+    if (i == q->count) return;
+    for (; i + 1 < q->count; i++) q->ring[(q->head + i) % cap] = q->ring[(q->head + i + 1) % cap];
+    q->count--;
+    job->refs--;
 }
 
 static void *worker_main(void *arg) {
@@ -355,16 +359,17 @@ void ps_job_cancel(ps_job *job) {
     void *user = NULL;
     pthread_mutex_lock(&q->lock);
     ps_cancel_raise(&job->cancel);
-    if (job->state == PS_JOB_QUEUED) done = finish_locked(q, job, PS_JOB_CANCELLED, &user);
+    if (job->state == PS_JOB_QUEUED) {
+        dequeue_locked(q, job);
+        done = finish_locked(q, job, PS_JOB_CANCELLED, &user);
+    }
     pthread_mutex_unlock(&q->lock);
     if (done) done(user);
 }
 
 void ps_jobs_get_stats(ps_jobs *q, ps_jobs_stats *st) {
     pthread_mutex_lock(&q->lock);
-    st->queued = 0;
-    for (size_t i = 0; i < q->count; i++)
-        st->queued += q->ring[(q->head + i) % (size_t)q->cfg.queue_size]->state == PS_JOB_QUEUED;
+    st->queued = q->count;
     st->running = q->running;
     st->kept = q->registered;
     st->kept_bytes = 0;

@@ -127,7 +127,8 @@ static void test_job_runs_to_its_document(void) {
 }
 
 /* queue_size 2, the worker held: two jobs wait, a third is refused (503);
- * a queued job cancelled is final at once, and the worker skips it. */
+ * a queued job cancelled is final at once and frees its slot for another
+ * job (the queue is no longer full), and the worker skips it. */
 static void test_full_queue_and_queued_cancel(void) {
     ps_jobs_config cfg = config(2, 10, 600);
     ps_jobs *q = ps_jobs_start(&cfg);
@@ -153,9 +154,15 @@ static void test_full_queue_and_queued_cancel(void) {
     ps_jobs_stats stats;
     ps_jobs_get_stats(q, &stats);
     CHECK(stats.queued == 1 && stats.running == 0 && stats.jobs_cancelled == 1);
+    CHECK(ps_jobs_full(q) == 0);
+    ps_job *c = submit(q, dumbbell(), NULL, NULL);
+    CHECK(c != NULL && ps_jobs_full(q) == 1);
     gate_open(&g);
     CHECK(wait_final(a) == PS_JOB_DONE);
-    ps_job_release(holder), ps_job_release(a), ps_job_release(b);
+    CHECK(c && wait_final(c) == PS_JOB_DONE);
+    ps_job_get_status(b, &st);
+    CHECK(st.state == PS_JOB_CANCELLED);
+    ps_job_release(holder), ps_job_release(a), ps_job_release(b), ps_job_release(c);
     ps_jobs_drain(q, 10);
     ps_jobs_free(q);
     gate_destroy(&g);
