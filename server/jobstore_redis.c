@@ -13,7 +13,11 @@
 #define CALL_TIMEOUT_S 2.0
 #define QUEUED_KEEP_S 86400 /* a job no worker took for a day is dropped */
 
+/* Queues a job under a fresh id; when its hash exists already, this is the
+ * same submit retried after a call that timed out but ran, and it is not
+ * queued again. */
 static const char submit_script[] =
+    "if redis.call('EXISTS', KEYS[1]) == 1 then return 0 end\n"
     "redis.call('HSET', KEYS[1], 'state', 'queued', 'phase', '0', 'fraction', '0',"
     "  'created', ARGV[7], 'points', ARGV[6], 'media', ARGV[3], 'accept', ARGV[4],"
     "  'params', ARGV[5], 'losses', '0', 'cancel', '0')\n"

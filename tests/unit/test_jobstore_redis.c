@@ -2,8 +2,9 @@
  * (started by the test on a free loopback port): any store reads any job,
  * cancels reach the worker running the job, lapsed leases are taken over,
  * the third loss fails a job, Redis going away gives 503s and coming back
- * heals by itself, shutdown hands running jobs back, kept results stay
- * within their byte budget. */
+ * heals by itself, a submit retried after Redis stalled queues its job
+ * once, shutdown hands running jobs back, kept results stay within their
+ * byte budget. */
 #include "daemon_proc.h"
 #include "job_runner.h"
 #include "jobstore_redis.h"
@@ -11,6 +12,8 @@
 #include "testlib.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -327,6 +330,58 @@ static void test_restart_between_calls(void) {
     ps_jobstore_free(store);
 }
 
+/* The entries of the shared stream that name job id. */
+static int stream_entries_of(const char *id) {
+    redisContext *c = ps_test_redis_connect(&server);
+    redisReply *r = c ? redisCommand(c, "XRANGE pointseg:jobs - +") : NULL;
+    int n = 0;
+    for (size_t i = 0; r && r->type == REDIS_REPLY_ARRAY && i < r->elements; i++) {
+        const redisReply *fields = r->element[i]->element[1];
+        n += fields->elements == 2 && !strcmp(fields->element[1]->str, id);
+    }
+    if (r) freeReplyObject(r);
+    if (c) redisFree(c);
+    return n;
+}
+
+static void *wake_redis_later(void *arg) {
+    (void)arg;
+    ps_test_sleep_ms(2500);
+    kill(server.pid, SIGCONT);
+    return NULL;
+}
+
+/* Submits u on s while Redis is stopped (SIGSTOP) for 2.5 s, past the
+ * store's 2 s call timeout; the submit's answer. */
+static int submit_during_stall(ps_jobstore *s, upload *u, char *id, size_t cap, ps_api_error *err) {
+    pthread_t waker;
+    if (kill(server.pid, SIGSTOP) || pthread_create(&waker, NULL, wake_redis_later, NULL)) {
+        kill(server.pid, SIGCONT);
+        return ps_api_fail(err, 500, "cannot stall Redis");
+    }
+    int rc = ps_jobstore_submit(s, &u->up, id, cap, err);
+    pthread_join(waker, NULL);
+    return rc;
+}
+
+/* Redis stalls past the call timeout while a job is submitted: the call
+ * times out, the store retries on a new connection, and Redis, awake
+ * again, runs both.  The job is queued once, and the submit succeeds. */
+static void test_submit_retried_after_stall_queues_once(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    upload u;
+    ps_api_error err;
+    char id[96];
+    REQUIRE(make_upload(&u, SMALL_POINTS, 0) == 0);
+    ps_jobstore *front = open_store(0);
+    REQUIRE(front && ps_jobstore_ready(front, &err) == 0); /* the pooled connection is open */
+    int rc = submit_during_stall(front, &u, id, sizeof id, &err);
+    CHECK_MSG(rc == 0, "submit: %d %s", err.http_status, err.message);
+    CHECK_MSG(rc || stream_entries_of(id) == 1, "job %s queued %d times", id, stream_entries_of(id));
+    ps_jobstore_free(front);
+    free_upload(&u);
+}
+
 /* Shutdown with a job running past the drain time: the job goes back to the
  * queue (not counted as a loss) and another store's worker finishes it. */
 static void test_drain_hands_back(void) {
@@ -413,4 +468,5 @@ static void test_result_byte_budget(void) {
 PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(test_cancel_reaches_worker),
              TEST(test_lapsed_lease_is_taken_over), TEST(test_third_loss_fails_job),
              TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
+             TEST(test_submit_retried_after_stall_queues_once),
              TEST(test_drain_hands_back), TEST(test_result_byte_budget))
