@@ -26,7 +26,7 @@
 #define WATCH_PERIOD_MS 100
 #define IO_THREADS 4
 #define HEALTH_ROOM 8                  /* connections over --max-connections, for health checks */
-#define DRAIN_LIMIT (1u << 20)         /* bodies read to keep the connection after an early error */
+#define DRAIN_LIMIT (1u << 20)         /* body bytes read to keep the connection after an error */
 #define PROCESSING "HTTP/1.1 102 Processing\r\n\r\n"
 
 struct ps_http {
@@ -100,6 +100,21 @@ static enum MHD_Result queue_pending(ps_request *r) {
     return rc;
 }
 
+/* A piece of the body.  A body that failed (over --max-body, bad gzip or
+ * multipart) is read on to its end, so that the connection stays open,
+ * for DRAIN_LIMIT bytes at most: a longer one, or an endless chunked one,
+ * gets its answer on the socket at once and the connection closes (no
+ * answer may be queued while a body is still coming). */
+static enum MHD_Result body_piece(ps_request *r, const char *upload, size_t size) {
+    ps_guard_received(r->srv->guard, r->guard_conn, size);
+    if (r->status || !r->body) return MHD_YES;
+    if (r->failed) r->read_after_failure += size;
+    else if (ps_body_feed(r->body, upload, size, &r->error)) r->failed = 1;
+    if (r->read_after_failure <= DRAIN_LIMIT) return MHD_YES;
+    r->answer_direct = 1;
+    return ps_respond_error(r, &r->error);
+}
+
 static enum MHD_Result on_request(void *cls, struct MHD_Connection *conn, const char *url,
                                   const char *method, const char *version, const char *upload,
                                   size_t *upload_size, void **state) {
@@ -111,11 +126,9 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *conn, const 
     }
     if (!r->seen) return head_received(r, url, method, version);
     if (*upload_size) {
-        ps_guard_received(r->srv->guard, r->guard_conn, *upload_size);
-        if (!r->status && r->body && !r->failed && ps_body_feed(r->body, upload, *upload_size, &r->error))
-            r->failed = 1;
+        size_t size = *upload_size;
         *upload_size = 0;
-        return MHD_YES;
+        return body_piece(r, upload, size);
     }
     ps_guard_upload_done(r->srv->guard, r->guard_conn);
     if (r->pending) return queue_pending(r);

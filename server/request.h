@@ -66,6 +66,7 @@ struct ps_request {
     ps_body *body;
     ps_api_error error;       /* upload failure, or a failed submit */
     int failed;
+    size_t read_after_failure; /* body bytes read since it failed */
     int suspended;            /* waits for its synchronous job */
     ps_job *job;              /* synchronous job, referenced */
     int waiting;              /* linked in srv->waiting */

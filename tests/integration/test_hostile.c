@@ -1,13 +1,13 @@
 /*
  * test_hostile.c: pointsegd against hostile and sloppy clients (issue 17):
  * results freed once sent and a byte budget for kept ones, connection
- * limits and slow-client deadlines, prompt answers to refused requests,
- * static files confined to their directory, no silent loss in bodies
- * (gzip members, BOM, two file parts), strict parameters and headers,
- * problem+json that is valid UTF-8, keep-alive after GETs and early
- * errors, and half-closed clients.  Each test starts BUILD/pointsegd on a
- * free port; most talk over raw sockets, for requests libcurl would not
- * send.
+ * limits and slow-client deadlines, prompt answers to refused requests and
+ * to endless bodies over the size limit, static files confined to their
+ * directory, no silent loss in bodies (gzip members, BOM, two file parts),
+ * strict parameters and headers, problem+json that is valid UTF-8,
+ * keep-alive after GETs and early errors, and half-closed clients.  Each
+ * test starts BUILD/pointsegd on a free port; most talk over raw sockets,
+ * for requests libcurl would not send.
  */
 #include "daemon_run.h"
 #include "gzip_body.h"
@@ -17,6 +17,8 @@
 #include <cJSON.h>
 #include <errno.h>
 #include <poll.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -304,6 +306,48 @@ static void test_truncated_body_closed_promptly(void) {
     CHECK_STOPS(d, 10);
 }
 
+typedef struct endless_upload {
+    int fd;
+    atomic_int stop;
+    size_t sent;
+} endless_upload;
+
+/* Sends chunks of XYZ text on u->fd until told to stop or the daemon
+ * closes the connection. */
+static void *send_chunks(void *arg) {
+    endless_upload *u = arg;
+    char chunk[8200];
+    int at = sprintf(chunk, "1f40\r\n");
+    for (int i = 0; i < 8000; i++) chunk[at + i] = i % 6 == 5 ? '\n' : i % 2 ? ' ' : '0';
+    memcpy(chunk + at + 8000, "\r\n", 2);
+    size_t len = (size_t)at + 8002;
+    while (!atomic_load(&u->stop) && send(u->fd, chunk, len, MSG_NOSIGNAL) == (ssize_t)len) u->sent += len;
+    return NULL;
+}
+
+/* A chunked body that goes on past --max-body is answered with the 413 at
+ * once, and the connection closed, instead of being read to its end. */
+static void test_endless_chunked_body_answered(void) {
+    static const char head[] = "POST /segment HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n";
+    ps_daemon d;
+    reply x;
+    pthread_t sender;
+    REQUIRE_STARTS(d, "--max-body", "100000", NULL);
+    endless_upload u = {.fd = ps_daemon_connect(&d, 5), .sent = 0};
+    atomic_init(&u.stop, 0);
+    REQUIRE(u.fd >= 0 && send(u.fd, head, sizeof head - 1, MSG_NOSIGNAL) == (ssize_t)(sizeof head - 1));
+    REQUIRE(pthread_create(&sender, NULL, send_chunks, &u) == 0);
+    read_reply(u.fd, 5, &x);
+    atomic_store(&u.stop, 1);
+    shutdown(u.fd, SHUT_RDWR);
+    pthread_join(sender, NULL);
+    close(u.fd);
+    CHECK_MSG(first_status(&x) == 413 && strstr(x.text, "application/problem+json") && x.closed,
+              "after %.1f s and %zu bytes sent: %.100s", x.seconds, u.sent, x.text);
+    CHECK(ps_daemon_healthy(&d));
+    CHECK_STOPS(d, 10);
+}
+
 /* ---- 4: static files ------------------------------------------------------ */
 
 static void test_static_files_stay_inside(void) {
@@ -550,7 +594,7 @@ int main(int argc, char **argv) {
         TEST(test_sync_results_freed_once_sent), TEST(test_kept_results_byte_budget),
         TEST(test_per_ip_connection_limit), TEST(test_health_checks_get_room),
         TEST(test_slow_headers_and_bodies_cut), TEST(test_refused_requests_answered_promptly),
-        TEST(test_truncated_body_closed_promptly),
+        TEST(test_truncated_body_closed_promptly), TEST(test_endless_chunked_body_answered),
         TEST(test_static_files_stay_inside), TEST(test_gzip_members_all_read), TEST(test_bom_keeps_first_point),
         TEST(test_two_file_parts_refused), TEST(test_strict_parameters_and_headers),
         TEST(test_nul_in_path_refused),
