@@ -63,6 +63,18 @@ static int read_ascii(ply_reader *r, double *v, ps_api_error *err) {
     return 0;
 }
 
+/* An ASCII PLY record is one line (it may wrap onto more): only blanks may
+ * follow its last value on that line.  A line with a value too many or too
+ * few would otherwise shift every later value silently. */
+static int end_record(ply_reader *r, const ps_ply_element *e, uint64_t i, ps_api_error *err) {
+    if (r->format != PS_PLY_ASCII) return 0;
+    r->pos = ps_skip_blanks(r->pos, r->end);
+    if (r->pos == r->end || ps_is_line_end(*r->pos)) return 0;
+    return ps_api_fail(err, 400, "PLY data: values left on the line of %s %llu (%d properties) at byte "
+                       "offset %zu: an ascii PLY line holds one %s", e->name, (unsigned long long)i,
+                       e->n_properties, offset_of(r), e->name);
+}
+
 static int read_value(ply_reader *r, ps_ply_type t, double *v, ps_api_error *err) {
     if (r->format == PS_PLY_ASCII) return read_ascii(r, v, err);
     size_t size = ps_ply_type_size(t);
@@ -140,9 +152,11 @@ static int skip_element(const ps_ply_header *h, const ps_ply_element *e, ply_rea
         r->pos += e->count * min_record_bytes(h, e);
         return 0;
     }
-    for (uint64_t i = 0; i < (e->n_properties ? e->count : 0); i++)
+    for (uint64_t i = 0; i < (e->n_properties ? e->count : 0); i++) {
         for (int k = 0; k < e->n_properties; k++)
             if (skip_property(r, ps_ply_property_of(h, e, k), err)) return -1;
+        if (end_record(r, e, i, err)) return -1;
+    }
     return 0;
 }
 
@@ -231,7 +245,7 @@ static int read_vertices(const ps_ply_header *h, const ps_ply_element *e, ply_re
     if (r->format != PS_PLY_ASCII && !has_lists(h, e))
         return read_vertices_fixed(&plan, count, min_record_bytes(h, e), r);
     for (size_t i = 0; i < count; i++)
-        if (read_vertex_record(h, e, &plan, i, r, err)) return -1;
+        if (read_vertex_record(h, e, &plan, i, r, err) || end_record(r, e, i, err)) return -1;
     return 0;
 }
 
@@ -303,13 +317,15 @@ static int read_faces(const ps_ply_header *h, const ps_ply_element *e, uint64_t 
     int indices = face_index_property(h, e);
     if (check_count(h, e, r, err) || ps_tris_reserve(tris, tris->len / 3 + e->count, err))
         return -1;
-    for (uint64_t i = 0; i < e->count; i++)
+    for (uint64_t i = 0; i < e->count; i++) {
         for (int k = 0; k < e->n_properties; k++) {
             const ps_ply_property *p = ps_ply_property_of(h, e, k);
             int rc = k == indices ? read_polygon(r, p, i, n_vertices, tris, err)
                                   : skip_property(r, p, err);
             if (rc) return -1;
         }
+        if (end_record(r, e, i, err)) return -1;
+    }
     return 0;
 }
 

@@ -1,6 +1,7 @@
 /* test_decode_ply.c: the PLY decoder: ascii and both binary byte orders,
  * every scalar type, skipped properties and elements, faces, and bad input
- * (truncated, lying or huge counts, NaN, bad indices, limits); vertex
+ * (truncated, lying or huge counts, an ascii line with a value too many
+ * or too few, NaN, bad indices, limits); vertex
  * colours; the header helpers. */
 #include <math.h>
 #include <stdint.h>
@@ -304,6 +305,34 @@ static void test_truncated_and_lying(void) {
     CHECK(decode_fails(word, sizeof word - 1, NULL, 400, want));
 }
 
+/* An ascii line with a value too many or too few (of a vertex, a face or
+ * a skipped element) is a 400 naming the record, not values shifted into
+ * the next points; a record wrapped onto a second line still reads. */
+static void test_ascii_line_holds_one_record(void) {
+    static const char head[] = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                               "element face 1\nproperty list uchar int vertex_indices\n"
+                               "element camera 1\nproperty float f\nend_header\n";
+    const struct {
+        const char *data, *words;
+    } bad[] = {
+        {"0 0\n1 0 7\n0 1\n1 1\n3 0 1 2\n5\n", "values left on the line of vertex 1"},
+        {"0 0\n1\n0 1\n1 1\n3 0 1 2\n5\n0\n", "values left on the line of vertex 1"},
+        {"0 0\n1 0\n0 1\n1 1\n3 0 1 2 3\n5\n", "values left on the line of face 0"},
+        {"0 0\n1 0\n0 1\n1 1\n3 0 1 2\n5 6\n", "values left on the line of camera 0"},
+    };
+    char text[512];
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        snprintf(text, sizeof text, "%s%s", head, bad[i].data);
+        CHECK_MSG(text_fails(text, 400, bad[i].words), "case %zu", i);
+    }
+    snprintf(text, sizeof text, "%s0 0\n1 0\n0 1\n1 1\n3 0 1\n 2\n5\n", head);
+    ps_pointset ps;
+    ps_api_error err;
+    REQUIRE(ps_decode_ply(text, strlen(text), NULL, &ps, &err) == 0);
+    CHECK(ps.n == 4 && ps.points[2] == 1 && ps.points[3] == 0 && ps.n_faces == 1);
+    ps_pointset_free(&ps);
+}
+
 static void test_non_finite_and_bad_index(void) {
     static const char nan[] = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
                               "property float y\nend_header\n1 2\nnan 4\n";
@@ -436,6 +465,7 @@ PS_TEST_MAIN(TEST(test_ascii_crlf_any_order), TEST(test_colors_ascii),
              TEST(test_colors_binary_float_and_partial), TEST(test_binary_every_type_both_endians),
              TEST(test_two_dimensional), TEST(test_missing_coordinate),
              TEST(test_huge_declared_count), TEST(test_truncated_and_lying),
+             TEST(test_ascii_line_holds_one_record),
              TEST(test_non_finite_and_bad_index), TEST(test_limits_and_garbage),
              TEST(test_header_line_without_keyword), TEST(test_binary_polygons),
              TEST(test_horse), TEST(test_bunny), TEST(test_shared_value_reader))
