@@ -70,8 +70,20 @@ static double pca_normal(const ps_graph *g, const double *points, size_t p, doub
     return edges > 0 ? residual * (double)(count - 1) / edges : 0;
 }
 
+static double dot3(const double *a, const double *b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* n made unit; a zero n becomes (1, 0, 0).  A given normal whose squared
+ * length overflows or underflows (components near 1e300 or 1e-200) is
+ * first divided by its largest component, so that its direction stays. */
 static void normalize(double n[3]) {
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double len = sqrt(dot3(n, n));
+    if (!(len > 0) || isinf(len)) {
+        double largest = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
+        if (largest > 0) n[0] /= largest, n[1] /= largest, n[2] /= largest;
+        len = sqrt(dot3(n, n));
+    }
     if (len > 0) n[0] /= len, n[1] /= len, n[2] /= len;
     else n[0] = 1, n[1] = n[2] = 0;
 }
@@ -134,10 +146,6 @@ static void offer(orient_walk *w, uint32_t q, uint32_t v, double c) {
         w->cost[q] = c, w->parent[q] = v;
         sift_up(w, w->pos[q], q);
     }
-}
-
-static double dot3(const double *a, const double *b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /* Prim's tree from root over its component: each vertex is flipped to

@@ -1,5 +1,6 @@
 /* test_normals.c: PCA normals on a sphere come out unit and outward, given
- * normals that point inward are flipped outward, a shifted, rotated copy
+ * normals that point inward are flipped outward and made unit whatever
+ * their length, a shifted, rotated copy
  * keeps its orientation (also when its most extreme point lies on a thin
  * fin, whose normal is sideways), a bowl with a rounded rim seen from
  * above (open, where the divergence vote alone turns it inside out) comes
@@ -115,24 +116,33 @@ static void test_fin_does_not_decide_the_sign(void) {
     }
 }
 
+/* Given normals that point inward are flipped outward and made unit,
+ * whatever their length: also one whose squared length overflows (1e300)
+ * or underflows (1e-200), which came out zero and (1, 0, 0). */
 static void test_given_inward_flipped(void) {
+    const double lengths[] = {2, 1e300, 1e-200};
     size_t n;
     double *pts = ps_shape_sphere(0, &n, NULL);
     double *inward = malloc(n * 3 * sizeof *inward), *nrm = malloc(n * 3 * sizeof *nrm);
-    for (size_t i = 0; i < 3 * n; i++) inward[i] = -2 * pts[i]; /* not unit either */
     ps_graph g;
     REQUIRE(ps_knn_graph_build(pts, n, 3, 7, 1, &g, NULL) == PS_OK);
     int *comp = calloc(n, sizeof *comp);
-    ps_normals_report report = {-1, -1};
-    ps_normals_input in = {.graph = &g, .points = pts, .given = inward, .component = comp,
-                           .n_components = 1, .smooth = 1};
-    REQUIRE(ps_normals_build(&in, nrm, &report, NULL) == PS_OK);
-    CHECK(report.smoothing == 0 && report.noise == 0); /* given normals: nothing measured */
-    const double c[3] = {0, 0, 0};
-    CHECK(outward_share(pts, nrm, n, c) == 1.0);
-    for (size_t p = 0; p < n; p++) /* the given direction, made unit and outward */
-        CHECK_NEAR(nrm[3 * p] * pts[3 * p] + nrm[3 * p + 1] * pts[3 * p + 1] +
-                       nrm[3 * p + 2] * pts[3 * p + 2], 1.0, 1e-6);
+    for (int l = 0; l < 3; l++) {
+        for (size_t i = 0; i < 3 * n; i++) inward[i] = -lengths[l] * pts[i];
+        ps_normals_report report = {-1, -1};
+        ps_normals_input in = {.graph = &g, .points = pts, .given = inward, .component = comp,
+                               .n_components = 1, .smooth = 1};
+        REQUIRE(ps_normals_build(&in, nrm, &report, NULL) == PS_OK);
+        CHECK(report.smoothing == 0 && report.noise == 0); /* given normals: nothing measured */
+        const double c[3] = {0, 0, 0};
+        CHECK(outward_share(pts, nrm, n, c) == 1.0);
+        size_t off = 0; /* the given direction, made unit and outward */
+        for (size_t p = 0; p < n; p++)
+            off += fabs(nrm[3 * p] * pts[3 * p] + nrm[3 * p + 1] * pts[3 * p + 1] +
+                        nrm[3 * p + 2] * pts[3 * p + 2] - 1.0) > 1e-6;
+        CHECK_MSG(off == 0, "length %g: %zu of %zu normals not the given direction", lengths[l],
+                  off, n);
+    }
     ps_graph_free(&g);
     free(pts), free(inward), free(nrm), free(comp);
 }
