@@ -121,8 +121,9 @@ typedef struct ps_input {
     int dim;               /* 2 <= dim <= PS_MAX_DIM; method auto segments 2-D
                               points as the plane z = 0 in 3-D (a flat surface,
                               whose parts stick out of its outline) */
-    const double *normals; /* optional #P by dim, row major; NULL if absent
-                              (2-D normals are dropped with the lift) */
+    const double *normals; /* optional #P by dim, row major, finite, of any
+                              length; NULL if absent (2-D normals are
+                              dropped with the lift) */
     const uint32_t *faces; /* optional #F by 3 triangles of a mesh (indices into
                               points); NULL if absent.  Method auto, dim 3,
                               centrality not exact: a mesh of fewer than

@@ -127,14 +127,9 @@ ps_status ps_segment_phase(ps_pipeline *pl, ps_phase ph, ps_error *err) {
     return PS_OK;
 }
 
-static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *err) {
-    if (!in || !in->points || in->n == 0)
-        return ps_fail(err, PS_ERR_INVALID, "no points");
-    if (in->dim < 2 || in->dim > PS_MAX_DIM)
-        return ps_fail(err, PS_ERR_INVALID, "dimension must be in [2, %d], got %d",
-                       PS_MAX_DIM, in->dim);
-    if (in->n > UINT32_MAX - 1)
-        return ps_fail(err, PS_ERR_INVALID, "too many points (%zu)", in->n);
+/* Every coordinate finite and within PS_MAX_COORDINATE, every given
+ * normal's component finite. */
+static ps_status check_values(const ps_input *in, ps_error *err) {
     size_t count = in->n * (size_t)in->dim;
     for (size_t i = 0; i < count; i++) {
         if (!isfinite(in->points[i]))
@@ -145,6 +140,23 @@ static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *e
                            "point %zu has a coordinate beyond +-%g (squared distances "
                            "would overflow)", i / (size_t)in->dim, PS_MAX_COORDINATE);
     }
+    for (size_t i = 0; in->normals && i < count; i++)
+        if (!isfinite(in->normals[i]))
+            return ps_fail(err, PS_ERR_INVALID, "point %zu has a non-finite normal",
+                           i / (size_t)in->dim);
+    return PS_OK;
+}
+
+static ps_status check_input(const ps_input *in, const ps_params *p, ps_error *err) {
+    if (!in || !in->points || in->n == 0)
+        return ps_fail(err, PS_ERR_INVALID, "no points");
+    if (in->dim < 2 || in->dim > PS_MAX_DIM)
+        return ps_fail(err, PS_ERR_INVALID, "dimension must be in [2, %d], got %d",
+                       PS_MAX_DIM, in->dim);
+    if (in->n > UINT32_MAX - 1)
+        return ps_fail(err, PS_ERR_INVALID, "too many points (%zu)", in->n);
+    ps_status st = check_values(in, err);
+    if (st != PS_OK) return st;
     for (size_t i = 0; in->faces && i < 3 * in->n_faces; i++)
         if (in->faces[i] >= in->n)
             return ps_fail(err, PS_ERR_INVALID, "face %zu refers to point %u, beyond the %zu points",

@@ -1,9 +1,9 @@
 /*
- * test_segment_api.c: ps_segment's interface: bad input fails cleanly with
- * a message, statuses and steps have names of their own, ncut_threshold 0
- * is the method's own, progress is reported (and moves within each phase)
- * and a run can be cancelled, steps are timed, and each merge names the
- * step that made it.
+ * test_segment_api.c: ps_segment's interface: bad input (non-finite
+ * normals too) fails cleanly with a message, statuses and steps have
+ * names of their own, ncut_threshold 0 is the method's own, progress is
+ * reported (and moves within each phase) and a run can be cancelled,
+ * steps are timed, and each merge names the step that made it.
  */
 #include "features/centrality.h"
 #include "pointseg.h"
@@ -17,14 +17,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void expect_invalid(const double *pts, size_t n, int dim, const char *what) {
-    ps_input in = {.points = pts, .n = n, .dim = dim};
+/* ps_segment refuses in with a message that contains `names`. */
+static void expect_input_invalid(const ps_input *in, const char *what, const char *names) {
     ps_result *r = (ps_result *)1;
     ps_error err = {0};
-    ps_status st = ps_segment(&in, NULL, NULL, &r, &err);
+    ps_status st = ps_segment(in, NULL, NULL, &r, &err);
     CHECK_MSG(st == PS_ERR_INVALID, "%s: status %d", what, (int)st);
     CHECK(r == NULL);
-    CHECK_MSG(strlen(err.message) > 0, "%s: no message", what);
+    CHECK_MSG(strlen(err.message) > 0 && strstr(err.message, names), "%s: message \"%s\"", what,
+              err.message);
+}
+
+static void expect_invalid(const double *pts, size_t n, int dim, const char *what) {
+    ps_input in = {.points = pts, .n = n, .dim = dim};
+    expect_input_invalid(&in, what, "");
 }
 
 static void test_bad_input(void) {
@@ -43,6 +49,28 @@ static void test_bad_input(void) {
     expect_invalid(pts, 20, 3, "Inf");
     pts[17] = 1.5e297; /* finite, but its square is not */
     expect_invalid(pts, 20, 3, "huge coordinate");
+}
+
+/* A given normal with a NaN or infinite component is refused, as a
+ * coordinate is (an infinite one became NaN in the normals and the hand
+ * came out in one segment; a NaN one pointed along x). */
+static void test_non_finite_normals_refused(void) {
+    size_t n;
+    double *pts = ps_shape_hand(0, &n, NULL);
+    double *normals = malloc(n * 3 * sizeof *normals);
+    REQUIRE(pts && normals);
+    for (size_t i = 0; i < 3 * n; i++) normals[i] = i % 3 == 2;
+    ps_input in = {.points = pts, .n = n, .dim = 3, .normals = normals};
+    ps_result *r = NULL;
+    ps_error err;
+    REQUIRE(ps_segment(&in, NULL, NULL, &r, &err) == PS_OK);
+    CHECK(r->n_segments > 1);
+    ps_result_free(r);
+    normals[3 * 40] = INFINITY;
+    expect_input_invalid(&in, "infinite normal", "point 40 has a non-finite normal");
+    normals[3 * 40] = NAN;
+    expect_input_invalid(&in, "NaN normal", "point 40 has a non-finite normal");
+    free(pts), free(normals);
 }
 
 /* Every status has its own name, for messages. */
@@ -206,7 +234,7 @@ static void test_merges_name_their_step(void) {
     }
 }
 
-PS_TEST_MAIN(TEST(test_bad_input), TEST(test_status_names),
+PS_TEST_MAIN(TEST(test_bad_input), TEST(test_non_finite_normals_refused), TEST(test_status_names),
              TEST(test_ncut_threshold_method_default), TEST(test_progress_and_cancel),
              TEST(test_progress_moves_within_phases), TEST(test_steps_named_and_timed),
              TEST(test_merges_name_their_step))
