@@ -2,24 +2,26 @@
  * segment.c: ps_segment, the method as a list of steps (steps[] below, in
  * the order docs/method.md describes them), each a call into pipeline.c.
  *
- * ps_segment validates the input and the parameters (method auto takes
- * 2-D points as the plane z = 0 in 3-D), removes duplicate points, then
- * runs the five phases
- * (ps_phase, pointseg.h) one after the other, each its steps in the table's
- * order: those of every method (the paper's: kNN graph, centrality, flow
- * to sinks, normalized cuts, feature-size merge), those of method auto,
- * and those of auto in 3-D, which read normals (crease-aware).  It times
- * each step and phase, reports progress after each step and honours the
- * cancel flag between steps.  The result is assembled by result.c for the
- * caller's points; duplicates get their representative's answers.  With
- * method auto a mesh under the reference sampling (reference_density.h)
- * and an input denser than it go to ensemble.h, which runs the same
- * phases on fills of the mesh's triangles (surface_fill.h) or on draws of
- * the input, and answers from the one the others agree with most.
+ * ps_segment validates the input and the parameters (method auto takes 2-D
+ * points as the plane z = 0 in 3-D), scales points of extreme magnitude by
+ * a power of two (input_scale.h), removes duplicate points, then runs the
+ * five phases (ps_phase, pointseg.h) one after the other, each its steps in
+ * the table's order: those of every method (the paper's: kNN graph,
+ * centrality, flow to sinks, normalized cuts, feature-size merge), those of
+ * method auto, and those of auto in 3-D, which read normals (crease-aware).
+ * It times each step and phase, reports progress after each step and
+ * honours the cancel flag between steps.  The result is assembled by
+ * result.c for the caller's points; duplicates get their representative's
+ * answers.  With method auto a mesh under the reference sampling
+ * (reference_density.h) and an input denser than it go to ensemble.h, which
+ * runs the same phases on fills of the mesh's triangles (surface_fill.h) or
+ * on draws of the input, and answers from the one the others agree with
+ * most.
  */
 #include "ensemble.h"
 #include "graph/surface_fill.h"
 #include "hierarchy/eigen.h"
+#include "input_scale.h"
 #include "pipeline.h"
 #include "pointseg.h"
 #include "segment.h"
@@ -206,19 +208,23 @@ static ps_status segment_input(ps_pipeline *pl, ps_result **out, ps_error *err) 
     return ps_ensemble_segment(pl, draws, distinct, out, err);
 }
 
-/* A 2-D point set is the flat surface it is in 3-D (z = 0), so that
+/* *work: in with a malloc'ed copy of its points (the caller frees
+ * work->points), every coordinate times 2^e (input_scale.h).  With lift,
+ * a 2-D point set becomes the flat surface it is in 3-D (z = 0), so that
  * method auto's surface steps judge it as they judge a plane: a square or
- * a disc one part, a silhouette's limbs apart.  *lifted is in with
- * malloc'ed 3-D points (the caller frees lifted->points); 2-D normals, an
+ * a disc one part, a silhouette's limbs apart; 2-D normals, an
  * outline's, are dropped. */
-static ps_status lift_to_3d(const ps_input *in, ps_input *lifted, ps_error *err) {
-    double *points = malloc(in->n * 3 * sizeof *points);
-    if (!points) return ps_fail(err, PS_ERR_NOMEM, "out of memory (3-D copy of 2-D points)");
+static ps_status copy_input(const ps_input *in, int lift, int e, ps_input *work, ps_error *err) {
+    int dim = lift ? 3 : in->dim;
+    double *points = malloc(in->n * (size_t)dim * sizeof *points);
+    if (!points) return ps_fail(err, PS_ERR_NOMEM, "out of memory (a copy of the points)");
     for (size_t i = 0; i < in->n; i++)
-        points[3 * i] = in->points[2 * i], points[3 * i + 1] = in->points[2 * i + 1],
-        points[3 * i + 2] = 0;
-    *lifted = *in;
-    lifted->points = points, lifted->dim = 3, lifted->normals = NULL;
+        for (int d = 0; d < dim; d++)
+            points[i * (size_t)dim + d] =
+                d < in->dim ? ldexp(in->points[i * (size_t)in->dim + d], e) : 0;
+    *work = *in;
+    work->points = points, work->dim = dim;
+    if (lift) work->normals = NULL;
     return PS_OK;
 }
 
@@ -233,19 +239,22 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     apply_method(&pl.params);
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
-    ps_input lifted;
-    if (pl.params.method == PS_METHOD_AUTO && in->dim == 2) {
-        st = lift_to_3d(in, &lifted, err);
+    ps_input work;
+    int lift = pl.params.method == PS_METHOD_AUTO && in->dim == 2;
+    int e = ps_input_scale_exponent(in->points, in->n, in->dim);
+    if (lift || e != 0) {
+        st = copy_input(in, lift, e, &work, err);
         if (st != PS_OK) return st;
-        pl.in = &lifted;
+        pl.in = &work;
     }
     pl.n_input = in->n;
     pl.points = (double *)pl.in->points;
     pl.threads = ps_parallel_threads(pl.params.threads);
     st = segment_input(&pl, out, err);
     ps_pipeline_free(&pl);
-    if (pl.in == &lifted) free((double *)lifted.points);
+    if (pl.in == &work) free((double *)work.points);
     if (st == PS_OK) {
+        ps_result_unscale(*out, e);
         (*out)->dim = in->dim;
         (*out)->timings = pl.timings;
         (*out)->timings.total_ms = ps_now_ms() - start;

@@ -1,14 +1,16 @@
 /*
  * test_segment_invariance.c: ps_segment's answer does not hang on what
- * should not matter: rotation, translation, uniform scaling, the points'
- * order, the thread count, duplicated points, and (but for a few points)
- * exact or approximate centrality; scans far apart come out apart.
+ * should not matter: rotation, translation, uniform scaling (by a power
+ * of two far from 1 too, exactly), the points' order, the thread count,
+ * duplicated points, and (but for a few points) exact or approximate
+ * centrality; scans far apart come out apart.
  */
 #include "pointseg.h"
 #include "result_checks.h"
 #include "shapes.h"
 #include "testlib.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,6 +35,51 @@ static void check_invariant(double angle, double scale) {
 static void test_rotation_translation(void) { check_invariant(1.1, 1.0); }
 static void test_scale_small(void) { check_invariant(0.0, 0.001); }
 static void test_scale_large(void) { check_invariant(2.5, 1000.0); }
+
+/* The hand scaled by each 2^exponents[i] comes out as it is (#n points,
+ * labels and f of *ref), labels alike and f scaled exactly. */
+static void check_power_of_two_scales(const double *pts, size_t n, const ps_params *p,
+                                      const ps_result *ref, const int *exponents, int count) {
+    double *scaled = malloc(n * 3 * sizeof *scaled);
+    REQUIRE(scaled);
+    for (int i = 0; i < count; i++) {
+        for (size_t j = 0; j < 3 * n; j++) scaled[j] = ldexp(pts[j], exponents[i]);
+        ps_result *r = ps_segment_with(scaled, n, p);
+        REQUIRE(r);
+        ps_check_result_consistent(r);
+        size_t moved = 0, f_off = 0;
+        for (size_t j = 0; j < n; j++) {
+            moved += r->labels[j] != ref->labels[j];
+            f_off += r->centrality[j] != ldexp(ref->centrality[j], exponents[i]);
+        }
+        CHECK_MSG(r->n_segments == ref->n_segments && moved == 0 && f_off == 0,
+                  "%s, 2^%d: %d segments (%d unscaled), %zu labels and %zu f moved",
+                  ps_method_name(p->method), exponents[i], r->n_segments, ref->n_segments, moved,
+                  f_off);
+        ps_result_free(r);
+    }
+    free(scaled);
+}
+
+/* Scaled by a power of two far from 1 the hand is segmented as it is:
+ * at 2^-60 the PCA stopped at an absolute tolerance and labels moved, at
+ * 2^-600 squared distances underflowed to 0 (239 segments), at 2^450
+ * single-precision distances overflowed (input_scale.h). */
+static void test_scale_extreme(void) {
+    const int exponents[] = {-60, -600, 450};
+    size_t n;
+    double *pts = ps_shape_hand(0, &n, NULL);
+    ps_params p;
+    ps_params_default(&p);
+    for (int method = 0; method < 2; method++) {
+        p.method = method ? PS_METHOD_PAPER : PS_METHOD_AUTO;
+        ps_result *ref = ps_segment_with(pts, n, &p);
+        REQUIRE(ref && ref->n_segments > 1);
+        check_power_of_two_scales(pts, n, &p, ref, exponents, 3);
+        ps_result_free(ref);
+    }
+    free(pts);
+}
 
 static void test_permutation(void) {
     size_t n;
@@ -169,6 +216,6 @@ static void test_disconnected_scans(void) {
 }
 
 PS_TEST_MAIN(TEST(test_rotation_translation), TEST(test_scale_small), TEST(test_scale_large),
-             TEST(test_permutation), TEST(test_exact_approx_agree), TEST(test_threads_exact),
+             TEST(test_scale_extreme), TEST(test_permutation), TEST(test_exact_approx_agree), TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
              TEST(test_disconnected_scans))

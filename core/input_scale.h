@@ -1,0 +1,37 @@
+/*
+ * input_scale.h: PRIVATE to the top of core/ (segment.c): the power of two
+ * ps_segment scales a point set by, so that the method's arithmetic runs
+ * at the magnitudes it runs at on ordinary input, and its result back to
+ * the caller's units.
+ *
+ * The squared distance of points 1e-160 apart underflows to 0 (the kNN
+ * search then takes any points for neighbours), the single-precision
+ * distances of the kNN ties and of the coarse centrality lose their digits
+ * below 1e-38 and overflow above 3e38, and the PCA's sweeps stop at an
+ * absolute 1e-30: the hand scaled by 2^-48 or 2^150 moved labels, by
+ * 2^-600 fell into 239 components.  A scaling by a power of two is exact,
+ * so a point set whose typical magnitude lies outside
+ * [2^PS_SCALE_MIN_EXPONENT, 2^PS_SCALE_MAX_EXPONENT] is segmented as its
+ * copy of magnitude about 1, and gets that copy's labels; a point set
+ * inside is segmented as it is.
+ */
+#ifndef PS_INPUT_SCALE_H
+#define PS_INPUT_SCALE_H
+
+#include "pointseg.h"
+
+#define PS_SCALE_MIN_EXPONENT (-16)
+#define PS_SCALE_MAX_EXPONENT 64
+#define PS_SCALE_CEILING_EXPONENT 498 /* 2^498 < PS_MAX_COORDINATE */
+
+/* e such that the #n by dim points times 2^e have their median magnitude
+ * (each point's largest |coordinate|; a few far outliers do not move it)
+ * in [0.5, 1): 0 when it lies within the range above already; a scaling
+ * up stops short of moving a coordinate past 2^PS_SCALE_CEILING_EXPONENT. */
+int ps_input_scale_exponent(const double *points, size_t n, int dim);
+
+/* r's values in the points' units (centralities, feature sizes) times
+ * 2^-e: the caller's units again after a run on the points times 2^e. */
+void ps_result_unscale(ps_result *r, int e);
+
+#endif
