@@ -1,40 +1,71 @@
 /* input_scale.c: the power of two a point set is segmented at, and the
- * result back in the caller's units (input_scale.h).  The median
- * magnitude is read off a count of the points' binary exponents. */
+ * result back in the caller's units (input_scale.h).  The typical extent
+ * is read off a count of binary exponents: of each point's largest
+ * |coordinate - the axes' medians|. */
 #include "input_scale.h"
+
+#include "util/sort_util.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define EXPONENT_LOW (-1075) /* below frexp's exponent of the smallest subnormal */
 #define EXPONENT_COUNT 2101  /* EXPONENT_LOW to 1025, above frexp's of the largest double */
 
-/* frexp's exponent of the point's largest |coordinate|; EXPONENT_LOW for the origin. */
-static int magnitude_exponent(const double *x, int dim) {
+/* frexp's exponent of the largest |x[d] - center[d]| (center NULL: 0);
+ * EXPONENT_LOW when all are 0. */
+static int spread_exponent(const double *x, const double *center, int dim) {
     double largest = 0;
-    for (int d = 0; d < dim; d++) largest = fmax(largest, fabs(x[d]));
+    for (int d = 0; d < dim; d++) largest = fmax(largest, fabs(x[d] - (center ? center[d] : 0)));
     int e = EXPONENT_LOW;
     if (largest > 0) frexp(largest, &e);
     return e;
 }
 
-int ps_input_scale_exponent(const double *points, size_t n, int dim) {
-    size_t *count = calloc(EXPONENT_COUNT, sizeof *count);
-    if (!count) return 0;
+/* center out #dim: the median of each coordinate; column #n scratch. */
+static void axis_medians(const double *points, size_t n, int dim, double *column, double *center) {
+    for (int d = 0; d < dim; d++) {
+        for (size_t i = 0; i < n; i++) column[i] = points[i * (size_t)dim + d];
+        center[d] = ps_select_kth(column, n, n / 2);
+    }
+}
+
+/* The median of the points' spread exponents about center (NULL: the
+ * origin), and the largest through *largest (may be NULL); count
+ * #EXPONENT_COUNT scratch. */
+static int median_exponent(const double *points, size_t n, int dim, const double *center,
+                           size_t *count, int *largest) {
+    memset(count, 0, EXPONENT_COUNT * sizeof *count);
     for (size_t i = 0; i < n; i++)
-        count[magnitude_exponent(points + i * (size_t)dim, dim) - EXPONENT_LOW]++;
-    int median = EXPONENT_LOW, largest = EXPONENT_LOW;
+        count[spread_exponent(points + i * (size_t)dim, center, dim) - EXPONENT_LOW]++;
+    int median = EXPONENT_LOW;
     size_t below = 0;
     for (int b = 0; b < EXPONENT_COUNT; b++) {
         if (count[b] && below < (n + 1) / 2) median = b + EXPONENT_LOW;
-        if (count[b]) largest = b + EXPONENT_LOW;
+        if (count[b] && largest) *largest = b + EXPONENT_LOW;
         below += count[b];
     }
+    return median;
+}
+
+int ps_input_scale_exponent(const double *points, size_t n, int dim) {
+    size_t *count = malloc(EXPONENT_COUNT * sizeof *count);
+    double *column = malloc(n * sizeof *column), center[PS_MAX_DIM];
+    int e = 0, largest = EXPONENT_LOW;
+    if (count && column) {
+        axis_medians(points, n, dim, column, center);
+        int spread = median_exponent(points, n, dim, center, count, NULL);
+        median_exponent(points, n, dim, NULL, count, &largest);
+        if (spread != EXPONENT_LOW &&
+            (spread <= PS_SCALE_MIN_EXPONENT || spread > PS_SCALE_MAX_EXPONENT)) {
+            int headroom = PS_SCALE_CEILING_EXPONENT - largest;
+            e = -spread > headroom ? (headroom > 0 ? headroom : 0) : -spread;
+        }
+    }
     free(count);
-    if (median == EXPONENT_LOW || (median > PS_SCALE_MIN_EXPONENT && median <= PS_SCALE_MAX_EXPONENT))
-        return 0;
-    int e = -median, headroom = PS_SCALE_CEILING_EXPONENT - largest;
-    return e > 0 && e > headroom ? (headroom > 0 ? headroom : 0) : e;
+    free(column);
+    return e;
 }
 
 void ps_result_unscale(ps_result *r, int e) {

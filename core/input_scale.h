@@ -10,10 +10,12 @@
  * below 1e-38 and overflow above 3e38, and the PCA's sweeps stop at an
  * absolute 1e-30: the hand scaled by 2^-48 or 2^150 moved labels, by
  * 2^-600 fell into 239 components.  A scaling by a power of two is exact,
- * so a point set whose typical magnitude lies outside
+ * so a point set whose typical extent lies outside
  * [2^PS_SCALE_MIN_EXPONENT, 2^PS_SCALE_MAX_EXPONENT] is segmented as its
- * copy of magnitude about 1, and gets that copy's labels; a point set
- * inside is segmented as it is.
+ * copy of extent about 1, and gets that copy's labels; a point set inside
+ * is segmented as it is.  The extent, not the distance from the origin:
+ * a small object far from the origin (1e-12 across at 1e-3) is as small,
+ * and a large one far away must not be scaled to a speck.
  */
 #ifndef PS_INPUT_SCALE_H
 #define PS_INPUT_SCALE_H
@@ -24,10 +26,12 @@
 #define PS_SCALE_MAX_EXPONENT 64
 #define PS_SCALE_CEILING_EXPONENT 498 /* 2^498 < PS_MAX_COORDINATE */
 
-/* e such that the #n by dim points times 2^e have their median magnitude
- * (each point's largest |coordinate|; a few far outliers do not move it)
- * in [0.5, 1): 0 when it lies within the range above already; a scaling
- * up stops short of moving a coordinate past 2^PS_SCALE_CEILING_EXPONENT. */
+/* e such that the #n by dim points times 2^e have their typical extent
+ * (the median over the points of the largest |coordinate - that axis's
+ * median|: a few far outliers do not move it, nor does a place far from
+ * the origin) in [0.5, 1): 0 when it lies within the range above already,
+ * or without memory; a scaling up stops short of moving a coordinate past
+ * 2^PS_SCALE_CEILING_EXPONENT. */
 int ps_input_scale_exponent(const double *points, size_t n, int dim);
 
 /* r's values in the points' units (centralities, feature sizes) times

@@ -117,10 +117,10 @@ const char *ps_method_name(ps_method method);
 
 typedef struct ps_input {
     const double *points;  /* #P by dim, row major; finite, at most
-                              PS_MAX_COORDINATE; points of a magnitude far
-                              from 1 (typically below 2^-16 or above 2^64)
-                              are segmented as their copy scaled by a power
-                              of two to about 1 (core/input_scale.h) */
+                              PS_MAX_COORDINATE; a point set whose typical
+                              extent is far from 1 (below 2^-16 or above
+                              2^64) is segmented as its copy scaled by a
+                              power of two to about 1 (core/input_scale.h) */
     size_t n;              /* #P */
     int dim;               /* 2 <= dim <= PS_MAX_DIM; method auto segments 2-D
                               points as the plane z = 0 in 3-D (a flat surface,

@@ -81,6 +81,35 @@ static void test_scale_extreme(void) {
     free(pts);
 }
 
+/* A shape far from the origin is judged by its own extent: the hand
+ * 2^-50 across at 2^-10 (where the PCA's absolute tolerance stops its
+ * sweeps unless the points are scaled up), and 2^40 across at 2^80 (an
+ * ordinary extent, not to be scaled down to a speck), come out as the
+ * hand does but for the translation's rounding. */
+static void test_scale_far_from_origin(void) {
+    const int scale_exponents[] = {-50, 40};
+    const double offsets[][3] = {{0x1p-10, 0x1p-10, 0x1p-10}, {0x1p80, 0x1p80, 0x1p80}};
+    size_t n;
+    double *pts = ps_shape_hand(0, &n, NULL), *moved_pts = malloc(n * 3 * sizeof *moved_pts);
+    REQUIRE(pts && moved_pts);
+    ps_result *ref = ps_segment_default(pts, n);
+    REQUIRE(ref && ref->n_segments > 1);
+    for (int c = 0; c < 2; c++) {
+        for (size_t j = 0; j < 3 * n; j++)
+            moved_pts[j] = ldexp(pts[j], scale_exponents[c]) + offsets[c][j % 3];
+        ps_result *r = ps_segment_default(moved_pts, n);
+        REQUIRE(r);
+        double moved = ps_moved_share(ref, r->labels, n);
+        CHECK_MSG(r->n_segments == ref->n_segments && moved <= 0.01,
+                  "2^%d across, far from the origin: %d segments (%d), %.4f of the labels moved",
+                  scale_exponents[c], r->n_segments, ref->n_segments, moved);
+        ps_result_free(r);
+    }
+    ps_result_free(ref);
+    free(moved_pts);
+    free(pts);
+}
+
 static void test_permutation(void) {
     size_t n;
     double *pts = ps_shape_star(0, &n, NULL);
@@ -216,6 +245,7 @@ static void test_disconnected_scans(void) {
 }
 
 PS_TEST_MAIN(TEST(test_rotation_translation), TEST(test_scale_small), TEST(test_scale_large),
-             TEST(test_scale_extreme), TEST(test_permutation), TEST(test_exact_approx_agree), TEST(test_threads_exact),
+             TEST(test_scale_extreme), TEST(test_scale_far_from_origin),
+             TEST(test_permutation), TEST(test_exact_approx_agree), TEST(test_threads_exact),
              TEST(test_threads_approx), TEST(test_duplicates_share_labels),
              TEST(test_disconnected_scans))
