@@ -7,6 +7,7 @@
 #include "features/normals_outward.h"
 #include "features/normals_smooth.h"
 #include "util/control.h"
+#include "util/sym3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -15,40 +16,6 @@
 #define PCA_BLOCK 4096 /* points per work item of the PCA */
 #define PCA_SHARE 0.6  /* progress share of the PCA; the orientation follows */
 #define PROGRESS_STEP 65536 /* vertices between reports of the orientation */
-
-/* Smallest-eigenvalue eigenvector of the symmetric 3x3 matrix a (Jacobi);
- * returns that eigenvalue. */
-static double smallest_eigenvector(double a[3][3], double v[3]) {
-    double e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int sweep = 0; sweep < 32; sweep++) {
-        double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
-        if (off < 1e-30) break;
-        for (int p = 0; p < 2; p++)
-            for (int q = p + 1; q < 3; q++) {
-                if (fabs(a[p][q]) < 1e-300) continue;
-                double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-                double t = (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
-                double c = 1 / sqrt(t * t + 1), s = t * c;
-                for (int k = 0; k < 3; k++) {
-                    double akp = a[k][p], akq = a[k][q];
-                    a[k][p] = c * akp - s * akq, a[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 3; k++) {
-                    double apk = a[p][k], aqk = a[q][k];
-                    a[p][k] = c * apk - s * aqk, a[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 3; k++) {
-                    double ekp = e[k][p], ekq = e[k][q];
-                    e[k][p] = c * ekp - s * ekq, e[k][q] = s * ekp + c * ekq;
-                }
-            }
-    }
-    int best = 0;
-    for (int i = 1; i < 3; i++)
-        if (a[i][i] < a[best][best]) best = i;
-    for (int k = 0; k < 3; k++) v[k] = e[k][best];
-    return a[best][best];
-}
 
 /* n: the PCA normal of p and its neighbours.  Returns the noise ratio of
  * normals_smooth.h: their RMS distance to the PCA plane over p's mean edge
@@ -65,7 +32,7 @@ static double pca_normal(const ps_graph *g, const double *points, size_t p, doub
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) cov[i][j] += (x[i] - mean[i]) * (x[j] - mean[j]);
     }
-    double residual = sqrt(fmax(smallest_eigenvector(cov, n), 0) / (double)count), edges = 0;
+    double residual = sqrt(fmax(ps_sym3_smallest(cov, n), 0) / (double)count), edges = 0;
     for (size_t e = g->offsets[p]; e < g->offsets[p + 1]; e++) edges += g->weights[e];
     return edges > 0 ? residual * (double)(count - 1) / edges : 0;
 }

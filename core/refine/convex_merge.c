@@ -2,11 +2,12 @@
  * convex_merge.c: adjacent segments whose union is convex merge
  * (convex_merge.h), over the adjacency of segment_graph.h with the crease
  * merge's creased boundary edges marked, and a sample of each segment's
- * points.
+ * points with their patch normals (patch_normal.h).
  */
 #include "refine/convex_merge.h"
 
 #include "features/crease.h"
+#include "features/patch_normal.h"
 #include "refine/crease_merge.h"
 #include "refine/segment_graph.h"
 
@@ -19,11 +20,13 @@
 typedef struct samples {
     uint32_t *point; /* #n_groups by SAMPLES */
     int *count;      /* #n_groups */
+    double *normal;  /* #P by 3: the sampled points' patch normals */
 } samples;
 
 static void samples_free(samples *s) {
     free(s->point);
     free(s->count);
+    free(s->normal);
 }
 
 /* Rank of a segment's j-th sample point among its size points (size >
@@ -71,31 +74,40 @@ static double dot3(const double *u, const double *v) {
     return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
 }
 
-/* Whether a point at offset d from a surface point lies behind its tangent
- * plane: d . n <= 0, up to PS_CONVEX_MERGE_TOLERANCE |d|. */
-static int behind(const double *d, const double *n) {
+/* Where a point at offset d from a surface point lies against its tangent
+ * plane: IN_FRONT, ON_PLANE (|d . n| within PS_CONVEX_MERGE_TOLERANCE
+ * |d|) or BEHIND (further back). */
+enum { IN_FRONT, ON_PLANE, BEHIND };
+
+static int side_of(const double *d, const double *n) {
     double along = dot3(d, n);
-    return along <= 0 ||
-           along * along <= PS_CONVEX_MERGE_TOLERANCE * PS_CONVEX_MERGE_TOLERANCE * dot3(d, d);
+    double tolerance2 = PS_CONVEX_MERGE_TOLERANCE * PS_CONVEX_MERGE_TOLERANCE * dot3(d, d);
+    if (along * along <= tolerance2) return ON_PLANE;
+    return along < 0 ? BEHIND : IN_FRONT;
 }
 
-/* The fraction of sample pairs (p of a, q of b) each behind the other's
- * tangent plane. */
+/* The fraction of sample pairs (p of a, q of b) each behind or on the
+ * other's tangent plane; 0 unless at least PS_CONVEX_MERGE_DEPTH of them
+ * have one behind the other's plane (a flat union has no depth). */
 static double convexity(const ps_merge_input *in, const samples *s, int a, int b) {
     const uint32_t *pa = s->point + (size_t)a * SAMPLES, *pb = s->point + (size_t)b * SAMPLES;
     int ca = s->count[a], cb = s->count[b];
     if (ca == 0 || cb == 0) return 0;
-    long pass = 0;
+    long pass = 0, deep = 0;
     for (int i = 0; i < ca; i++) {
-        const double *x = in->points + 3 * (size_t)pa[i], *nx = in->normals + 3 * (size_t)pa[i];
+        const double *x = in->points + 3 * (size_t)pa[i], *nx = s->normal + 3 * (size_t)pa[i];
         for (int j = 0; j < cb; j++) {
             const double *y = in->points + 3 * (size_t)pb[j];
             double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
             double back[3] = {-d[0], -d[1], -d[2]};
-            pass += behind(d, nx) && behind(back, in->normals + 3 * (size_t)pb[j]);
+            int q_side = side_of(d, nx), p_side = side_of(back, s->normal + 3 * (size_t)pb[j]);
+            if (q_side == IN_FRONT || p_side == IN_FRONT) continue;
+            pass++;
+            deep += q_side == BEHIND || p_side == BEHIND;
         }
     }
-    return (double)pass / ((double)ca * (double)cb);
+    double pairs = (double)ca * (double)cb;
+    return (double)deep >= PS_CONVEX_MERGE_DEPTH * pairs ? (double)pass / pairs : 0;
 }
 
 /* The convexity at which record i's pair merges: lower when part of its
@@ -129,25 +141,39 @@ static int merge_pair(ps_segment_graph *sg, samples *s, size_t i, ps_merge **mer
     return ps_segment_graph_merge(sg, loser, winner, merges, n_merges);
 }
 
-static ps_status samples_init(samples *s, const ps_segment_graph *sg, const int *group,
-                              size_t n, ps_error *err) {
-    size_t m = (size_t)(sg->n_groups > 0 ? sg->n_groups : 1);
+/* The samples' patch normals; ids #m_groups * SAMPLES scratch. */
+static ps_status sample_normals(const ps_merge_input *in, samples *s, size_t m_groups,
+                                uint32_t *ids, ps_error *err) {
+    size_t m = 0;
+    for (size_t g = 0; g < m_groups; g++)
+        for (int j = 0; j < s->count[g]; j++) ids[m++] = s->point[g * SAMPLES + (size_t)j];
+    return ps_patch_normals(in->graph, in->points, in->normals, ids, m, s->normal, err);
+}
+
+static ps_status samples_init(samples *s, const ps_merge_input *in, const ps_segment_graph *sg,
+                              const int *group, ps_error *err) {
+    size_t m = (size_t)(sg->n_groups > 0 ? sg->n_groups : 1), n = in->graph->n;
     s->point = malloc(m * SAMPLES * sizeof *s->point);
     s->count = calloc(m, sizeof *s->count);
+    s->normal = malloc(3 * n * sizeof *s->normal);
     size_t *rank = calloc(m, sizeof *rank);
+    uint32_t *ids = malloc(m * SAMPLES * sizeof *ids);
     ps_status st = PS_OK;
-    if (!s->point || !s->count || !rank)
+    if (!s->point || !s->count || !s->normal || !rank || !ids) {
         st = ps_fail(err, PS_ERR_NOMEM, "out of memory (convex merge)");
-    else
+    } else {
         first_samples(s, group, n, sg->size, rank);
+        st = sample_normals(in, s, m, ids, err);
+    }
     free(rank);
+    free(ids);
     return st;
 }
 
 ps_status ps_convex_merge(const ps_merge_input *in, int *group_of_point,
                           int *group_of_leaf, ps_merge **merges, int *n_merges,
                           ps_error *err) {
-    if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* convex everywhere */
+    if (in->mean_angular < PS_CREASE_FLAT) return PS_OK; /* flat: no depth anywhere */
     ps_segment_graph sg;
     ps_crease_test test = ps_crease_test_of(in);
     ps_segment_graph_input sgi = {.graph = in->graph, .f = in->f, .group = group_of_point,
@@ -157,7 +183,7 @@ ps_status ps_convex_merge(const ps_merge_input *in, int *group_of_point,
     ps_status st = ps_segment_graph_build_along(&sg, &sgi, in->boundary, err);
     if (st != PS_OK) return st;
     samples s = {0};
-    st = samples_init(&s, &sg, group_of_point, in->graph->n, err);
+    st = samples_init(&s, in, &sg, group_of_point, err);
     for (long i; st == PS_OK && (i = most_convex(in, &sg, &s)) >= 0;)
         if (!merge_pair(&sg, &s, (size_t)i, merges, n_merges))
             st = ps_fail(err, PS_ERR_NOMEM, "out of memory (convex merge)");

@@ -14,13 +14,22 @@
  * as the two halves of a beam have by the thousand, would pass or fail by
  * the estimated normals' last fraction of a degree).  A limb fails it against
  * its body (it stands above the body's tangent planes near its root), as do
- * a table's legs against its top and a wing against its fuselage.
+ * a table's legs against its top and a wing against its fuselage.  The
+ * normals are patch normals (patch_normal.h): a scan's kNN normals lean
+ * by several degrees under noise of a sixth of the spacing, and a noisy
+ * beam, board or cube failed the test in pieces.  Convexity is evidence
+ * only where the union has depth: the points of a flat sheet all lie in
+ * each other's tangent planes, so a flat hand is "convex" whatever its
+ * outline, where its parts are.  So at least PS_CONVEX_MERGE_DEPTH of the
+ * pairs must have one point behind the other's plane by more than the
+ * tolerance (a noisy flat hand's pairs 0.04 to 0.13, a beam's or a cube's
+ * 0.6 to 0.9).
  *
  * Each segment keeps a sample of at most PS_CONVEX_MERGE_SAMPLES of its
  * points: evenly spaced through its points in index order at the start;
  * a merged segment's sample is taken from the two samples in proportion to
  * the segments' sizes.  A pair's convexity is the fraction of the sample
- * pairs (p, q) that pass.  A pair is judged on two kinds of evidence
+ * pairs (p, q) that pass, 0 without the depth.  A pair is judged on two kinds of evidence
  * together: a boundary creased nearly all along (more than
  * PS_CONVEX_MERGE_OPEN_CREASED of its edges, by the crease merge's test)
  * needs a convexity of PS_CONVEX_MERGE_FRACTION to merge; a boundary that
@@ -32,8 +41,8 @@
  * the first in (a, b) order) merges, the smaller segment into the larger
  * (ties: the higher id into the lower); the creased edges add up.
  * Rotation and scale invariant; deterministic; no threads; O(points) to
- * set up, then O(pairs x samples^2) per merge.  A flat surface (crease.h, PS_CREASE_FLAT) is convex
- * everywhere and is left alone.
+ * set up, then O(pairs x samples^2) per merge.  A flat surface (crease.h,
+ * PS_CREASE_FLAT) has no depth anywhere and is left alone.
  */
 #ifndef PS_CONVEX_MERGE_H
 #define PS_CONVEX_MERGE_H
@@ -46,6 +55,12 @@
  * in its distance (about 1 degree).  Chosen on synthetic beams and boards
  * and the 228 development models (docs/method.md). */
 #define PS_CONVEX_MERGE_TOLERANCE 0.02
+/* The share of a pair's sample pairs with one point behind the other's
+ * tangent plane (by more than the tolerance) that its union needs to be
+ * judged convex at all.  Chosen on synthetic flat hands and solids (see
+ * above); on the 228 development models 0.25 and 0.4 move no label of the
+ * whole surface (docs/method.md). */
+#define PS_CONVEX_MERGE_DEPTH (1.0 / 3)
 /* Convexity at which a pair merges.  Chosen on the 228 development models
  * (docs/method.md). */
 #define PS_CONVEX_MERGE_FRACTION 0.95

@@ -233,7 +233,10 @@ static void test_bent_sheet_keeps_its_arms(void) {
  * for which every piece of a flat hand is flat, folded them all into the
  * palm.  Now a crease must stand out of the noise (PS_CREASE_MERGE_NOISE
  * times the median crease strength) and a flat piece that sticks out
- * stays; a finger may still come out in two pieces. */
+ * stays; a finger may still come out in two pieces.  With normals
+ * precise to a degree (patch_normal.h) every union of its pieces is
+ * "convex", flat in each other's tangent planes: the convex merge asks
+ * for depth (PS_CONVEX_MERGE_DEPTH), or it merged the fingers again. */
 static void test_noisy_flat_hand_keeps_its_fingers(void) {
     size_t n;
     int *part;
