@@ -20,7 +20,9 @@
 #define MAX_PARAMS 64
 
 /* Takes the job for consumer ARGV[3]: runs it (its input), or settles it:
- * gone, already final, cancelled, or lost once too often. */
+ * gone, already final, cancelled, or lost once too often.  ARGV[8] is a
+ * fresh token per take: a call whose token the hash holds already is the
+ * same take retried after it ran, and counts no second loss. */
 static const char start_script[] =
     "local function drop() redis.call('XACK', KEYS[3], ARGV[1], ARGV[2])"
     "  redis.call('XDEL', KEYS[3], ARGV[2]) end\n"
@@ -30,7 +32,8 @@ static const char start_script[] =
     "local state = redis.call('HGET', KEYS[1], 'state')\n"
     "if not state then drop() return {'gone'} end\n"
     "if state ~= 'queued' and state ~= 'running' then drop() return {'final'} end\n"
-    "if ARGV[4] == '1' then\n"
+    "local retried = redis.call('HGET', KEYS[1], 'take') == ARGV[8]\n"
+    "if ARGV[4] == '1' and not retried then\n"
     "  local losses = redis.call('HINCRBY', KEYS[1], 'losses', 1)\n"
     "  if losses >= tonumber(ARGV[5]) then\n"
     "    final('failed', '500', 'the job lost its worker ' .. losses .. ' times (the replica running it"
@@ -41,7 +44,7 @@ static const char start_script[] =
     "local body = redis.call('GET', KEYS[2])\n"
     "if not body then final('failed', '500', 'the input of the job expired') return {'final'} end\n"
     "redis.call('HSET', KEYS[1], 'state', 'running', 'started', ARGV[6], 'worker', ARGV[3],"
-    "  'phase', '0', 'fraction', '0')\n"
+    "  'take', ARGV[8], 'phase', '0', 'fraction', '0')\n"
     "local f = redis.call('HMGET', KEYS[1], 'media', 'accept', 'params')\n"
     "return {'run', body, f[1] or 'points', f[2] or '', f[3] or '[]'}\n";
 
@@ -335,16 +338,17 @@ static void count_start(ps_redis_store *s, const taken *t, const redisReply *r) 
 
 /* START on a taken entry, then the job if it is to run. */
 static void settle_taken(ps_redis_slot *w, ps_redis_link *l, const taken *t) {
-    char hash[160], body[160], now[32], ttl[32], losses[16], why[512];
+    char hash[160], body[160], now[32], ttl[32], losses[16], take[40], why[512];
     ps_redis_store *s = w->store;
     ps_redis_job_key(t->id, NULL, hash, sizeof hash);
     ps_redis_job_key(t->id, ":body", body, sizeof body);
     ps_redis_now_text(now, sizeof now);
     snprintf(ttl, sizeof ttl, "%d", s->cfg.job_ttl > 0 ? s->cfg.job_ttl : 1);
     snprintf(losses, sizeof losses, "%d", s->cfg.max_losses);
+    ps_job_make_id(NULL, take, sizeof take);
     const char *args[] = {hash, body, PS_REDIS_STREAM, PS_REDIS_GROUP, t->entry, w->consumer,
-                          t->reclaimed ? "1" : "0", losses, now, ttl};
-    redisReply *r = ps_redis_eval(l, start_script, 3, 10, args, NULL, why, sizeof why);
+                          t->reclaimed ? "1" : "0", losses, now, ttl, take};
+    redisReply *r = ps_redis_eval(l, start_script, 3, 11, args, NULL, why, sizeof why);
     if (!r) return; /* the lease lapses; someone takes it again */
     count_start(s, t, r);
     if (r->type == REDIS_REPLY_ARRAY && r->elements == 5 && !strcmp(r->element[0]->str, "run"))

@@ -1,7 +1,8 @@
 /* test_jobstore_redis.c: the Redis job store against a real redis-server
  * (started by the test on a free loopback port): any store reads any job,
  * cancels reach the worker running the job, lapsed leases are taken over,
- * the third loss fails a job, Redis going away gives 503s and coming back
+ * the third loss fails a job, a takeover whose answer is lost and retried
+ * counts its loss once, Redis going away gives 503s and coming back
  * heals by itself, a submit retried after Redis stalled queues its job
  * once, shutdown hands running jobs back, kept results stay within their
  * byte budget. */
@@ -9,6 +10,7 @@
 #include "job_runner.h"
 #include "jobstore_redis.h"
 #include "redis_proc.h"
+#include "reply_cut.h"
 #include "testlib.h"
 
 #include <math.h>
@@ -85,17 +87,22 @@ static void free_upload(upload *u) {
     free(u->text);
 }
 
-/* A store whose finished jobs stay ttl seconds, their results within budget bytes. */
-static ps_jobstore *open_store_keeping(int workers, int ttl, size_t budget) {
+/* A store on the Redis at port whose finished jobs stay ttl seconds, their
+ * results within budget bytes. */
+static ps_jobstore *open_store_on(int port, int workers, int ttl, size_t budget) {
     char why[256];
     ps_redis_store_config cfg = {.workers = workers, .job_ttl = ttl, .max_kept_bytes = budget,
                                  .lease_seconds = LEASE_S, .max_losses = 3, .max_points = 10000000,
                                  .name = "test"};
     snprintf(cfg.url.host, sizeof cfg.url.host, "127.0.0.1");
-    cfg.url.port = server.port;
+    cfg.url.port = port;
     ps_jobstore *s = ps_jobstore_redis_new(&cfg, why, sizeof why);
     if (!s) fprintf(stderr, "store: %s\n", why);
     return s;
+}
+
+static ps_jobstore *open_store_keeping(int workers, int ttl, size_t budget) {
+    return open_store_on(server.port, workers, ttl, budget);
 }
 
 static ps_jobstore *open_store(int workers) { return open_store_keeping(workers, 60, (size_t)1 << 30); }
@@ -229,8 +236,9 @@ typedef struct abandoned {
 } abandoned;
 
 /* A job taken by a consumer that goes silent (a SIGKILLed replica) after
- * prior_losses earlier losses; then a store with one worker starts. */
-static int run_abandoned(int prior_losses, ps_job_state want, abandoned *out) {
+ * prior_losses earlier losses; then a store with one worker starts, on the
+ * Redis at worker_port. */
+static int run_abandoned_via(int worker_port, int prior_losses, ps_job_state want, abandoned *out) {
     upload u;
     ps_api_error err;
     memset(out, 0, sizeof *out);
@@ -238,7 +246,7 @@ static int run_abandoned(int prior_losses, ps_job_state want, abandoned *out) {
     ps_jobstore *front = open_store(0), *worker = NULL;
     int rc = front && submit_abandoned(front, &u, out->id, sizeof out->id, prior_losses) == 0 ? 0 : -1;
     double t0 = now_s();
-    if (rc == 0 && (worker = open_store(1))) {
+    if (rc == 0 && (worker = open_store_on(worker_port, 1, 60, (size_t)1 << 30))) {
         wait_state(front, out->id, want, 30);
         out->seconds = now_s() - t0;
         rc = ps_jobstore_status(front, out->id, &out->status, &err);
@@ -249,6 +257,10 @@ static int run_abandoned(int prior_losses, ps_job_state want, abandoned *out) {
     ps_jobstore_free(front);
     free_upload(&u);
     return worker ? rc : -1;
+}
+
+static int run_abandoned(int prior_losses, ps_job_state want, abandoned *out) {
+    return run_abandoned_via(server.port, prior_losses, want, out);
 }
 
 /* The store's worker takes the job over once the lease lapses, and
@@ -279,6 +291,26 @@ static void test_third_loss_fails_job(void) {
     CHECK(ps_jobstore_result(front, a.id, &doc, &err) == -1 && err.http_status == 500 &&
           strstr(err.message, "lost its worker"));
     ps_jobstore_free(front);
+}
+
+/* A job that lost one worker is taken over, and the answer to the
+ * takeover's START call is lost after Redis ran it (a call timeout): the
+ * link runs it again on a new connection.  The job counts two losses, not
+ * three, and runs to its end. */
+static void test_takeover_retried_counts_one_loss(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    abandoned a;
+    ps_reply_cut *cut = ps_reply_cut_start(server.port, "HINCRBY");
+    REQUIRE(cut);
+    int rc = run_abandoned_via(ps_reply_cut_port(cut), 1, PS_JOB_DONE, &a);
+    int lost_answer = ps_reply_cut_done(cut);
+    ps_reply_cut_stop(cut);
+    REQUIRE(rc == 0);
+    CHECK_MSG(lost_answer, "the takeover's answer was not lost: the test did not test");
+    CHECK_MSG(a.status.state == PS_JOB_DONE, "state %s: %s", ps_job_state_name(a.status.state),
+              a.status.error);
+    CHECK_MSG(a.losses == 2, "losses %lld", a.losses);
+    CHECK(a.stats.reclaimed == 1 && a.stats.lost_failed == 0);
 }
 
 /* Redis stops: every call is a prompt 503; it comes back (same data, it
@@ -467,6 +499,7 @@ static void test_result_byte_budget(void) {
 
 PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(test_cancel_reaches_worker),
              TEST(test_lapsed_lease_is_taken_over), TEST(test_third_loss_fails_job),
+             TEST(test_takeover_retried_counts_one_loss),
              TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
              TEST(test_submit_retried_after_stall_queues_once),
              TEST(test_drain_hands_back), TEST(test_result_byte_budget))
