@@ -177,8 +177,9 @@ static cJSON *segment_responses(int async) {
         cJSON_AddItemToObject(r, "200", ok);
     }
     add_problem(r, 400, "malformed body (bytes in no known format, not PLY for application/ply, "
-                        "not JSON for application/json) or request head, unknown parameter, two "
-                        "multipart file parts, a NUL byte in a parameter");
+                        "not JSON for application/json) or request head, unknown parameter, a "
+                        "parameter given twice (query string, form fields and JSON params together "
+                        "give each once), two multipart file parts, a NUL byte in a parameter");
     add_problem(r, 413, "body, inflated body, point count or the job's memory estimate over the limit");
     add_problem(r, 415, "a Content-Type or Content-Encoding the service does not take");
     add_problem(r, 422, "well-formed but unusable input, or a parameter out of range");

@@ -44,14 +44,33 @@ static int wants_ply(const char *accept) {
     return accept && strstr(accept, "application/ply") != NULL;
 }
 
+/* The k-th text parameter of a request: the body's, then the extra pairs. */
+static ps_text_param param_at(const ps_pointset *body, const ps_text_param *extra, size_t k) {
+    size_t n_body = body ? body->n_params : 0;
+    if (k < n_body) return (ps_text_param){body->params[k].name, body->params[k].value};
+    return (ps_text_param){extra[k - n_body].name, extra[k - n_body].value ? extra[k - n_body].value : ""};
+}
+
+/* Whether a text parameter before the k-th names the parameter spec. */
+static int given_before(const ps_pointset *body, const ps_text_param *extra, size_t k,
+                        const ps_param_spec *spec) {
+    for (size_t j = 0; spec && j < k; j++)
+        if (ps_param_find(param_at(body, extra, j).name) == spec) return 1;
+    return 0;
+}
+
 int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
                      size_t n_extra, ps_request_params *rp, ps_api_error *err) {
+    size_t n = (body ? body->n_params : 0) + n_extra;
     ps_request_params_default(rp);
     if (wants_ply(accept)) rp->output = PS_OUTPUT_PLY;
-    for (size_t i = 0; body && i < body->n_params; i++)
-        if (ps_request_param_set(rp, body->params[i].name, body->params[i].value, err)) return -1;
-    for (size_t i = 0; i < n_extra; i++)
-        if (ps_request_param_set(rp, extra[i].name, extra[i].value ? extra[i].value : "", err)) return -1;
+    for (size_t k = 0; k < n; k++) {
+        ps_text_param p = param_at(body, extra, k);
+        const ps_param_spec *spec = ps_param_find(p.name);
+        if (given_before(body, extra, k, spec))
+            return ps_api_fail(err, 400, "parameter '%s' is given twice", spec->name);
+        if (ps_request_param_set(rp, p.name, p.value, err)) return -1;
+    }
     return 0;
 }
 

@@ -43,12 +43,13 @@ typedef struct ps_text_param {
 int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_points,
                      ps_pointset *out, ps_api_error *err);
 
-/* The parameters of a request, later sources winning: defaults (threads =
- * 0: the job runner gives the job the cores no other job holds,
- * core_share.h), the Accept header (application/ply: PLY
- * output; may be NULL), the body's own params, then the extra pairs
- * (multipart fields, then the query string).  Returns 0 or -1 with err (400
- * unknown name, 422 bad value). */
+/* The parameters of a request: defaults (threads = 0: the job runner gives
+ * the job the cores no other job holds, core_share.h), the Accept header
+ * (application/ply: PLY output, unless `output` says otherwise; may be
+ * NULL), then the body's own params and the extra pairs (multipart fields,
+ * the query string), which together give each parameter once.  Returns 0 or
+ * -1 with err (400 unknown name or one given twice, in any spelling; 422 bad
+ * value). */
 int ps_intake_params(const ps_pointset *body, const char *accept, const ps_text_param *extra,
                      size_t n_extra, ps_request_params *rp, ps_api_error *err);
 

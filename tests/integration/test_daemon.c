@@ -432,6 +432,61 @@ static void test_bad_inputs_get_problems(void) {
     CHECK_STOPS(d, 10);
 }
 
+/* A parameter given twice, in the query string, in the JSON body's params,
+ * in both, as two form fields, a field and the query, or in its two
+ * spellings: a 400 naming it, on /segment and /jobs.  Once, it is taken. */
+static void test_repeated_parameters_are_400(void) {
+    static const char json_k_twice[] = "{\"points\": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]], "
+                                       "\"params\": {\"k\": 3, \"k\": 2}}";
+    static const char json_k[] = "{\"points\": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]], \"params\": {\"k\": 3}}";
+    static const char form_k_twice[] =
+        "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"k\"\r\n\r\n3\r\n"
+        "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"k\"\r\n\r\n2\r\n"
+        "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"; filename=\"s.xyz\"\r\n\r\n"
+        "0 0 0\n1 0 0\n0 1 0\n1 1 0\n\r\n--" BOUNDARY "--\r\n";
+    static const char form_k[] =
+        "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"k\"\r\n\r\n3\r\n"
+        "--" BOUNDARY "\r\nContent-Disposition: form-data; name=\"file\"; filename=\"s.xyz\"\r\n\r\n"
+        "0 0 0\n1 0 0\n0 1 0\n1 1 0\n\r\n--" BOUNDARY "--\r\n";
+    static const char xyz[] = "0 0 0\n1 0 0\n0 1 0\n1 1 0\n";
+    static const char form[] = "multipart/form-data; boundary=" BOUNDARY;
+    const struct { const char *what, *body, *content_type, *query, *name; } cases[] = {
+        {"query twice", xyz, NULL, "k=3&k=2", "k"},
+        {"query twice, same value", xyz, NULL, "output=labels&output=labels", "output"},
+        {"two spellings", xyz, NULL, "ncut-threshold=0.5&ncut_threshold=0.6", "ncut_threshold"},
+        {"json params twice", json_k_twice, "application/json", NULL, "k"},
+        {"json params and query", json_k, "application/json", "k=2", "k"},
+        {"two form fields", form_k_twice, form, NULL, "k"},
+        {"form field and query", form_k, form, "k=2", "k"},
+    };
+    ps_daemon d;
+    REQUIRE_STARTS(d, NULL);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        for (int async = 0; async < 2; async++) {
+            ps_client_body body = {cases[i].body, strlen(cases[i].body), cases[i].content_type, NULL};
+            ps_client_response r;
+            char id[128], named[64];
+            if (async) ps_client_submit(&d.client, &body, cases[i].query, id, sizeof id, &r);
+            else ps_client_segment(&d.client, &body, cases[i].query, &r);
+            snprintf(named, sizeof named, "parameter '%s' is given twice", cases[i].name);
+            CHECK_MSG(is_problem(&r, 400) && strstr(r.body, named), "%s on %s: %ld %.300s", cases[i].what,
+                      async ? "/jobs" : "/segment", r.status, r.body ? r.body : "");
+            ps_client_response_free(&r);
+        }
+    const struct { const char *body, *content_type, *query; } once[] = {
+        {xyz, NULL, "k=3&output=labels"}, {json_k, "application/json", "output=labels"},
+        {form_k, form, "output=labels"}};
+    for (size_t i = 0; i < sizeof once / sizeof once[0]; i++) {
+        ps_client_body body = {once[i].body, strlen(once[i].body), once[i].content_type, NULL};
+        ps_client_response r;
+        ps_client_segment(&d.client, &body, once[i].query, &r);
+        CHECK_MSG(r.status == 200 && !strncmp(r.content_type, "text/plain", 10), "once %zu: %ld %.300s", i,
+                  r.status, r.body ? r.body : "");
+        ps_client_response_free(&r);
+    }
+    CHECK_STOPS(d, 10);
+}
+
 /* curl's --data-binary without -H sends application/x-www-form-urlencoded:
  * the 415 says which header to add; other unsupported types get no such
  * advice. */
@@ -800,7 +855,7 @@ int main(int argc, char **argv) {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
         TEST(test_jobs_api_matches_segment), TEST(test_outputs_and_includes),
         TEST(test_idle_daemon_job_gets_every_core), TEST(test_bad_inputs_get_problems),
-        TEST(test_form_type_names_the_fix), TEST(test_bad_bodies_of_taken_types_are_400),
+        TEST(test_repeated_parameters_are_400), TEST(test_form_type_names_the_fix), TEST(test_bad_bodies_of_taken_types_are_400),
         TEST(test_ply_header_warning_in_document),
         TEST(test_size_limits), TEST(test_memory_limit), TEST(test_token_and_static_files),
         TEST(test_32_concurrent_clients),
