@@ -282,21 +282,24 @@ static ps_job *new_job(ps_jobs *q, ps_pointset *points, const ps_request_params 
     return job;
 }
 
+static int refuses_locked(const ps_jobs *q, ps_api_error *err) {
+    if (q->stopping) return ps_api_fail(err, 503, "the service is shutting down");
+    if (q->count >= (size_t)q->cfg.queue_size)
+        return ps_api_fail(err, 503, "the job queue is full (%d waiting)", q->cfg.queue_size);
+    return 0;
+}
+
 int ps_jobs_submit(ps_jobs *q, ps_pointset *points, const ps_request_params *params,
-                   ps_job_done_fn on_done, void *user, ps_job **out) {
+                   ps_job_done_fn on_done, void *user, ps_job **out, ps_api_error *err) {
     ps_job *dead = NULL;
     *out = NULL;
     pthread_mutex_lock(&q->lock);
-    if (q->stopping || q->count >= (size_t)q->cfg.queue_size) {
-        pthread_mutex_unlock(&q->lock);
-        ps_pointset_free(points);
-        return 503;
-    }
-    ps_job *job = new_job(q, points, params, on_done, user);
+    int refused = refuses_locked(q, err);
+    ps_job *job = refused ? NULL : new_job(q, points, params, on_done, user);
     if (!job) {
         pthread_mutex_unlock(&q->lock);
         ps_pointset_free(points);
-        return 500;
+        return refused ? -1 : ps_api_fail(err, 500, "out of memory");
     }
     q->ring[(q->head + q->count) % (size_t)q->cfg.queue_size] = job;
     q->count++;
@@ -382,11 +385,11 @@ void ps_jobs_get_stats(ps_jobs *q, ps_jobs_stats *st) {
     pthread_mutex_unlock(&q->lock);
 }
 
-int ps_jobs_full(ps_jobs *q) {
+int ps_jobs_refuses(ps_jobs *q, ps_api_error *err) {
     pthread_mutex_lock(&q->lock);
-    int full = q->stopping || q->count >= (size_t)q->cfg.queue_size;
+    int refused = refuses_locked(q, err);
     pthread_mutex_unlock(&q->lock);
-    return full;
+    return refused;
 }
 
 static void wait_idle_locked(ps_jobs *q, double seconds) {

@@ -73,10 +73,10 @@ ps_jobs *ps_jobs_start(const ps_jobs_config *cfg);
 
 /* Queues a job on points (moved into the job: *points is zeroed) with params.
  * on_done (may be NULL) is called with user once the job is final, and *job
- * is set before it is.  Returns 0 and a referenced *job, or 503 when the queue is full or stopping, 500
- * when out of memory (points are then freed). */
+ * is set before it is.  Returns 0 and a referenced *job, or -1 with err (as
+ * ps_jobs_refuses, or 500 when out of memory; points are then freed). */
 int ps_jobs_submit(ps_jobs *q, ps_pointset *points, const ps_request_params *params,
-                   ps_job_done_fn on_done, void *user, ps_job **job);
+                   ps_job_done_fn on_done, void *user, ps_job **job, ps_api_error *err);
 
 /* The job with this id (a new reference), or NULL. */
 ps_job *ps_jobs_find(ps_jobs *q, const char *id);
@@ -94,7 +94,9 @@ const char *ps_job_result(ps_job *job, size_t *len, const char **media_type);
 void ps_job_cancel(ps_job *job);
 
 void ps_jobs_get_stats(ps_jobs *q, ps_jobs_stats *st);
-int ps_jobs_full(ps_jobs *q); /* 1 when a submit would be refused */
+/* 0 when a submit would be taken; else -1 with a 503 in err saying why: the
+ * queue is full, or the service is shutting down (draining). */
+int ps_jobs_refuses(ps_jobs *q, ps_api_error *err);
 
 /* Stops taking jobs, lets queued and running ones finish for up to
  * drain_seconds, cancels what is left and joins the workers.  Every on_done

@@ -22,13 +22,7 @@ static ps_job *find(ps_jobstore *s, const char *id, ps_api_error *err) {
 static int submit(ps_jobstore *s, const ps_job_upload *up, char *id, size_t id_cap,
                   ps_api_error *err) {
     ps_job *job;
-    int rc = ps_jobs_submit(queue_of(s), up->points, up->params, NULL, NULL, &job);
-    if (rc == 503) {
-        ps_jobs_stats st;
-        ps_jobs_get_stats(queue_of(s), &st);
-        return ps_api_fail(err, 503, "the job queue is full (%zu waiting)", st.capacity);
-    }
-    if (rc) return ps_api_fail(err, 500, "out of memory");
+    if (ps_jobs_submit(queue_of(s), up->points, up->params, NULL, NULL, &job, err)) return -1;
     snprintf(id, id_cap, "%s", ps_job_id(job));
     ps_job_release(job);
     return 0;
@@ -71,7 +65,7 @@ static int cancel(ps_jobstore *s, const char *id, ps_job_status *st, ps_api_erro
 }
 
 static int ready(ps_jobstore *s, ps_api_error *err) {
-    return ps_jobs_full(queue_of(s)) ? ps_api_fail(err, 503, "the job queue is full") : 0;
+    return ps_jobs_refuses(queue_of(s), err);
 }
 
 static void stats(ps_jobstore *s, ps_jobstore_stats *st) {

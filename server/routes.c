@@ -124,9 +124,8 @@ static enum MHD_Result answer_from_job(ps_request *r, ps_job *job) {
 /* Ready when a synchronous job and an asynchronous one would be taken. */
 static enum MHD_Result readyz_route(ps_request *r) {
     ps_jobs_stats st;
-    if (ps_jobs_full(r->srv->jobs))
-        return ps_respond_problem(r, 503, ps_retry_after_header, "the job queue is full");
-    if (ps_jobstore_ready(r->srv->store, &r->error)) return ps_respond_error(r, &r->error);
+    if (ps_jobs_refuses(r->srv->jobs, &r->error) || ps_jobstore_ready(r->srv->store, &r->error))
+        return ps_respond_error(r, &r->error);
     ps_jobs_get_stats(r->srv->jobs, &st);
     cJSON *doc = cJSON_CreateObject();
     cJSON_AddStringToObject(doc, "status", "ready");
@@ -324,11 +323,8 @@ static enum MHD_Result wait_for_job(ps_request *r, ps_pointset *ps, const ps_req
     pthread_mutex_unlock(&s->lock);
     r->suspended = 1;
     MHD_suspend_connection(r->conn);
-    int rc = ps_jobs_submit(s->jobs, ps, rp, job_ended, r, &r->job);
-    if (rc) {
+    if (ps_jobs_submit(s->jobs, ps, rp, job_ended, r, &r->job, &r->error)) {
         r->failed = 1;
-        ps_api_fail(&r->error, rc, rc == 503 ? "the job queue is full (%d waiting)" : "out of memory",
-                    s->cfg->queue_size);
         job_ended(r);
         return MHD_YES;
     }

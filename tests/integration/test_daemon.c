@@ -4,7 +4,8 @@
  * kind (right status, problem+json, daemon healthy afterwards), every
  * core for a job on an idle daemon, --max-memory, 32
  * concurrent clients, a full queue (503), DELETE of a running exact job,
- * token, CORS, static files, and SIGTERM draining.  Each test starts
+ * token, CORS, static files, and SIGTERM draining (what a request on a
+ * connection kept from before it is told).  Each test starts
  * pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
  */
 #include "daemon_run.h"
@@ -632,20 +633,31 @@ static int wait_state(const ps_daemon *d, const char *id, const char *state, dou
     return 0;
 }
 
+/* Submits a dumbbell that takes seconds with centrality=exact on one
+ * thread as a job, and waits until it runs.  Its XYZ text (free it; the
+ * body *slow points to it), or NULL when it was refused or never ran. */
+static char *run_slow_job(const ps_daemon *d, ps_client_body *slow, char *id, size_t cap) {
+    ps_client_response r;
+    size_t n, len;
+    double *pts = ps_shape_dumbbell(700, &n, NULL);
+    char *xyz = pts ? ps_points_xyz(pts, n, &len) : NULL;
+    free(pts);
+    *slow = (ps_client_body){xyz, xyz ? len : 0, NULL, NULL};
+    int queued = xyz && ps_client_submit(&d->client, slow, "centrality=exact", id, cap, &r) == 0;
+    if (xyz) ps_client_response_free(&r);
+    if (queued && wait_state(d, id, "running", 20)) return xyz;
+    free(xyz);
+    return NULL;
+}
+
 static void test_full_queue_and_cancel(void) {
     ps_daemon d;
     ps_client_response r;
-    size_t n, len;
+    ps_client_body slow;
     char slow_id[128], queued_id[128];
-    double *pts = ps_shape_dumbbell(700, &n, NULL);
-    REQUIRE(pts);
-    char *xyz = ps_points_xyz(pts, n, &len);
-    free(pts);
     REQUIRE_STARTS(d, "--threads", "1", "--queue-size", "1", NULL);
-    ps_client_body slow = {xyz, len, NULL, NULL};
-    REQUIRE(ps_client_submit(&d.client, &slow, "centrality=exact", slow_id, sizeof slow_id, &r) == 0);
-    ps_client_response_free(&r);
-    CHECK_MSG(wait_state(&d, slow_id, "running", 20), "the %zu-point exact job never ran", n);
+    char *xyz = run_slow_job(&d, &slow, slow_id, sizeof slow_id);
+    CHECK_MSG(xyz != NULL, "the exact job never ran");
     CHECK(ps_client_submit(&d.client, &slow, "centrality=exact", queued_id, sizeof queued_id, &r) == 0 &&
           r.status == 202);
     ps_client_response_free(&r);
@@ -758,6 +770,57 @@ static void test_sigterm_drains(void) {
     CHECK_MSG(run.ok, "the request under way at SIGTERM was not answered correctly");
 }
 
+/* Sends request on fd and reads one answer (its head, then a body of its
+ * Content-Length) into buf; its status, or 0. */
+static int ask_on(int fd, const char *request, char *buf, size_t cap) {
+    size_t len = 0;
+    const char *end = NULL, *cl;
+    if (send(fd, request, strlen(request), MSG_NOSIGNAL) != (ssize_t)strlen(request)) return 0;
+    for (;;) {
+        ssize_t n = recv(fd, buf + len, cap - 1 - len, 0);
+        if (n <= 0) return 0;
+        buf[len += (size_t)n] = 0;
+        if (!end && (end = strstr(buf, "\r\n\r\n"))) end += 4;
+        cl = end ? strstr(buf, "Content-Length: ") : NULL;
+        if (end && (!cl || (size_t)(end - buf) + strtoul(cl + 16, NULL, 10) <= len)) break;
+    }
+    int status = 0;
+    return sscanf(buf, "HTTP/1.%*d %d", &status) == 1 ? status : 0;
+}
+
+/* A request on a connection kept open from before SIGTERM, while the
+ * daemon drains a running job: /readyz and POST /segment answer 503 with
+ * Retry-After, saying the service is shutting down (not that the queue is
+ * full). */
+static void test_refusal_while_draining_says_why(void) {
+    static const char health[] = "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n";
+    static const char ready[] = "GET /readyz HTTP/1.1\r\nHost: x\r\n\r\n";
+    static const char segment[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 24\r\n\r\n"
+                                  "0 0 0\n1 0 0\n0 1 0\n1 1 0\n";
+    char id[128], answer[8192];
+    ps_client_body slow;
+    ps_daemon d;
+    REQUIRE_STARTS(d, "--threads", "1", "--drain-seconds", "5", NULL);
+    char *xyz = run_slow_job(&d, &slow, id, sizeof id);
+    CHECK_MSG(xyz != NULL, "the exact job never ran");
+    int fd = ps_daemon_connect(&d, 5);
+    REQUIRE(fd >= 0);
+    CHECK(ask_on(fd, health, answer, sizeof answer) == 200);
+    kill(d.pid, SIGTERM);
+    int status = 200;
+    for (double t0 = seconds_now(); status == 200 && seconds_now() - t0 < 3; ps_test_sleep_ms(20))
+        status = ask_on(fd, ready, answer, sizeof answer);
+    CHECK_MSG(status == 503 && strstr(answer, "shutting down") && strstr(answer, "Retry-After:"),
+              "/readyz while draining: %d %.400s", status, answer);
+    status = ask_on(fd, segment, answer, sizeof answer);
+    CHECK_MSG(status == 503 && strstr(answer, "the service is shutting down") &&
+              !strstr(answer, "queue is full") && strstr(answer, "Retry-After:"),
+              "POST /segment while draining: %d %.400s", status, answer);
+    close(fd);
+    free(xyz);
+    CHECK_STOPS(d, 20);
+}
+
 /* 1 when process pid holds an epoll instance. */
 static int holds_epoll(pid_t pid) {
     char dir[64], path[320], target[128];
@@ -861,7 +924,8 @@ int main(int argc, char **argv) {
         TEST(test_32_concurrent_clients),
         TEST(test_full_queue_and_cancel), TEST(test_job_progress_moves_within_phases),
         TEST(test_client_going_away_cancels),
-        TEST(test_sigterm_drains), TEST(test_sigterm_under_incoming_connections),
+        TEST(test_sigterm_drains), TEST(test_refusal_while_draining_says_why),
+        TEST(test_sigterm_under_incoming_connections),
         TEST(test_port_in_use_refused)};
     signal(SIGPIPE, SIG_IGN);
     if (ps_client_global_init()) return 1;

@@ -84,8 +84,18 @@ static ps_job *submit(ps_jobs *q, ps_pointset ps, ps_job_done_fn on_done, void *
     ps_request_params rp;
     ps_request_params_default(&rp);
     ps_job *job = NULL;
-    int rc = ps_jobs_submit(q, &ps, &rp, on_done, user, &job);
-    return rc == 0 ? job : NULL;
+    ps_api_error err;
+    return ps_jobs_submit(q, &ps, &rp, on_done, user, &job, &err) == 0 ? job : NULL;
+}
+
+/* Submits a job that must be refused: 1 when it is, with err set and the
+ * points freed. */
+static int refused(ps_jobs *q, ps_api_error *err) {
+    ps_request_params rp;
+    ps_request_params_default(&rp);
+    ps_pointset ps = dumbbell();
+    ps_job *job = NULL;
+    return ps_jobs_submit(q, &ps, &rp, NULL, NULL, &job, err) == -1 && job == NULL && ps.points == NULL;
 }
 
 /* Polls until the job is final (at most 60 s); returns its state. */
@@ -140,13 +150,10 @@ static void test_full_queue_and_queued_cancel(void) {
     gate_wait_entered(&g);
     ps_job *a = submit(q, dumbbell(), NULL, NULL), *b = submit(q, dumbbell(), NULL, NULL);
     REQUIRE(a && b);
-    CHECK(ps_jobs_full(q) == 1);
-    ps_request_params rp;
-    ps_request_params_default(&rp);
-    ps_pointset extra = dumbbell();
-    ps_job *refused = NULL;
-    CHECK(ps_jobs_submit(q, &extra, &rp, NULL, NULL, &refused) == 503 && refused == NULL);
-    CHECK(extra.points == NULL);
+    ps_api_error err;
+    CHECK(ps_jobs_refuses(q, &err) == -1 && err.http_status == 503 && strstr(err.message, "queue is full"));
+    CHECK(refused(q, &err) && err.http_status == 503 &&
+          !strcmp(err.message, "the job queue is full (2 waiting)"));
     ps_job_cancel(b);
     ps_job_status st;
     ps_job_get_status(b, &st);
@@ -154,9 +161,9 @@ static void test_full_queue_and_queued_cancel(void) {
     ps_jobs_stats stats;
     ps_jobs_get_stats(q, &stats);
     CHECK(stats.queued == 1 && stats.running == 0 && stats.jobs_cancelled == 1);
-    CHECK(ps_jobs_full(q) == 0);
+    CHECK(ps_jobs_refuses(q, &err) == 0);
     ps_job *c = submit(q, dumbbell(), NULL, NULL);
-    CHECK(c != NULL && ps_jobs_full(q) == 1);
+    CHECK(c != NULL && ps_jobs_refuses(q, &err) == -1);
     gate_open(&g);
     CHECK(wait_final(a) == PS_JOB_DONE);
     CHECK(c && wait_final(c) == PS_JOB_DONE);
@@ -247,7 +254,8 @@ static void test_registry_forgets_expired(void) {
     ps_jobs_free(q);
 }
 
-/* A drain lets queued jobs finish, then refuses new ones. */
+/* A drain lets queued jobs finish, then refuses new ones, saying the
+ * service is shutting down. */
 static void test_drain_finishes_queued(void) {
     ps_jobs_config cfg = config(4, 10, 600);
     ps_jobs *q = ps_jobs_start(&cfg);
@@ -261,8 +269,11 @@ static void test_drain_finishes_queued(void) {
         CHECK_MSG(st.state == PS_JOB_DONE, "job %d state %s", i, ps_job_state_name(st.state));
         ps_job_release(jobs[i]);
     }
-    CHECK(ps_jobs_full(q) == 1);
-    CHECK(submit(q, dumbbell(), NULL, NULL) == NULL);
+    ps_api_error err;
+    CHECK(ps_jobs_refuses(q, &err) == -1 && err.http_status == 503 &&
+          !strcmp(err.message, "the service is shutting down"));
+    CHECK(refused(q, &err) && err.http_status == 503 &&
+          !strcmp(err.message, "the service is shutting down"));
     ps_jobs_free(q);
 }
 
