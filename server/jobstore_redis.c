@@ -23,10 +23,12 @@ static const char submit_script[] =
     "  'params', ARGV[5], 'losses', '0', 'cancel', '0')\n"
     "redis.call('EXPIRE', KEYS[1], ARGV[8])\n"
     "redis.call('SET', KEYS[2], ARGV[2], 'EX', ARGV[8])\n"
-    "redis.call('XADD', KEYS[3], '*', 'job', ARGV[1])\n"
+    "redis.call('HSET', KEYS[1], 'entry', redis.call('XADD', KEYS[3], '*', 'job', ARGV[1]))\n"
     "return 1\n";
 
-/* A queued job is cancelled at once; a running one when its worker polls. */
+/* A queued job is cancelled at once, and its stream entry deleted (a worker
+ * that read the entry already finds the job final and drops it); a running
+ * one is cancelled when its worker polls. */
 static const char cancel_script[] =
     "local state = redis.call('HGET', KEYS[1], 'state')\n"
     "if not state then return 0 end\n"
@@ -35,6 +37,8 @@ static const char cancel_script[] =
     "  redis.call('HSET', KEYS[1], 'state', 'cancelled', 'finished', ARGV[1])\n"
     "  redis.call('EXPIRE', KEYS[1], ARGV[2])\n"
     "  redis.call('DEL', KEYS[2])\n"
+    "  local entry = redis.call('HGET', KEYS[1], 'entry')\n"
+    "  if entry then redis.call('XDEL', KEYS[3], entry) end\n"
     "end\n"
     "return 1\n";
 
@@ -202,9 +206,9 @@ static int cancel(ps_jobstore *js, const char *id, ps_job_status *st, ps_api_err
     ps_redis_job_key(id, ":body", body, sizeof body);
     ps_redis_now_text(now, sizeof now);
     snprintf(ttl, sizeof ttl, "%d", s->cfg.job_ttl > 0 ? s->cfg.job_ttl : 1);
-    const char *args[] = {hash, body, now, ttl};
+    const char *args[] = {hash, body, PS_REDIS_STREAM, now, ttl};
     ps_redis_link *l = ps_redis_pool_take(s->pool);
-    redisReply *r = ps_redis_eval(l, cancel_script, 2, 4, args, NULL, why, sizeof why);
+    redisReply *r = ps_redis_eval(l, cancel_script, 3, 5, args, NULL, why, sizeof why);
     int rc = r ? load_status(l, id, st, NULL, 0, err) : unavailable(err, why);
     ps_redis_pool_give(s->pool, l);
     if (r) freeReplyObject(r);
@@ -222,8 +226,8 @@ static int ready(ps_jobstore *js, ps_api_error *err) {
     return 0;
 }
 
-/* XLEN counts entries not yet finished (finished ones are deleted); those
- * the group's pending list holds are running. */
+/* XLEN counts entries not yet finished (finished and cancelled ones are
+ * deleted); those the group's pending list holds are running. */
 static int queue_figures(ps_redis_link *l, ps_jobstore_stats *st) {
     char why[512];
     redisReply *len = ps_redis_runv(l, why, sizeof why, "XLEN", PS_REDIS_STREAM, (char *)NULL);

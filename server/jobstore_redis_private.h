@@ -7,7 +7,8 @@
  * Redis keys: PS_REDIS_STREAM (entries {job: id}) read by consumer group
  * PS_REDIS_GROUP; per job a hash (state, phase, fraction, created, started,
  * finished, points, media, accept, params, losses, cancel, worker, take
- * (the token of the worker's take), error_status, error, media_type), its input (":body") and its document
+ * (the token of the worker's take), entry (its stream entry), error_status,
+ * error, media_type), its input (":body") and its document
  * (":result").  The kept documents are indexed in PS_REDIS_RESULTS (members
  * "<id>:<bytes>" scored by their finish time) and their bytes summed in
  * PS_REDIS_RESULT_BYTES, so the oldest go first when over the byte budget.

@@ -102,7 +102,7 @@ static const char handback_script[] =
     "redis.call('HDEL', KEYS[2], 'started', 'worker')\n"
     "redis.call('XACK', KEYS[1], ARGV[1], ARGV[2])\n"
     "redis.call('XDEL', KEYS[1], ARGV[2])\n"
-    "redis.call('XADD', KEYS[1], '*', 'job', ARGV[4])\n"
+    "redis.call('HSET', KEYS[2], 'entry', redis.call('XADD', KEYS[1], '*', 'job', ARGV[4]))\n"
     "return 1\n";
 
 typedef struct taken {

@@ -4,8 +4,8 @@
  * the third loss fails a job, a takeover whose answer is lost and retried
  * counts its loss once, Redis going away gives 503s and coming back
  * heals by itself, a submit retried after Redis stalled queues its job
- * once, shutdown hands running jobs back, kept results stay within their
- * byte budget. */
+ * once, shutdown hands running jobs back, a job cancelled while queued
+ * leaves the queue, kept results stay within their byte budget. */
 #include "daemon_proc.h"
 #include "job_runner.h"
 #include "jobstore_redis.h"
@@ -441,6 +441,46 @@ static void test_drain_hands_back(void) {
     free_upload(&slow);
 }
 
+static size_t queue_length(ps_jobstore *s) {
+    ps_jobstore_stats stats;
+    ps_jobstore_get_stats(s, &stats);
+    return stats.queue_length;
+}
+
+/* A job cancelled while queued leaves the shared queue at once (its stream
+ * entry goes), also one a leaving replica handed back: the queue's length
+ * counts only jobs that will run. */
+static void test_cancel_leaves_shared_queue(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    upload small, slow;
+    ps_api_error err;
+    ps_job_status st;
+    char kept[96], cancelled[96], handed[96];
+    REQUIRE(make_upload(&small, SMALL_POINTS, 0) == 0 && make_upload(&slow, SLOW_POINTS, 1) == 0);
+    ps_jobstore *front = open_store(0), *leaving = open_store(1);
+    REQUIRE(front && leaving);
+    REQUIRE(ps_jobstore_submit(leaving, &slow.up, handed, sizeof handed, &err) == 0);
+    REQUIRE(wait_state(leaving, handed, PS_JOB_RUNNING, 20) == PS_JOB_RUNNING);
+    ps_jobstore_drain(leaving, 0.2);
+    size_t before = queue_length(front);
+    REQUIRE(ps_jobstore_submit(front, &small.up, kept, sizeof kept, &err) == 0);
+    REQUIRE(ps_jobstore_submit(front, &small.up, cancelled, sizeof cancelled, &err) == 0);
+    CHECK(queue_length(front) == before + 2);
+    CHECK(ps_jobstore_cancel(front, cancelled, &st, &err) == 0 && st.state == PS_JOB_CANCELLED);
+    CHECK(ps_jobstore_cancel(front, handed, &st, &err) == 0 && st.state == PS_JOB_CANCELLED);
+    CHECK_MSG(queue_length(front) == before, "queue length %zu, want %zu", queue_length(front), before);
+    CHECK(stream_entries_of(cancelled) == 0 && stream_entries_of(handed) == 0 && stream_entries_of(kept) == 1);
+    ps_jobstore *worker = open_store(1);
+    REQUIRE(worker);
+    CHECK(wait_state(front, kept, PS_JOB_DONE, 30) == PS_JOB_DONE);
+    CHECK(ps_jobstore_status(front, cancelled, &st, &err) == 0 && st.state == PS_JOB_CANCELLED);
+    ps_jobstore_free(worker);
+    ps_jobstore_free(leaving);
+    ps_jobstore_free(front);
+    free_upload(&small);
+    free_upload(&slow);
+}
+
 /* Runs the upload on s to the end; 0 when it is done. */
 static int run_to_done(ps_jobstore *s, upload *u, char *id, size_t cap) {
     ps_api_error err;
@@ -502,4 +542,4 @@ PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(tes
              TEST(test_takeover_retried_counts_one_loss),
              TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
              TEST(test_submit_retried_after_stall_queues_once),
-             TEST(test_drain_hands_back), TEST(test_result_byte_budget))
+             TEST(test_drain_hands_back), TEST(test_cancel_leaves_shared_queue), TEST(test_result_byte_budget))
