@@ -1,8 +1,8 @@
 /*
- * input_scale.h: PRIVATE to the top of core/ (segment.c): the power of two
- * ps_segment scales a point set by, so that the method's arithmetic runs
- * at the magnitudes it runs at on ordinary input, and its result back to
- * the caller's units.
+ * input_scale.h: PRIVATE to the top of core/ (segment.c, memory_estimate.c):
+ * the power of two ps_segment scales a point set by, so that the method's
+ * arithmetic runs at the magnitudes it runs at on ordinary input, and its
+ * result back to the caller's units.
  *
  * The squared distance of points 1e-160 apart underflows to 0 (the kNN
  * search then takes any points for neighbours), the single-precision

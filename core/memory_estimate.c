@@ -20,6 +20,7 @@
 #include "features/coarse_graph.h"
 #include "graph/reference_density.h"
 #include "graph/surface_fill.h"
+#include "input_scale.h"
 #include "refine/boundary_cut.h"
 #include "util/parallel.h"
 
@@ -113,9 +114,12 @@ static size_t estimate_of(size_t n, int dim, int fills, const ps_params *params)
 size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params) {
     size_t n = in->n;
     int dim = in->dim;
-    /* method auto segments 2-D points as a 3-D copy (segment.c) */
-    size_t lifted = params->method == PS_METHOD_AUTO && dim == 2 ? n * 3 * sizeof(double) : 0;
-    if (lifted) dim = 3;
+    /* method auto segments 2-D points as a 3-D copy, and points of extreme
+     * extent as a scaled copy (segment.c, input_scale.h) */
+    int lift = params->method == PS_METHOD_AUTO && dim == 2;
+    int scaled = in->points && ps_input_scale_exponent(in->points, n, dim) != 0;
+    if (lift) dim = 3;
+    size_t copied = lift || scaled ? n * (size_t)dim * sizeof(double) : 0;
     /* A bare point set under the reference sampling is estimated as a mesh
      * filled (the estimate does not know which it will be once deduplicated
      * and covers both). */
@@ -128,5 +132,5 @@ size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params) {
         size_t filled = estimate_of(n, dim, 1, params);
         if (filled > run) run = filled;
     }
-    return lifted + run;
+    return copied + run;
 }

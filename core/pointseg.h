@@ -288,8 +288,9 @@ ps_status ps_segment(const ps_input *in, const ps_params *params,
 void ps_result_free(ps_result *r);
 
 /* Bytes ps_segment is expected to take at its peak for in with params
- * (the input's own arrays not included; only in->n, in->dim and
- * in->n_faces are read, so the points may be NULL): an upper estimate from
+ * (the input's own arrays not included; in->n, in->dim, in->n_faces and,
+ * when not NULL, in->points are read: a point set of extreme extent is
+ * segmented as a scaled copy, core/input_scale.h): an upper estimate from
  * measured runs (memory_estimate.c), for a service to refuse a job that
  * cannot fit before it starts.  Below 26,667 points it covers a mesh
  * segmented in fills up to that many (ps_input.faces); a mesh (n_faces >

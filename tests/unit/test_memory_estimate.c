@@ -169,7 +169,24 @@ static void test_estimate_covers_the_fill(void) {
     CHECK(bare_estimate(100, 3, &exact) < bare_estimate(ref, 3, &exact));
 }
 
+/* Points of extreme extent are segmented as a scaled copy (input_scale.h):
+ * the estimate counts it when it is given the points. */
+static void test_estimate_counts_the_scaled_copy(void) {
+    enum { N = 50000 };
+    double *pts = malloc(3 * N * sizeof *pts);
+    REQUIRE(pts);
+    for (size_t i = 0; i < 3 * N; i++) pts[i] = (double)((i * 7919) % 1000) / 1000.0;
+    ps_params p;
+    ps_params_default(&p);
+    ps_input in = {.points = pts, .n = N, .dim = 3};
+    size_t ordinary = ps_segment_memory_estimate(&in, &p);
+    CHECK(ordinary == bare_estimate(N, 3, &p));
+    for (size_t i = 0; i < 3 * N; i++) pts[i] *= 0x1p-40;
+    CHECK(ps_segment_memory_estimate(&in, &p) == ordinary + 3 * N * sizeof(double));
+    free(pts);
+}
+
 PS_TEST_MAIN(TEST(test_estimate_bounds_measured_peak),
              TEST(test_estimate_bounds_peak_in_partial_draws), TEST(test_estimate_bounds_peak_in_draws),
              TEST(test_estimate_bounds_peak_of_unwelded_mesh), TEST(test_estimate_grows),
-             TEST(test_estimate_covers_the_fill))
+             TEST(test_estimate_covers_the_fill), TEST(test_estimate_counts_the_scaled_copy))
