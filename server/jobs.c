@@ -400,10 +400,16 @@ static void wait_idle_locked(ps_jobs *q, double seconds) {
     }
 }
 
-void ps_jobs_drain(ps_jobs *q, double drain_seconds) {
+void ps_jobs_stop_taking(ps_jobs *q) {
     pthread_mutex_lock(&q->lock);
     q->stopping = 1;
     pthread_cond_broadcast(&q->work);
+    pthread_mutex_unlock(&q->lock);
+}
+
+void ps_jobs_drain(ps_jobs *q, double drain_seconds) {
+    ps_jobs_stop_taking(q);
+    pthread_mutex_lock(&q->lock);
     wait_idle_locked(q, drain_seconds);
     for (ps_job *j = q->first; j; j = j->next) ps_cancel_raise(&j->cancel);
     pthread_mutex_unlock(&q->lock);

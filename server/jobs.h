@@ -98,6 +98,10 @@ void ps_jobs_get_stats(ps_jobs *q, ps_jobs_stats *st);
  * queue is full, or the service is shutting down (draining). */
 int ps_jobs_refuses(ps_jobs *q, ps_api_error *err);
 
+/* Refuses every submit from now on ("the service is shutting down"); queued
+ * and running jobs go on. */
+void ps_jobs_stop_taking(ps_jobs *q);
+
 /* Stops taking jobs, lets queued and running ones finish for up to
  * drain_seconds, cancels what is left and joins the workers.  Every on_done
  * has been called when it returns; references may still be held. */

@@ -99,6 +99,7 @@ static int submit(ps_jobstore *js, const ps_job_upload *up, char *id, size_t id_
                   ps_api_error *err) {
     ps_redis_store *s = store_of(js);
     char hash[160], body[160], points[32], created[32], keep[32], why[512];
+    if (ps_redis_store_stopping(s)) return ps_api_fail(err, 503, "the service is shutting down");
     char *params = params_text(up);
     if (!params) return ps_api_fail(err, 500, "out of memory");
     ps_job_make_id(NULL, id, id_cap);

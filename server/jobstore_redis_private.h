@@ -71,6 +71,9 @@ void ps_redis_ensure_group(ps_redis_link *l);
 /* Unix seconds as Redis keeps them. */
 void ps_redis_now_text(char *out, size_t cap);
 
+/* 1 once ps_redis_workers_stop has begun: no job is taken or queued. */
+int ps_redis_store_stopping(ps_redis_store *s);
+
 /* Starts the workers and the lease keeper; 0 or -1. */
 int ps_redis_workers_start(ps_redis_store *s);
 

@@ -111,7 +111,7 @@ typedef struct taken {
     int reclaimed;
 } taken;
 
-static int stopping(ps_redis_store *s) {
+int ps_redis_store_stopping(ps_redis_store *s) {
     pthread_mutex_lock(&s->lock);
     int stop = s->stopping;
     pthread_mutex_unlock(&s->lock);
@@ -362,10 +362,10 @@ static void *worker_main(void *arg) {
     char cursor[64] = "0-0";
     ps_redis_link *l = ps_redis_link_new(&s->cfg.url, WORKER_TIMEOUT_S);
     if (!l) return NULL;
-    while (!stopping(s)) {
+    while (!ps_redis_store_stopping(s)) {
         taken t;
         int got = take_lapsed(w, l, cursor, sizeof cursor, &t);
-        if (got == 0 && !stopping(s)) got = take_new(w, l, &t);
+        if (got == 0 && !ps_redis_store_stopping(s)) got = take_new(w, l, &t);
         if (got < 0) pause_ms(s, RETRY_MS);
         if (got > 0) settle_taken(w, l, &t);
     }

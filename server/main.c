@@ -100,6 +100,7 @@ int main(int argc, char **argv) {
     int sig = wait_for_stop_signal();
     fprintf(stderr, "pointsegd: signal %d, draining\n", sig);
     ps_http_quiesce(http);
+    ps_jobs_stop_taking(jobs);
     ps_jobstore_drain(store, cfg.drain_seconds);
     ps_jobs_drain(jobs, cfg.drain_seconds);
     ps_http_wait_idle(http, ANSWER_SECONDS);

@@ -5,8 +5,8 @@
  * core for a job on an idle daemon, --max-memory, 32
  * concurrent clients, a full queue (503), DELETE of a running exact job,
  * token, CORS, static files, and SIGTERM draining (what a request on a
- * connection kept from before it is told).  Each test starts
- * pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
+ * connection kept from before it is told, also with --redis).  Each test
+ * starts pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
  */
 #include "daemon_run.h"
 #include "gzip_body.h"
@@ -14,6 +14,7 @@
 #include "pointseg.h"
 #include "pointseg_client.h"
 #include "progress_seen.h"
+#include "redis_proc.h"
 #include "shapes.h"
 #include "testlib.h"
 
@@ -620,10 +621,8 @@ static void test_32_concurrent_clients(void) {
     CHECK_STOPS(d, 10);
 }
 
-/* Waits until the job reports `state`; returns 1 when it did. */
-static int wait_state(const ps_daemon *d, const char *id, const char *state, double timeout_s) {
-    char needle[64];
-    snprintf(needle, sizeof needle, "\"status\":\"%s\"", state);
+/* Waits until the job's status shows `needle`; returns 1 when it did. */
+static int wait_job_shows(const ps_daemon *d, const char *id, const char *needle, double timeout_s) {
     for (double t0 = seconds_now(); seconds_now() - t0 < timeout_s; ps_test_sleep_ms(20)) {
         ps_client_response r;
         int hit = ps_client_poll(&d->client, id, &r) == 0 && r.body && strstr(r.body, needle);
@@ -631,6 +630,13 @@ static int wait_state(const ps_daemon *d, const char *id, const char *state, dou
         if (hit) return 1;
     }
     return 0;
+}
+
+/* Waits until the job reports `state`; returns 1 when it did. */
+static int wait_state(const ps_daemon *d, const char *id, const char *state, double timeout_s) {
+    char needle[64];
+    snprintf(needle, sizeof needle, "\"status\":\"%s\"", state);
+    return wait_job_shows(d, id, needle, timeout_s);
 }
 
 /* Submits a dumbbell that takes seconds with centrality=exact on one
@@ -788,15 +794,34 @@ static int ask_on(int fd, const char *request, char *buf, size_t cap) {
     return sscanf(buf, "HTTP/1.%*d %d", &status) == 1 ? status : 0;
 }
 
+static const char health_request[] = "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n";
+static const char ready_request[] = "GET /readyz HTTP/1.1\r\nHost: x\r\n\r\n";
+static const char segment_request[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 24\r\n\r\n"
+                                      "0 0 0\n1 0 0\n0 1 0\n1 1 0\n";
+static const char jobs_request[] = "POST /jobs HTTP/1.1\r\nHost: x\r\nContent-Length: 24\r\n\r\n"
+                                   "0 0 0\n1 0 0\n0 1 0\n1 1 0\n";
+
+/* Sends SIGTERM to d, then asks /readyz on fd (a connection kept from
+ * before) until it stops answering 200 or within_s passes; its status,
+ * the answer in buf. */
+static int ready_after_sigterm(const ps_daemon *d, int fd, double within_s, char *buf, size_t cap) {
+    int status = 200;
+    kill(d->pid, SIGTERM);
+    for (double t0 = seconds_now(); status == 200 && seconds_now() - t0 < within_s; ps_test_sleep_ms(20))
+        status = ask_on(fd, ready_request, buf, cap);
+    return status;
+}
+
+/* 1 for a 503 with Retry-After saying the service is shutting down. */
+static int says_shutting_down(int status, const char *answer) {
+    return status == 503 && strstr(answer, "the service is shutting down") && strstr(answer, "Retry-After:");
+}
+
 /* A request on a connection kept open from before SIGTERM, while the
  * daemon drains a running job: /readyz and POST /segment answer 503 with
  * Retry-After, saying the service is shutting down (not that the queue is
  * full). */
 static void test_refusal_while_draining_says_why(void) {
-    static const char health[] = "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n";
-    static const char ready[] = "GET /readyz HTTP/1.1\r\nHost: x\r\n\r\n";
-    static const char segment[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 24\r\n\r\n"
-                                  "0 0 0\n1 0 0\n0 1 0\n1 1 0\n";
     char id[128], answer[8192];
     ps_client_body slow;
     ps_daemon d;
@@ -805,20 +830,61 @@ static void test_refusal_while_draining_says_why(void) {
     CHECK_MSG(xyz != NULL, "the exact job never ran");
     int fd = ps_daemon_connect(&d, 5);
     REQUIRE(fd >= 0);
-    CHECK(ask_on(fd, health, answer, sizeof answer) == 200);
-    kill(d.pid, SIGTERM);
-    int status = 200;
-    for (double t0 = seconds_now(); status == 200 && seconds_now() - t0 < 3; ps_test_sleep_ms(20))
-        status = ask_on(fd, ready, answer, sizeof answer);
-    CHECK_MSG(status == 503 && strstr(answer, "shutting down") && strstr(answer, "Retry-After:"),
-              "/readyz while draining: %d %.400s", status, answer);
-    status = ask_on(fd, segment, answer, sizeof answer);
-    CHECK_MSG(status == 503 && strstr(answer, "the service is shutting down") &&
-              !strstr(answer, "queue is full") && strstr(answer, "Retry-After:"),
-              "POST /segment while draining: %d %.400s", status, answer);
+    CHECK(ask_on(fd, health_request, answer, sizeof answer) == 200);
+    int status = ready_after_sigterm(&d, fd, 3, answer, sizeof answer);
+    CHECK_MSG(says_shutting_down(status, answer), "/readyz while draining: %d %.400s", status, answer);
+    status = ask_on(fd, segment_request, answer, sizeof answer);
+    CHECK_MSG(says_shutting_down(status, answer), "POST /segment while draining: %d %.400s", status, answer);
     close(fd);
     free(xyz);
     CHECK_STOPS(d, 20);
+}
+
+/* The job's state in Redis (free it), or NULL. */
+static char *redis_job_state(const ps_test_redis *redis, const char *id) {
+    redisContext *c = ps_test_redis_connect(redis);
+    redisReply *r = c ? redisCommand(c, "HGET pointseg:job:%s state", id) : NULL;
+    char *state = r && r->type == REDIS_REPLY_STRING ? strdup(r->str) : NULL;
+    if (r) freeReplyObject(r);
+    if (c) redisFree(c);
+    return state;
+}
+
+/* The same with --redis, while the replica's worker runs a job taken from
+ * the shared queue (its progress seen, so the worker holds it): from
+ * SIGTERM on, /readyz, POST /segment and POST /jobs answer 503 with
+ * Retry-After, "the service is shutting down"; the job then finishes or
+ * goes back to the shared queue. */
+static void test_redis_replica_refuses_work_from_sigterm(void) {
+    char why[256], url[64], id[128], answer[8192];
+    ps_client_body slow;
+    ps_test_redis redis;
+    ps_daemon d;
+    if (ps_test_redis_start(&redis, why, sizeof why)) SKIP("%s", why);
+    snprintf(url, sizeof url, "redis://127.0.0.1:%d", redis.port);
+    if (ps_daemon_start(&d, (const char *const[]){"--threads", "1", "--drain-seconds", "5", "--redis", url, NULL})) {
+        ps_test_fail(__FILE__, __LINE__, "pointsegd did not start: %s", d.why);
+        ps_test_redis_cleanup(&redis);
+        return;
+    }
+    char *xyz = run_slow_job(&d, &slow, id, sizeof id);
+    CHECK_MSG(xyz && wait_job_shows(&d, id, "\"phase\":\"centrality\"", 20), "the exact job never ran");
+    int fd = ps_daemon_connect(&d, 5);
+    CHECK(fd >= 0 && ask_on(fd, health_request, answer, sizeof answer) == 200);
+    int status = ready_after_sigterm(&d, fd, 1, answer, sizeof answer);
+    CHECK_MSG(says_shutting_down(status, answer), "/readyz while draining: %d %.400s", status, answer);
+    status = ask_on(fd, segment_request, answer, sizeof answer);
+    CHECK_MSG(says_shutting_down(status, answer), "POST /segment while draining: %d %.400s", status, answer);
+    status = ask_on(fd, jobs_request, answer, sizeof answer);
+    CHECK_MSG(says_shutting_down(status, answer), "POST /jobs while draining: %d %.400s", status, answer);
+    if (fd >= 0) close(fd);
+    CHECK_STOPS(d, 20);
+    char *state = redis_job_state(&redis, id);
+    CHECK_MSG(state && (!strcmp(state, "done") || !strcmp(state, "queued")),
+              "the job taken before SIGTERM ended %s", state ? state : "(none)");
+    free(state);
+    free(xyz);
+    ps_test_redis_cleanup(&redis);
 }
 
 /* 1 when process pid holds an epoll instance. */
@@ -925,6 +991,7 @@ int main(int argc, char **argv) {
         TEST(test_full_queue_and_cancel), TEST(test_job_progress_moves_within_phases),
         TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_refusal_while_draining_says_why),
+        TEST(test_redis_replica_refuses_work_from_sigterm),
         TEST(test_sigterm_under_incoming_connections),
         TEST(test_port_in_use_refused)};
     signal(SIGPIPE, SIG_IGN);
