@@ -416,7 +416,7 @@ static void test_bom_keeps_first_point(void) {
     static const char xyz[] = "\xEF\xBB\xBF" "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 0\n1 0 1\n0 1 1\n1 1 1\n";
     static const char csv[] = "\xEF\xBB\xBF" "0,0,0\n1,0,0\n0,1,0\n0,0,1\n1,1,0\n1,0,1\n0,1,1\n1,1,1\n";
     static const char json[] = "\xEF\xBB\xBF" "{\"points\": [[0,0,0],[1,0,0],[0,1,0],[0,0,1],[1,1,0],"
-                               "[1,0,1],[0,1,1],[1,1,1]], \"params\": {\"k\": 4}}";
+                               "[1,0,1],[0,1,1],[1,1,1]]}";
     static const char off[] = "\xEF\xBB\xBF" "OFF\n8 0 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 0\n1 0 1\n0 1 1\n1 1 1\n";
     REQUIRE_STARTS(d, NULL);
     const char *const bodies[][2] = {{xyz, "text/plain"}, {csv, "text/plain"}, {json, "application/json"},
