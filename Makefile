@@ -6,6 +6,7 @@
 #   make test       install missing packages, build, run every test
 #   make web / test-browser              the web viewer / its Chromium test
 #   make bench-quality / bench-speed     print the benchmark figures
+#   make bench-solids                    noisy plain solids: parts kept?
 #   make bench-scale                     1M to 10M points: times, peak RSS
 #   make BUILD=dir SAN=1                 an AddressSanitizer + UBSan build in dir
 #   make BUILD=dir TSAN=1 tsan-tests-build
@@ -67,7 +68,7 @@ INTEG_BIN := $(patsubst tests/integration/%.c,$(BUILD)/itests/%,$(INTEG_SRC))
 BENCH_BIN := $(patsubst tests/bench/%.c,$(BUILD)/bench/%,$(BENCH_SRC))
 PROGRAMS := $(BUILD)/pointseg $(if $(SERVER_SRC),$(BUILD)/pointsegd)
 
-.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-scale bench-load clean tests-build \
+.PHONY: all deps deps-test run test unit integration fuzz bench-quality bench-speed bench-scale bench-load bench-solids clean tests-build \
         tsan-tests-build \
         install uninstall test-scale test-docker web test-browser
 .DEFAULT_GOAL := all
@@ -161,6 +162,12 @@ bench-scale: deps
 bench-load: deps
 	@$(MAKE) --no-print-directory $(BUILD)/bench/bench_load $(BUILD)/pointsegd
 	@$(BUILD)/bench/bench_load $(BENCH_ARGS)
+
+# Plain solids scanned with noise (synthetic, no data needed): segment
+# counts and 1 - RI of the noisy labels against the clean ones.
+bench-solids: deps
+	@$(MAKE) --no-print-directory $(BUILD)/bench/bench_solids
+	@$(BUILD)/bench/bench_solids
 
 # ---- installing and scale-out ----------------------------------------------
 # make install [PREFIX=/usr/local] [DESTDIR=]: both programs, their man pages,

@@ -118,12 +118,10 @@ static int measure(const ps_pointset *horse, size_t n, const ps_params *params,
 }
 
 static void print_header(const ps_params *params) {
-    char cpu[256], date[64];
-    ps_bench_cpu_name(cpu, sizeof cpu);
-    ps_bench_utc_now(date, sizeof date);
-    printf("pointseg %s bench_scale, %s\nmachine: nproc %ld, CPU %s; threads %d (0 = all)\n"
+    ps_bench_print_machine("bench_scale");
+    printf("; threads %d (0 = all)\n"
            "points sampled on the horse (seed 0), default parameters but k = %d; times in s\n\n",
-           PS_VERSION, date, sysconf(_SC_NPROCESSORS_ONLN), cpu, params->threads, params->k);
+           params->threads, params->k);
     printf("| points | total |");
     for (int p = 0; p < PS_PHASE_COUNT; p++) printf(" %s |", ps_phase_name(p));
     printf(" labels | CPU | segments | peak RSS | bytes/point | estimate |\n|---:|---:|");

@@ -53,11 +53,8 @@ static double peak_rss_mb(void) {
 }
 
 static void print_machine(void) {
-    char cpu[256], date[64];
-    ps_bench_cpu_name(cpu, sizeof cpu);
-    ps_bench_utc_now(date, sizeof date);
-    printf("pointseg %s bench_speed, %s\nmachine: nproc %ld, CPU %s\n", PS_VERSION, date,
-           sysconf(_SC_NPROCESSORS_ONLN), cpu);
+    ps_bench_print_machine("bench_speed");
+    printf("\n");
     printf("times in ms (median of %d runs; the 1M case runs once), peak RSS of the "
            "process so far in MB\n\n", SMALL_RUNS);
 }
