@@ -22,8 +22,8 @@
  * each other's tangent planes, so a flat hand is "convex" whatever its
  * outline, where its parts are.  So at least PS_CONVEX_MERGE_DEPTH of the
  * pairs must have one point behind the other's plane by more than the
- * tolerance (a noisy flat hand's pairs 0.04 to 0.13, a beam's or a cube's
- * 0.6 to 0.9).
+ * tolerance (a noisy flat hand's pairs 0.04 to 0.13, a beam's, a board's or a
+ * cube's 0.57 to 0.90).
  *
  * Each segment keeps a sample of at most PS_CONVEX_MERGE_SAMPLES of its
  * points: evenly spaced through its points in index order at the start;
