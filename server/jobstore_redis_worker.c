@@ -485,7 +485,7 @@ void ps_redis_workers_stop(ps_redis_store *s, double seconds) {
         }
     pthread_mutex_unlock(&s->lock);
     for (int i = 0; i < s->n_threads; i++) pthread_join(s->slots[i].thread, NULL);
-    s->n_threads = 0;
-    if (s->has_keeper) pthread_join(s->keeper, NULL);
+    if (s->has_keeper) pthread_join(s->keeper, NULL); /* it reads n_threads */
     s->has_keeper = 0;
+    s->n_threads = 0;
 }
