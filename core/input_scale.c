@@ -8,19 +8,29 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #define EXPONENT_LOW (-1075) /* below frexp's exponent of the smallest subnormal */
 #define EXPONENT_COUNT 2101  /* EXPONENT_LOW to 1025, above frexp's of the largest double */
 
-/* frexp's exponent of the largest |x[d] - center[d]| (center NULL: 0);
- * EXPONENT_LOW when all are 0. */
+/* frexp's exponent of x (>= 0); EXPONENT_LOW for 0. */
+static int exponent_of(double x) {
+    int e = EXPONENT_LOW;
+    if (x > 0) frexp(x, &e);
+    return e;
+}
+
+/* frexp's exponent of the largest |x[d] - center[d]|. */
 static int spread_exponent(const double *x, const double *center, int dim) {
     double largest = 0;
-    for (int d = 0; d < dim; d++) largest = fmax(largest, fabs(x[d] - (center ? center[d] : 0)));
-    int e = EXPONENT_LOW;
-    if (largest > 0) frexp(largest, &e);
-    return e;
+    for (int d = 0; d < dim; d++) largest = fmax(largest, fabs(x[d] - center[d]));
+    return exponent_of(largest);
+}
+
+/* frexp's exponent of the largest |coordinate|. */
+static int largest_exponent(const double *points, size_t count) {
+    double largest = 0;
+    for (size_t i = 0; i < count; i++) largest = fmax(largest, fabs(points[i]));
+    return exponent_of(largest);
 }
 
 /* center out #dim: the median of each coordinate; column #n scratch. */
@@ -31,35 +41,31 @@ static void axis_medians(const double *points, size_t n, int dim, double *column
     }
 }
 
-/* The median of the points' spread exponents about center (NULL: the
- * origin), and the largest through *largest (may be NULL); count
- * #EXPONENT_COUNT scratch. */
+/* The median of the points' spread exponents about center; count
+ * #EXPONENT_COUNT scratch (zeroed). */
 static int median_exponent(const double *points, size_t n, int dim, const double *center,
-                           size_t *count, int *largest) {
-    memset(count, 0, EXPONENT_COUNT * sizeof *count);
+                           size_t *count) {
     for (size_t i = 0; i < n; i++)
         count[spread_exponent(points + i * (size_t)dim, center, dim) - EXPONENT_LOW]++;
     int median = EXPONENT_LOW;
     size_t below = 0;
     for (int b = 0; b < EXPONENT_COUNT; b++) {
         if (count[b] && below < (n + 1) / 2) median = b + EXPONENT_LOW;
-        if (count[b] && largest) *largest = b + EXPONENT_LOW;
         below += count[b];
     }
     return median;
 }
 
 int ps_input_scale_exponent(const double *points, size_t n, int dim) {
-    size_t *count = malloc(EXPONENT_COUNT * sizeof *count);
+    size_t *count = calloc(EXPONENT_COUNT, sizeof *count);
     double *column = malloc(n * sizeof *column), center[PS_MAX_DIM];
-    int e = 0, largest = EXPONENT_LOW;
+    int e = 0;
     if (count && column) {
         axis_medians(points, n, dim, column, center);
-        int spread = median_exponent(points, n, dim, center, count, NULL);
-        median_exponent(points, n, dim, NULL, count, &largest);
+        int spread = median_exponent(points, n, dim, center, count);
         if (spread != EXPONENT_LOW &&
             (spread <= PS_SCALE_MIN_EXPONENT || spread > PS_SCALE_MAX_EXPONENT)) {
-            int headroom = PS_SCALE_CEILING_EXPONENT - largest;
+            int headroom = PS_SCALE_CEILING_EXPONENT - largest_exponent(points, n * (size_t)dim);
             e = -spread > headroom ? (headroom > 0 ? headroom : 0) : -spread;
         }
     }
