@@ -37,24 +37,32 @@ static size_t gather_rings(const ps_graph *g, uint32_t p, patch_walk *w) {
     return tail;
 }
 
-/* n out: the PCA plane's normal of the count patch points whose normals
- * lie within the agreement of p's, signed as p's; p's own when under 4. */
-static void fit_patch(const double *points, const double *normals, const uint32_t *patch,
-                      size_t count, double n[3]) {
+/* The patch points whose normals lie within the agreement of the first's
+ * (p's, which agrees with itself), moved to the front of patch; their
+ * count. */
+static size_t keep_agreeing(const double *normals, uint32_t *patch, size_t count) {
     const double *own = normals + 3 * (size_t)patch[0];
     double agree = cos(PS_PATCH_NORMAL_AGREE * 3.14159265358979323846 / 180);
-    double mean[3] = {0, 0, 0}, cov[3][3] = {{0}};
-    size_t used = 0;
-    for (size_t i = 0; i < count; i++) {
-        if (dot3(normals + 3 * (size_t)patch[i], own) < agree) continue;
-        for (int a = 0; a < 3; a++) mean[a] += points[3 * (size_t)patch[i] + a];
-        used++;
-    }
+    size_t kept = 0;
+    for (size_t i = 0; i < count; i++)
+        if (dot3(normals + 3 * (size_t)patch[i], own) >= agree) patch[kept++] = patch[i];
+    return kept;
+}
+
+/* n out: the PCA plane's normal of the count patch points whose normals
+ * lie within the agreement of p's (patch[0]), signed as p's; p's own when
+ * under 4. */
+static void fit_patch(const double *points, const double *normals, uint32_t *patch,
+                      size_t count, double n[3]) {
+    const double *own = normals + 3 * (size_t)patch[0];
+    size_t used = keep_agreeing(normals, patch, count);
     for (int a = 0; a < 3; a++) n[a] = own[a];
     if (used < 4) return;
+    double mean[3] = {0, 0, 0}, cov[3][3] = {{0}};
+    for (size_t i = 0; i < used; i++)
+        for (int a = 0; a < 3; a++) mean[a] += points[3 * (size_t)patch[i] + a];
     for (int a = 0; a < 3; a++) mean[a] /= (double)used;
-    for (size_t i = 0; i < count; i++) {
-        if (dot3(normals + 3 * (size_t)patch[i], own) < agree) continue;
+    for (size_t i = 0; i < used; i++) {
         const double *x = points + 3 * (size_t)patch[i];
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) cov[a][b] += (x[a] - mean[a]) * (x[b] - mean[b]);
