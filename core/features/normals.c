@@ -8,6 +8,7 @@
 #include "features/normals_smooth.h"
 #include "util/control.h"
 #include "util/sym3.h"
+#include "util/vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -37,19 +38,15 @@ static double pca_normal(const ps_graph *g, const double *points, size_t p, doub
     return edges > 0 ? residual * (double)(count - 1) / edges : 0;
 }
 
-static double dot3(const double *a, const double *b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* n made unit; a zero n becomes (1, 0, 0).  A given normal whose squared
  * length overflows or underflows (components near 1e300 or 1e-200) is
  * first divided by its largest component, so that its direction stays. */
 static void normalize(double n[3]) {
-    double len = sqrt(dot3(n, n));
+    double len = sqrt(ps_dot3(n, n));
     if (!(len > 0) || isinf(len)) {
         double largest = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
         if (largest > 0) n[0] /= largest, n[1] /= largest, n[2] /= largest;
-        len = sqrt(dot3(n, n));
+        len = sqrt(ps_dot3(n, n));
     }
     if (len > 0) n[0] /= len, n[1] /= len, n[2] /= len;
     else n[0] = 1, n[1] = n[2] = 0;
@@ -125,11 +122,11 @@ static void orient_from(const ps_graph *g, uint32_t root, double *n, orient_walk
         if (++w->reached % PROGRESS_STEP == 0)
             ps_control_progress(w->span->ctl, w->span->phase,
                                 ps_progress_span_at(w->span, (double)w->reached / (double)g->n));
-        if (v != up && dot3(n + 3 * v, n + 3 * up) < 0)
+        if (v != up && ps_dot3(n + 3 * v, n + 3 * up) < 0)
             for (int i = 0; i < 3; i++) n[3 * v + i] = -n[3 * v + i];
         for (size_t e = g->offsets[v]; e < g->offsets[v + 1]; e++) {
             uint32_t q = g->neighbors[e];
-            if (w->pos[q] != IN_TREE) offer(w, q, v, 1 - fabs(dot3(n + 3 * v, n + 3 * q)));
+            if (w->pos[q] != IN_TREE) offer(w, q, v, 1 - fabs(ps_dot3(n + 3 * v, n + 3 * q)));
         }
     }
 }
@@ -154,7 +151,7 @@ static int component_centers(size_t n, const double *points, const int *componen
         int c = component[p];
         double d[3];
         for (int i = 0; i < 3; i++) d[i] = points[3 * p + i] - centroid[3 * c + i];
-        if (root[c] == UINT32_MAX || dot3(d, d) > far[c]) root[c] = (uint32_t)p, far[c] = dot3(d, d);
+        if (root[c] == UINT32_MAX || ps_dot3(d, d) > far[c]) root[c] = (uint32_t)p, far[c] = ps_dot3(d, d);
     }
     free(count), free(far);
     return 0;

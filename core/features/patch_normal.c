@@ -6,6 +6,7 @@
 #include "features/patch_normal.h"
 
 #include "util/sym3.h"
+#include "util/vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -15,10 +16,6 @@ typedef struct patch_walk {
     uint32_t *seen;  /* #P the walk that last reached each point */
     uint32_t walk;
 } patch_walk;
-
-static double dot3(const double *a, const double *b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 /* The points within PS_PATCH_NORMAL_RINGS rings of p into w->queue; their
  * count. */
@@ -45,7 +42,7 @@ static size_t keep_agreeing(const double *normals, uint32_t *patch, size_t count
     double agree = cos(PS_PATCH_NORMAL_AGREE * 3.14159265358979323846 / 180);
     size_t kept = 0;
     for (size_t i = 0; i < count; i++)
-        if (dot3(normals + 3 * (size_t)patch[i], own) >= agree) patch[kept++] = patch[i];
+        if (ps_dot3(normals + 3 * (size_t)patch[i], own) >= agree) patch[kept++] = patch[i];
     return kept;
 }
 
@@ -69,7 +66,7 @@ static void fit_patch(const double *points, const double *normals, uint32_t *pat
     }
     double v[3];
     ps_sym3_smallest(cov, v);
-    double sign = dot3(v, own) < 0 ? -1 : 1;
+    double sign = ps_dot3(v, own) < 0 ? -1 : 1;
     for (int a = 0; a < 3; a++) n[a] = sign * v[a];
 }
 

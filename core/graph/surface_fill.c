@@ -13,6 +13,7 @@
 #include "graph/dedup.h"
 #include "graph/reference_density.h"
 #include "util/sort_util.h"
+#include "util/vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -90,10 +91,6 @@ static size_t count_of(size_t t, uint64_t seed, double area, double step) {
     return (size_t)floor(area / step + unit_of(triangle_hash(t, seed, 0x5F1Dull)));
 }
 
-static double dot3(const double *a, const double *b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* normal #F by 3 out: each triangle's normal, twice its area long. */
 static void face_normals(const ps_input *in, double *normal) {
     for (size_t t = 0; t < in->n_faces; t++) {
@@ -109,7 +106,7 @@ static void face_normals(const ps_input *in, double *normal) {
 }
 
 /* The area of the triangle whose face_normals entry is n. */
-static double area_of(const double *n) { return 0.5 * sqrt(dot3(n, n)); }
+static double area_of(const double *n) { return 0.5 * sqrt(ps_dot3(n, n)); }
 
 /* The corner of triangle t's c-th vertex: its distinct point (dedup.h),
  * so that a mesh whose triangles do not share their vertices (each with
@@ -134,8 +131,8 @@ static double roughness_of(const ps_input *in, const ps_dedup *d, const double *
         double m[3] = {0, 0, 0};
         for (int c = 0; c < 3; c++)
             for (int k = 0; k < 3; k++) m[k] += corner[3 * corner_of(in, d, t, c) + k];
-        double nn = dot3(n, n), mm = dot3(m, m);
-        if (nn > 0 && mm > 0) deviation[count++] = 1 - dot3(n, m) / sqrt(nn * mm);
+        double nn = ps_dot3(n, n), mm = ps_dot3(m, m);
+        if (nn > 0 && mm > 0) deviation[count++] = 1 - ps_dot3(n, m) / sqrt(nn * mm);
     }
     double median = count ? ps_select_kth(deviation, count, count / 2) : 0;
     free(corner), free(deviation);

@@ -10,6 +10,7 @@
 #include "features/patch_normal.h"
 #include "refine/crease_merge.h"
 #include "refine/segment_graph.h"
+#include "util/vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -70,18 +71,14 @@ static void merge_samples(samples *s, int winner, int loser, size_t size_w, size
     s->count[loser] = 0;
 }
 
-static double dot3(const double *u, const double *v) {
-    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
 /* Where a point at offset d from a surface point lies against its tangent
  * plane: IN_FRONT, ON_PLANE (|d . n| within PS_CONVEX_MERGE_TOLERANCE
  * |d|) or BEHIND (further back). */
 enum { IN_FRONT, ON_PLANE, BEHIND };
 
 static int side_of(const double *d, const double *n) {
-    double along = dot3(d, n);
-    double tolerance2 = PS_CONVEX_MERGE_TOLERANCE * PS_CONVEX_MERGE_TOLERANCE * dot3(d, d);
+    double along = ps_dot3(d, n);
+    double tolerance2 = PS_CONVEX_MERGE_TOLERANCE * PS_CONVEX_MERGE_TOLERANCE * ps_dot3(d, d);
     if (along * along <= tolerance2) return ON_PLANE;
     return along < 0 ? BEHIND : IN_FRONT;
 }
