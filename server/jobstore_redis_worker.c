@@ -18,6 +18,7 @@
 #define WORKER_TIMEOUT_S 3.0  /* above the block */
 #define RETRY_MS 500          /* after Redis failed */
 #define MAX_PARAMS 64
+#define OWN_LOOKS 16          /* deleted entries a worker forgets from its pending list per look */
 
 /* Takes the job for consumer ARGV[3]: runs it (its input), or settles it:
  * gone, already final, cancelled, or lost once too often.  ARGV[8] is a
@@ -108,7 +109,8 @@ static const char handback_script[] =
 typedef struct taken {
     char entry[64];
     char id[96];
-    int reclaimed;
+    int reclaimed;  /* taken over from a lost worker: START counts a loss */
+    char take[40];  /* the token of this take (START's ARGV[8]) */
 } taken;
 
 int ps_redis_store_stopping(ps_redis_store *s) {
@@ -172,6 +174,36 @@ static int take_lapsed(ps_redis_slot *w, ps_redis_link *l, char *cursor, size_t 
     freeReplyObject(r);
     t->reclaimed = 1;
     return got;
+}
+
+/* An entry Redis gave this worker whose answer never reached it (a read
+ * or takeover whose connection broke after Redis ran it), or one whose START
+ * went unanswered: the oldest in its own pending list.  An entry delivered
+ * more than once was taken over from a lost worker.  1 taken, 0 none, -1
+ * Redis failed. */
+static int take_own(ps_redis_slot *w, ps_redis_link *l, taken *t) {
+    for (int looked = 0; looked < OWN_LOOKS; looked++) {
+        char why[512], entry[64];
+        redisReply *p = ps_redis_runv(l, why, sizeof why, "XPENDING", PS_REDIS_STREAM, PS_REDIS_GROUP, "-",
+                                      "+", "1", w->consumer, (char *)NULL);
+        if (!p) return -1;
+        const redisReply *e = p->type == REDIS_REPLY_ARRAY && p->elements ? p->element[0] : NULL;
+        int ok = e && e->type == REDIS_REPLY_ARRAY && e->elements == 4 &&
+                 e->element[0]->type == REDIS_REPLY_STRING && e->element[3]->type == REDIS_REPLY_INTEGER;
+        if (ok) {
+            snprintf(entry, sizeof entry, "%s", e->element[0]->str);
+            t->reclaimed = e->element[3]->integer > 1;
+        }
+        freeReplyObject(p);
+        if (!ok) return 0;
+        redisReply *r = ps_redis_runv(l, why, sizeof why, "XRANGE", PS_REDIS_STREAM, entry, entry, (char *)NULL);
+        if (!r) return -1;
+        int got = r->type == REDIS_REPLY_ARRAY && r->elements && read_entry(r->element[0], t) == 0;
+        freeReplyObject(r);
+        if (got) return 1;
+        forget_entry(l, entry); /* deleted since: nothing to run */
+    }
+    return 0; /* the rest lapse and are taken over */
 }
 
 /* A new job from the stream, waiting up to BLOCK_MS: 1, 0 or -1. */
@@ -336,38 +368,64 @@ static void count_start(ps_redis_store *s, const taken *t, const redisReply *r) 
     pthread_mutex_unlock(&s->lock);
 }
 
-/* START on a taken entry, then the job if it is to run. */
-static void settle_taken(ps_redis_slot *w, ps_redis_link *l, const taken *t) {
-    char hash[160], body[160], now[32], ttl[32], losses[16], take[40], why[512];
+/* START on a taken entry, then the job if it is to run; -1 when START
+ * went unanswered. */
+static int settle_taken(ps_redis_slot *w, ps_redis_link *l, const taken *t) {
+    char hash[160], body[160], now[32], ttl[32], losses[16], why[512];
     ps_redis_store *s = w->store;
     ps_redis_job_key(t->id, NULL, hash, sizeof hash);
     ps_redis_job_key(t->id, ":body", body, sizeof body);
     ps_redis_now_text(now, sizeof now);
     snprintf(ttl, sizeof ttl, "%d", s->cfg.job_ttl > 0 ? s->cfg.job_ttl : 1);
     snprintf(losses, sizeof losses, "%d", s->cfg.max_losses);
-    ps_job_make_id(NULL, take, sizeof take);
     const char *args[] = {hash, body, PS_REDIS_STREAM, PS_REDIS_GROUP, t->entry, w->consumer,
-                          t->reclaimed ? "1" : "0", losses, now, ttl, take};
+                          t->reclaimed ? "1" : "0", losses, now, ttl, t->take};
     redisReply *r = ps_redis_eval(l, start_script, 3, 11, args, NULL, why, sizeof why);
-    if (!r) return; /* the lease lapses; someone takes it again */
+    if (!r) return -1; /* taken again from the pending list, with the same token */
     count_start(s, t, r);
     if (r->type == REDIS_REPLY_ARRAY && r->elements == 5 && !strcmp(r->element[0]->str, "run"))
         run_taken(w, l, r, t);
     freeReplyObject(r);
+    return 0;
+}
+
+/* The next entry to settle: this worker's own unanswered ones first (while
+ * *own is raised), then one whose lease lapsed, then a new one; a call
+ * whose connection broke raises *own and ends the look.  A take retried
+ * from the pending list keeps the token of its unanswered START. */
+static int take_next(ps_redis_slot *w, ps_redis_link *l, char *cursor, size_t cap, int *own,
+                     const taken *unanswered, taken *t) {
+    unsigned long drops = ps_redis_link_drops(l);
+    int got = *own ? take_own(w, l, t) : 0;
+    *own = got != 0;
+    if (got == 0) got = take_lapsed(w, l, cursor, cap, t);
+    if (got == 0 && ps_redis_link_drops(l) == drops && !ps_redis_store_stopping(w->store))
+        got = take_new(w, l, t);
+    *own |= ps_redis_link_drops(l) != drops;
+    if (got > 0 && !strcmp(t->entry, unanswered->entry)) snprintf(t->take, sizeof t->take, "%s", unanswered->take);
+    else if (got > 0) ps_job_make_id(NULL, t->take, sizeof t->take);
+    return got;
 }
 
 static void *worker_main(void *arg) {
     ps_redis_slot *w = arg;
     ps_redis_store *s = w->store;
     char cursor[64] = "0-0";
+    taken unanswered = {.entry = ""};
+    int own = 0;
     ps_redis_link *l = ps_redis_link_new(&s->cfg.url, WORKER_TIMEOUT_S);
     if (!l) return NULL;
     while (!ps_redis_store_stopping(s)) {
         taken t;
-        int got = take_lapsed(w, l, cursor, sizeof cursor, &t);
-        if (got == 0 && !ps_redis_store_stopping(s)) got = take_new(w, l, &t);
+        int got = take_next(w, l, cursor, sizeof cursor, &own, &unanswered, &t);
         if (got < 0) pause_ms(s, RETRY_MS);
-        if (got > 0) settle_taken(w, l, &t);
+        if (got <= 0) continue;
+        unsigned long drops = ps_redis_link_drops(l);
+        if (settle_taken(w, l, &t)) {
+            unanswered = t;
+            own = 1;
+        }
+        own |= ps_redis_link_drops(l) != drops; /* an outcome unstored: the entry is still ours */
     }
     ps_redis_link_free(l);
     return NULL;

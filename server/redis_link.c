@@ -19,6 +19,7 @@ struct ps_redis_link {
     redisContext *ctx;
     double retry_at;          /* monotonic seconds: no connect attempt before */
     char last_error[640];
+    unsigned long drops;      /* calls whose connection broke under them */
     int in_use;               /* pool bookkeeping */
 };
 
@@ -177,7 +178,10 @@ static int ensure_connected(ps_redis_link *l) {
 static redisReply *attempt(ps_redis_link *l, int argc, const char **argv, const size_t *lens) {
     if (ensure_connected(l)) return NULL;
     redisReply *r = redisCommandArgv(l->ctx, argc, argv, lens);
-    if (!r) disconnect(l, l->ctx->errstr[0] ? l->ctx->errstr : strerror(errno));
+    if (!r) {
+        l->drops++;
+        disconnect(l, l->ctx->errstr[0] ? l->ctx->errstr : strerror(errno));
+    }
     return r;
 }
 
@@ -199,6 +203,8 @@ redisReply *ps_redis_run(ps_redis_link *l, int argc, const char **argv, const si
     count(argv[0], monotonic_seconds() - t0, r == NULL);
     return r;
 }
+
+unsigned long ps_redis_link_drops(const ps_redis_link *l) { return l->drops; }
 
 redisReply *ps_redis_runv(ps_redis_link *l, char *why, size_t why_cap, ...) {
     const char *argv[MAX_ARGS];

@@ -50,6 +50,10 @@ redisReply *ps_redis_run(ps_redis_link *l, int argc, const char **argv, const si
 /* The same with NUL-terminated arguments, NULL-terminated. */
 redisReply *ps_redis_runv(ps_redis_link *l, char *why, size_t why_cap, ...);
 
+/* How many calls lost their connection after sending: each may have run in
+ * Redis without its answer coming back. */
+unsigned long ps_redis_link_drops(const ps_redis_link *l);
+
 typedef struct ps_redis_pool ps_redis_pool;
 
 ps_redis_pool *ps_redis_pool_new(const ps_redis_url *url, int size, double timeout_s);

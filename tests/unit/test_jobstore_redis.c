@@ -2,7 +2,8 @@
  * (started by the test on a free loopback port): any store reads any job,
  * cancels reach the worker running the job, lapsed leases are taken over,
  * the third loss fails a job, a takeover whose answer is lost and retried
- * counts its loss once, Redis going away gives 503s and coming back
+ * counts its loss once, a worker whose read or takeover lost its answer
+ * runs the job at once from its own pending list, Redis going away gives 503s and coming back
  * heals by itself, a submit retried after Redis stalled queues its job
  * once, shutdown hands running jobs back, a job cancelled while queued
  * leaves the queue, kept results stay within their byte budget. */
@@ -233,6 +234,7 @@ typedef struct abandoned {
     ps_jobstore_stats stats;   /* of the store that took it over */
     double seconds;            /* from the worker's start to the end */
     long long losses;
+    int answer_lost;           /* behind a relay: its answer was cut */
 } abandoned;
 
 /* A job taken by a consumer that goes silent (a SIGKILLed replica) after
@@ -311,6 +313,65 @@ static void test_takeover_retried_counts_one_loss(void) {
               a.status.error);
     CHECK_MSG(a.losses == 2, "losses %lld", a.losses);
     CHECK(a.stats.reclaimed == 1 && a.stats.lost_failed == 0);
+}
+
+/* A job is queued, then a store starts whose worker reaches Redis through a
+ * relay that loses the answer to the first call holding `marker` (after
+ * Redis ran it); waits for the job's end.  With lapsed, the job is first
+ * taken by a silent consumer and its lease left to lapse. */
+static int run_behind_cut(const char *marker, int lapsed, abandoned *out) {
+    upload u;
+    ps_api_error err;
+    memset(out, 0, sizeof *out);
+    if (make_upload(&u, SMALL_POINTS, 0)) return -1;
+    ps_jobstore *front = open_store(0), *worker = NULL;
+    int rc = !front ? -1
+             : lapsed ? submit_abandoned(front, &u, out->id, sizeof out->id, 0)
+                      : ps_jobstore_submit(front, &u.up, out->id, sizeof out->id, &err);
+    if (rc == 0 && lapsed) ps_test_sleep_ms(LEASE_S * 1000 + 300);
+    ps_reply_cut *cut = rc == 0 ? ps_reply_cut_start(server.port, marker) : NULL;
+    double t0 = now_s();
+    if (cut && (worker = open_store_on(ps_reply_cut_port(cut), 1, 60, (size_t)1 << 30))) {
+        wait_state(front, out->id, PS_JOB_DONE, 30);
+        out->seconds = now_s() - t0;
+        rc = ps_jobstore_status(front, out->id, &out->status, &err);
+        ps_jobstore_get_stats(worker, &out->stats);
+        out->losses = hash_integer(out->id, "losses");
+        out->answer_lost = ps_reply_cut_done(cut);
+    }
+    ps_jobstore_free(worker);
+    if (cut) ps_reply_cut_stop(cut);
+    ps_jobstore_free(front);
+    free_upload(&u);
+    return worker ? rc : -1;
+}
+
+/* The answer to the worker's read of a new job is lost after Redis handed
+ * it the job: the worker finds the job in its own pending list and runs it
+ * at once, counting no loss (before, the job waited for its lease to lapse
+ * and was taken over as lost). */
+static void test_lost_read_runs_without_loss(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    abandoned a;
+    REQUIRE(run_behind_cut("XREADGROUP", 0, &a) == 0);
+    CHECK_MSG(a.answer_lost, "the read's answer was not lost: the test did not test");
+    CHECK_MSG(a.status.state == PS_JOB_DONE, "state %s: %s", ps_job_state_name(a.status.state), a.status.error);
+    CHECK_MSG(a.losses == 0, "losses %lld", a.losses);
+    CHECK(a.stats.reclaimed == 0 && a.stats.lost_failed == 0);
+}
+
+/* The answer to a takeover (XAUTOCLAIM of a lapsed job) is lost after
+ * Redis gave the job to the worker: the worker runs it from its own pending
+ * list as a takeover (one loss), without waiting for a second lease. */
+static void test_lost_takeover_runs_at_once(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    abandoned a;
+    REQUIRE(run_behind_cut("XAUTOCLAIM", 1, &a) == 0);
+    CHECK_MSG(a.answer_lost, "the takeover's answer was not lost: the test did not test");
+    CHECK_MSG(a.status.state == PS_JOB_DONE, "state %s: %s", ps_job_state_name(a.status.state), a.status.error);
+    CHECK_MSG(a.losses == 1, "losses %lld", a.losses);
+    CHECK(a.stats.reclaimed == 1 && a.stats.lost_failed == 0);
+    CHECK_MSG(a.seconds < LEASE_S - 0.5, "run %.1f s after the takeover: it waited for a second lease", a.seconds);
 }
 
 /* Redis stops: every call is a prompt 503; it comes back (same data, it
@@ -539,7 +600,8 @@ static void test_result_byte_budget(void) {
 
 PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(test_cancel_reaches_worker),
              TEST(test_lapsed_lease_is_taken_over), TEST(test_third_loss_fails_job),
-             TEST(test_takeover_retried_counts_one_loss),
+             TEST(test_takeover_retried_counts_one_loss), TEST(test_lost_read_runs_without_loss),
+             TEST(test_lost_takeover_runs_at_once),
              TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
              TEST(test_submit_retried_after_stall_queues_once),
              TEST(test_drain_hands_back), TEST(test_cancel_leaves_shared_queue), TEST(test_result_byte_budget))
