@@ -23,7 +23,8 @@
 /* Takes the job for consumer ARGV[3]: runs it (its input), or settles it:
  * gone, already final, cancelled, or lost once too often.  ARGV[8] is a
  * fresh token per take: a call whose token the hash holds already is the
- * same take retried after it ran, and counts no second loss. */
+ * same take retried after it ran, and counts no second loss (and answers
+ * 'lost' again when its first run failed the job for it). */
 static const char start_script[] =
     "local function drop() redis.call('XACK', KEYS[3], ARGV[1], ARGV[2])"
     "  redis.call('XDEL', KEYS[3], ARGV[2]) end\n"
@@ -32,11 +33,14 @@ static const char start_script[] =
     "  redis.call('EXPIRE', KEYS[1], ARGV[7]) redis.call('DEL', KEYS[2]) drop() end\n"
     "local state = redis.call('HGET', KEYS[1], 'state')\n"
     "if not state then drop() return {'gone'} end\n"
-    "if state ~= 'queued' and state ~= 'running' then drop() return {'final'} end\n"
     "local retried = redis.call('HGET', KEYS[1], 'take') == ARGV[8]\n"
+    "if state ~= 'queued' and state ~= 'running' then drop()\n"
+    "  if retried and state == 'failed' then return {'lost'} end\n"
+    "  return {'final'} end\n"
     "if ARGV[4] == '1' and not retried then\n"
     "  local losses = redis.call('HINCRBY', KEYS[1], 'losses', 1)\n"
     "  if losses >= tonumber(ARGV[5]) then\n"
+    "    redis.call('HSET', KEYS[1], 'take', ARGV[8])\n"
     "    final('failed', '500', 'the job lost its worker ' .. losses .. ' times (the replica running it"
     " stopped or lost Redis each time); it is not run again')\n"
     "    return {'lost'} end\n"

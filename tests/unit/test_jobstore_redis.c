@@ -2,7 +2,8 @@
  * (started by the test on a free loopback port): any store reads any job,
  * cancels reach the worker running the job, lapsed leases are taken over,
  * the third loss fails a job, a takeover whose answer is lost and retried
- * counts its loss once, a worker whose read or takeover lost its answer
+ * counts its loss once (and a lost answer failing a job still counts
+ * it as failed by losses), a worker whose read or takeover lost its answer
  * runs the job at once from its own pending list, Redis going away gives 503s and coming back
  * heals by itself, a submit retried after Redis stalled queues its job
  * once, shutdown hands running jobs back, a job cancelled while queued
@@ -346,6 +347,27 @@ static int run_behind_cut(const char *marker, int lapsed, abandoned *out) {
     return worker ? rc : -1;
 }
 
+/* A job that lost two workers loses a third, and the answer to the START
+ * call that fails it is lost (after Redis ran it): the retried call finds
+ * its own take and says so.  Three losses, and the replica's
+ * lost_failed counter counts the job (it did not when the retry saw only
+ * a failed job). */
+static void test_lost_failure_answer_still_counted(void) {
+    if (!need_server()) SKIP("%s", skip_why);
+    abandoned a;
+    ps_reply_cut *cut = ps_reply_cut_start(server.port, "HINCRBY");
+    REQUIRE(cut);
+    int rc = run_abandoned_via(ps_reply_cut_port(cut), 2, PS_JOB_FAILED, &a);
+    int lost_answer = ps_reply_cut_done(cut);
+    ps_reply_cut_stop(cut);
+    REQUIRE(rc == 0);
+    CHECK_MSG(lost_answer, "the START's answer was not lost: the test did not test");
+    CHECK(a.status.state == PS_JOB_FAILED && strstr(a.status.error, "lost its worker 3 times"));
+    CHECK_MSG(a.losses == 3, "losses %lld", a.losses);
+    CHECK_MSG(a.stats.reclaimed == 1 && a.stats.lost_failed == 1, "reclaimed %llu, lost_failed %llu",
+              (unsigned long long)a.stats.reclaimed, (unsigned long long)a.stats.lost_failed);
+}
+
 /* The answer to the worker's read of a new job is lost after Redis handed
  * it the job: the worker finds the job in its own pending list and runs it
  * at once, counting no loss (before, the job waited for its lease to lapse
@@ -600,7 +622,8 @@ static void test_result_byte_budget(void) {
 
 PS_TEST_MAIN(TEST(test_url_parse), TEST(test_any_store_serves_any_job), TEST(test_cancel_reaches_worker),
              TEST(test_lapsed_lease_is_taken_over), TEST(test_third_loss_fails_job),
-             TEST(test_takeover_retried_counts_one_loss), TEST(test_lost_read_runs_without_loss),
+             TEST(test_takeover_retried_counts_one_loss), TEST(test_lost_failure_answer_still_counted),
+             TEST(test_lost_read_runs_without_loss),
              TEST(test_lost_takeover_runs_at_once),
              TEST(test_redis_down_then_back), TEST(test_restart_between_calls),
              TEST(test_submit_retried_after_stall_queues_once),
