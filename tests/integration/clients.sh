@@ -85,6 +85,19 @@ if check curl-ply "$curl_dir/ply.sh" "$plain" "$SAMPLE" "$tmp/parts.ply"; then
         "$PS" render "$tmp/parts.ply" -o "$tmp/parts.png" 2>/dev/null; then pass curl-ply
     else fail curl-ply "not a 2000-vertex PLY that renders: $(head -c 100 "$tmp/parts.ply")"; fi
 fi
+printf 'not a point set\n' >"$tmp/bad.xyz"
+if "$curl_dir/jobs.sh" "$plain" "$tmp/bad.xyz" >/dev/null 2>"$tmp/e"; then
+    fail curl-jobs-bad-input "bad input was accepted"
+elif grep -q 'unrecognized format' "$tmp/e"; then pass curl-jobs-bad-input
+else fail curl-jobs-bad-input "the problem's detail is not on stderr: $(head -c 200 "$tmp/e")"; fi
+echo kept >"$tmp/kept.ply"
+if "$curl_dir/ply.sh" "$plain" "$tmp/bad.xyz" "$tmp/kept.ply" >/dev/null 2>"$tmp/e"; then
+    fail curl-ply-bad-input "bad input was accepted"
+elif ! grep -q 'unrecognized format' "$tmp/e"; then
+    fail curl-ply-bad-input "the problem's detail is not on stderr: $(head -c 200 "$tmp/e")"
+elif [ "$(cat "$tmp/kept.ply")" != kept ]; then
+    fail curl-ply-bad-input "OUT was overwritten: $(head -c 100 "$tmp/kept.ply")"
+else pass curl-ply-bad-input; fi
 PARAMS=output=labels POINTSEG_TOKEN=$TOKEN check curl-token "$curl_dir/token.sh" "$secured" &&
     same_labels curl-token "$tmp/curl-token.out"
 if POINTSEG_TOKEN=wrong "$curl_dir/token.sh" "$secured" >/dev/null 2>&1; then
@@ -128,7 +141,6 @@ POINTSEG_TOKEN=$TOKEN check cli-server-token "$PS" segment "$SAMPLE" --server "$
 rc=$?
 if [ "$rc" -eq 2 ] && grep -q 'answered 401' "$tmp/e"; then pass cli-server-no-token
 else fail cli-server-no-token "exit status $rc: $(head -c 200 "$tmp/e")"; fi
-printf 'not a point set\n' >"$tmp/bad.xyz"
 "$PS" segment "$tmp/bad.xyz" --server "$plain" --async >/dev/null 2>"$tmp/e"
 rc=$?
 if [ "$rc" -eq 2 ] && grep -q 'answered 4' "$tmp/e"; then pass cli-server-bad-input
