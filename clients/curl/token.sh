@@ -7,7 +7,7 @@
 set -eu
 url=${1:-http://127.0.0.1:8080}
 file=${2:-$(dirname "$0")/sample.xyz}
-: "${POINTSEG_TOKEN:?set POINTSEG_TOKEN to the daemon's token}"
+: "${POINTSEG_TOKEN:?set POINTSEG_TOKEN to the token of the daemon}"
 curl -sS --fail-with-body -X POST --data-binary @"$file" \
      -H 'Content-Type: application/octet-stream' \
      -H "Authorization: Bearer $POINTSEG_TOKEN" \

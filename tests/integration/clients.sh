@@ -100,6 +100,8 @@ elif [ "$(cat "$tmp/kept.ply")" != kept ]; then
 else pass curl-ply-bad-input; fi
 PARAMS=output=labels POINTSEG_TOKEN=$TOKEN check curl-token "$curl_dir/token.sh" "$secured" &&
     same_labels curl-token "$tmp/curl-token.out"
+PARAMS=output=labels POINTSEG_TOKEN=$TOKEN check curl-token-bash bash "$curl_dir/token.sh" "$secured" &&
+    same_labels curl-token-bash "$tmp/curl-token-bash.out"
 if POINTSEG_TOKEN=wrong "$curl_dir/token.sh" "$secured" >/dev/null 2>&1; then
     fail curl-token-wrong "a wrong token was accepted"
 else pass curl-token-wrong; fi
