@@ -2,11 +2,15 @@
  * remote.c: segmentation on a pointsegd daemon for `pointseg segment
  * --server URL` (remote.h): POST /segment, or POST /jobs, polling
  * GET /jobs/{id} every POLL_MS until the job is final, then
- * GET /jobs/{id}/result.  Parameters travel in the query string.
+ * GET /jobs/{id}/result.  Parameters travel in the query string.  The
+ * daemon refuses a parameter given twice, so what overrides what locally
+ * (a later flag an earlier one, a flag the JSON input's "params") is
+ * settled here: only the overriding one is sent.
  */
 #include "remote.h"
 
 #include "commands.h"
+#include "params_table.h"
 #include "pointseg_client.h"
 
 #include <cjson/cJSON.h>
@@ -34,7 +38,17 @@ static char *append_encoded(char *q, const char *text) {
     return q;
 }
 
-/* "name=value&..." of the parameters (malloc'ed), or NULL. */
+/* 1 when one of the parameters from #from on names the same table entry
+ * as name ("ncut-threshold" and "ncut_threshold" are one). */
+static int named_from(const cli_remote *r, int from, const char *name) {
+    const ps_param_spec *spec = ps_param_find(name);
+    for (int i = from; spec && i < r->n_params; i++)
+        if (ps_param_find(r->params[i].name) == spec) return 1;
+    return 0;
+}
+
+/* "name=value&..." of the parameters (malloc'ed), or NULL; of a parameter
+ * given more than once only the last. */
 static char *make_query(const cli_remote *r) {
     size_t cap = 1;
     for (int i = 0; i < r->n_params; i++)
@@ -42,13 +56,40 @@ static char *make_query(const cli_remote *r) {
     char *query = malloc(cap), *q = query;
     if (!query) return NULL;
     for (int i = 0; i < r->n_params; i++) {
-        if (i) *q++ = '&';
+        if (named_from(r, i + 1, r->params[i].name)) continue;
+        if (q != query) *q++ = '&';
         q = append_encoded(q, r->params[i].name);
         *q++ = '=';
         q = append_encoded(q, r->params[i].value);
     }
     *q = 0;
     return query;
+}
+
+/* The input when it is a JSON object whose "params" name a parameter a
+ * flag gives too: the same object without those (malloc'ed, #*out_len
+ * bytes).  NULL otherwise: any other input, or nothing overridden. */
+static char *without_overridden(const cli_remote *r, const char *bytes, size_t len,
+                                size_t *out_len) {
+    size_t skip = len >= 3 && memcmp(bytes, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    while (skip < len && bytes[skip] && strchr(" \t\r\n", bytes[skip])) skip++;
+    if (r->n_params == 0 || skip == len || bytes[skip] != '{') return NULL;
+    cJSON *doc = cJSON_ParseWithLength(bytes + skip, len - skip);
+    cJSON *params = cJSON_GetObjectItemCaseSensitive(doc, "params");
+    cJSON *item = cJSON_IsObject(params) ? params->child : NULL;
+    int dropped = 0;
+    while (item) {
+        cJSON *next = item->next;
+        if (item->string && named_from(r, 0, item->string)) {
+            cJSON_Delete(cJSON_DetachItemViaPointer(params, item));
+            dropped = 1;
+        }
+        item = next;
+    }
+    char *text = dropped ? cJSON_PrintUnformatted(doc) : NULL;
+    cJSON_Delete(doc);
+    if (text) *out_len = strlen(text);
+    return text;
 }
 
 /* A string member of a JSON object body into out ("" when absent). */
@@ -122,11 +163,14 @@ static int run_async(const ps_client *c, const ps_client_body *body, const char 
 int cli_remote_segment(const cli_remote *r, const char *bytes, size_t len, const char *what,
                        char **answer, size_t *answer_len) {
     ps_client c = {r->server, r->token, 0};
-    ps_client_body body = {bytes, len, NULL, NULL};
+    size_t own_len = 0;
+    char *own = without_overridden(r, bytes, len, &own_len);
+    ps_client_body body = {own ? own : bytes, own ? own_len : len, NULL, NULL};
     ps_client_response res;
     char *query = make_query(r);
     if (!query || ps_client_global_init() != 0) {
         free(query);
+        free(own);
         fprintf(stderr, "pointseg: %s: cannot set up the HTTP client\n", what);
         return EXIT_INTERNAL;
     }
@@ -138,5 +182,6 @@ int cli_remote_segment(const cli_remote *r, const char *bytes, size_t len, const
         rc = take_answer(what, r->server, &res, answer, answer_len);
     }
     free(query);
+    free(own);
     return rc;
 }

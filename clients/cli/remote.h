@@ -16,7 +16,9 @@ typedef struct cli_remote {
     const char *server;            /* "http://127.0.0.1:8080" */
     const char *token;             /* bearer token, or NULL */
     int async;                     /* 1: POST /jobs and poll; 0: POST /segment */
-    const cli_remote_param *params; /* #n_params, sent in the query string */
+    const cli_remote_param *params; /* #n_params, sent in the query string; as
+                                       locally, a later one overrides an earlier
+                                       one and the JSON input's "params" */
     int n_params;
 } cli_remote;
 

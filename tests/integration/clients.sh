@@ -139,6 +139,28 @@ check cli-server-async "$PS" segment "$SAMPLE" --server "$plain" --async --outpu
     same_labels cli-server-async "$tmp/cli-server-async.out"
 POINTSEG_TOKEN=$TOKEN check cli-server-token "$PS" segment "$SAMPLE" --server "$secured" \
     --output labels && same_labels cli-server-token "$tmp/cli-server-token.out"
+# Flags override the JSON input's "params" and earlier flags, as locally
+# (the daemon refuses a parameter given twice).
+python3 -c '
+import json, sys
+points = [list(map(float, line.split())) for line in open(sys.argv[1])]
+json.dump({"points": points, "params": {"k": 8, "ncut-threshold": 0.2}}, open(sys.argv[2], "w"))
+' "$SAMPLE" "$tmp/params.json"
+# same_as_local NAME FLAGS...: `pointseg segment params.json FLAGS --output
+# labels` with --server answers what it answers locally.
+same_as_local() {
+    name=$1
+    shift
+    if ! "$PS" segment "$tmp/params.json" "$@" --output labels >"$tmp/local.labels" 2>"$tmp/e"; then
+        fail "$name" "local segment: $(head -c 200 "$tmp/e")"
+        return
+    fi
+    check "$name" "$PS" segment "$tmp/params.json" --server "$plain" "$@" --output labels &&
+        same_labels "$name" "$tmp/$name.out"
+}
+same_as_local cli-server-json-params
+same_as_local cli-server-flag-over-json --k 10 --ncut_threshold 0.1
+same_as_local cli-server-flag-twice --output json
 "$PS" segment "$SAMPLE" --server "$secured" >/dev/null 2>"$tmp/e"
 rc=$?
 if [ "$rc" -eq 2 ] && grep -q 'answered 401' "$tmp/e"; then pass cli-server-no-token
