@@ -153,15 +153,27 @@ int ps_client_job_is_final(const char *state) {
     return !strcmp(state, "done") || !strcmp(state, "failed") || !strcmp(state, "cancelled");
 }
 
+static long ms_since(const struct timespec *start) {
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (long)(now.tv_sec - start->tv_sec) * 1000L + (now.tv_nsec - start->tv_nsec) / 1000000L;
+}
+
 int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *state, size_t cap) {
-    struct timespec pause = {0, 20 * 1000 * 1000};
-    for (long waited = 0;; waited += 20) {
+    struct timespec pause = {0, 20 * 1000 * 1000}, start;
+    clock_gettime(CLOCK_MONOTONIC, &start);
+    for (;;) {
+        /* Each poll gets at most the time left, so a slow answer cannot
+         * carry the wait past timeout_ms. */
+        long left = timeout_ms - ms_since(&start);
+        ps_client polling = *c;
+        if (!polling.timeout_ms || polling.timeout_ms > left) polling.timeout_ms = left > 1 ? left : 1;
         ps_client_response r;
-        int rc = ps_client_poll(c, id, &r);
+        int rc = ps_client_poll(&polling, id, &r);
         int got = rc == 0 && r.status == 200 && json_string(r.body, "status", state, cap) == 0;
         ps_client_response_free(&r);
         if (got && ps_client_job_is_final(state)) return 0;
-        if (waited >= timeout_ms) return -1;
+        if (ms_since(&start) >= timeout_ms) return -1;
         nanosleep(&pause, NULL);
     }
 }

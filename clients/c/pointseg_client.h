@@ -53,8 +53,9 @@ int ps_client_poll(const ps_client *c, const char *id, ps_client_response *out);
 int ps_client_result(const ps_client *c, const char *id, ps_client_response *out); /* GET /jobs/{id}/result */
 int ps_client_cancel(const ps_client *c, const char *id, ps_client_response *out); /* DELETE /jobs/{id} */
 
-/* Polls until the job is done, failed or cancelled, or timeout_ms passes;
- * copies its final status ("done", ...) into state.  Returns 0 when final. */
+/* Polls until the job is done, failed or cancelled, or timeout_ms passes
+ * (measured on the clock, polls included); copies its final status
+ * ("done", ...) into state.  Returns 0 when final. */
 int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *state, size_t cap);
 
 /* 1 when a job status ("queued", "running", "done", ...) will not change
