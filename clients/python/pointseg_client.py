@@ -13,10 +13,11 @@ As a module:
 segment() returns the document: a dict for output="json" (see README), a list
 of int labels for output="labels", the PLY bytes for output="ply".  Errors
 from the daemon raise PointsegError with the HTTP status and the problem's
-detail.
+detail; no answer (unreachable, connection closed, timeout) one with status 0.
 """
 
 import argparse
+import http.client
 import json
 import os
 import sys
@@ -66,6 +67,8 @@ def _request(server, method, path, token=None, body=None, content_type=None, tim
         raise PointsegError(e.code, detail) from None
     except urllib.error.URLError as e:
         raise PointsegError(0, "cannot reach %s: %s" % (server, e.reason)) from None
+    except (OSError, http.client.HTTPException) as e:
+        raise PointsegError(0, "no answer from %s: %s" % (server, e)) from None
 
 
 def _decode(raw, output):

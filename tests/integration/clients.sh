@@ -132,6 +132,46 @@ except pc.PointsegError as e:
     assert e.status == 422, e.status
 ' "$ROOT/clients/python" "$SAMPLE" "$plain" && same_labels python-import "$tmp/python-import.out"
 
+# No answer (the connection closed, or nothing within the timeout) is a
+# PointsegError with status 0 and, on the command line, exit status 1.
+cat >"$tmp/mute.py" <<'MUTE'
+import socket, sys
+server = socket.socket()
+server.bind(("127.0.0.1", 0))
+server.listen(8)
+print(server.getsockname()[1], flush=True)
+held = []
+while True:
+    conn, _ = server.accept()
+    conn.recv(65536)
+    if sys.argv[1] == "close":
+        conn.close()
+    else:
+        held.append(conn)
+MUTE
+python3 "$tmp/mute.py" close >"$tmp/close.port" &
+pids="$pids $!"
+python3 "$tmp/mute.py" hold >"$tmp/hold.port" &
+pids="$pids $!"
+sleep 0.5
+closing=http://127.0.0.1:$(cat "$tmp/close.port")
+holding=http://127.0.0.1:$(cat "$tmp/hold.port")
+check python-no-answer python3 -c '
+import sys
+sys.path.insert(0, sys.argv[1])
+import pointseg_client as pc
+for server, timeout in ((sys.argv[3], None), (sys.argv[4], 0.5)):
+    try:
+        pc.segment(sys.argv[2], server=server, timeout=timeout)
+        sys.exit("an answer from " + server)
+    except pc.PointsegError as e:
+        assert e.status == 0 and server in str(e), e
+' "$ROOT/clients/python" "$SAMPLE" "$closing" "$holding" && pass python-no-answer
+python3 "$py" segment "$SAMPLE" --server "$closing" >/dev/null 2>"$tmp/e"
+rc=$?
+if [ "$rc" -eq 1 ] && grep -q "no answer from $closing" "$tmp/e"; then pass python-cli-no-answer
+else fail python-cli-no-answer "exit status $rc: $(head -c 200 "$tmp/e")"; fi
+
 # ---- pointseg segment --server ----
 check cli-server "$PS" segment "$SAMPLE" --server "$plain" --output labels &&
     same_labels cli-server "$tmp/cli-server.out"
