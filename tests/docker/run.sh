@@ -1,7 +1,8 @@
 # run.sh: make test-docker: builds docker/Dockerfile, runs the image and
 # segments the horse through it, then brings up docker/compose.yaml (redis,
 # 3 pointsegd replicas, nginx) and runs compose_driver.py's checks on it,
-# `docker kill` included.
+# `docker kill` included.  First lint_deploy.py reads docker/'s files against
+# `pointsegd --help` and the routes (no Docker needed).
 #   sh tests/docker/run.sh BUILD
 # Needs root: installs docker.io, docker-compose and debootstrap with
 # apt-get when missing and starts dockerd when it is not running (and
@@ -137,6 +138,13 @@ run_compose() {
 [ "$(id -u)" = 0 ] || skip_rest setup "needs root (dockerd, apt-get, debootstrap)"
 [ -x "$BUILD/pointseg" ] || { fail setup "$BUILD/pointseg is not built"; finish; }
 install_missing
+# The deployment files against the daemon (no Docker needed).
+python3 "$ROOT/tests/docker/lint_deploy.py" "$ROOT" "$BUILD/pointsegd" >"$tmp/lint.out" 2>&1
+rc=$?
+cat "$tmp/lint.out"
+passed=$((passed + $(grep -c '^PASS ' "$tmp/lint.out")))
+failed=$((failed + $(grep -c '^FAIL ' "$tmp/lint.out")))
+[ "$rc" -eq 0 ] || fail lint-deploy "exit status $rc"
 start_dockerd
 . "$ROOT/tests/docker/base-images.sh"
 make_debian_base 2>"$tmp/base.err" ||
