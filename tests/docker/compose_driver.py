@@ -7,8 +7,9 @@ BASE is nginx's published address.  Checks, as make test-scale does on
 loopback: sync and async requests through nginx with the labels of a local
 run; a job posted through nginx read from inside every replica; a replica
 `docker kill`ed while it runs a job (the job finishes on another); Redis
-`docker kill`ed and started again (503s meanwhile, recovery after); no job
-lost.  Prints PASS/FAIL lines.
+`docker kill`ed and started again (503s meanwhile, recovery after); a
+fourth replica added as compose.yaml says (up --scale, nginx reloaded) takes
+jobs through nginx; no job lost.  Prints PASS/FAIL lines.
 """
 import os
 import subprocess
@@ -112,12 +113,35 @@ def kill_redis(small, labels):
         accepted[job] = (labels, "compose")
 
 
+def scale_up(small, labels):
+    """compose.yaml's way to add a replica: up --scale, then reload nginx
+    (it looks "pointsegd" up only when it loads its configuration)."""
+    os.environ["PUBLISH"] = BASE.split("//", 1)[1]  # as run.sh's up, or nginx is recreated
+    before = set(containers("pointsegd"))
+    compose("up", "-d", "--no-build", "--scale", "pointsegd=4")
+    added = [cid for cid in containers("pointsegd") if cid not in before]
+    end = time.monotonic() + 60
+    while added and time.monotonic() < end and inside(added[0], "/readyz")[0] != 200:
+        time.sleep(0.5)
+    compose("exec", "-T", "nginx", "nginx", "-s", "reload")
+    time.sleep(1)
+    for _ in range(8):
+        status, job, _h = submit(BASE, small)
+        if status == 202:
+            accepted[job] = (labels, "compose")
+    log = docker("logs", added[0]) if added else None
+    served = (log.stdout + log.stderr).count("POST /jobs 202") if log else 0
+    report(len(added) == 1 and served > 0, "compose-scale-up-served",
+           "%d replicas added; the new one took %d of 8 jobs posted through nginx" % (len(added), served))
+
+
 def main():
     small, small_labels, medium, medium_labels = inputs(TMP, PS)
     sync_and_async(small, small_labels)
     every_replica_reads(small, small_labels)
     kill_running_replica(medium, medium_labels)
     kill_redis(small, small_labels)
+    scale_up(small, small_labels)
     no_job_lost(BASE, accepted, "compose-no-job-lost")
 
 
