@@ -112,6 +112,11 @@ run_single() {
     else
         fail "run-segments-$(basename "$input")" "labels differ from the local run ($(cat "$tmp/curl.err"))"
     fi
+    # The viewer's three.js, when `make web` put it in clients/web/vendor/.
+    if [ -f "$ROOT/clients/web/vendor/three.module.js" ]; then
+        code=$(curl -s -o /dev/null -w '%{http_code}' "http://127.0.0.1:$port/vendor/three.module.js")
+        [ "$code" = 200 ] && pass run-serves-three-js || fail run-serves-three-js "answered $code"
+    fi
     docker rm -f "$single" >/dev/null 2>&1
     single=""
 }
