@@ -213,6 +213,14 @@ static cJSON *simple_get(const char *summary, const char *id, const char *media_
     return path;
 }
 
+/* A probe's path: open without the token (no security, no 401). */
+static cJSON *open_to_probes(cJSON *path) {
+    cJSON *get = cJSON_GetObjectItem(path, "get");
+    cJSON_DeleteItemFromObject(cJSON_GetObjectItem(get, "responses"), "401");
+    cJSON_AddItemToObject(get, "security", cJSON_CreateArray());
+    return path;
+}
+
 static cJSON *type_schema(const char *type) {
     cJSON *s = cJSON_CreateObject();
     cJSON_AddStringToObject(s, "type", type);
@@ -254,12 +262,13 @@ static cJSON *paths(void) {
     cJSON_AddItemToObject(p, "/jobs", jobs);
     cJSON_AddItemToObject(p, "/jobs/{id}", job_path());
     cJSON_AddItemToObject(p, "/jobs/{id}/result", result_path());
-    cJSON_AddItemToObject(p, "/healthz", simple_get("the daemon is alive", "healthz", "application/json", type_schema("object")));
+    cJSON_AddItemToObject(p, "/healthz", open_to_probes(simple_get("the daemon is alive", "healthz", "application/json",
+                                                                   type_schema("object"))));
     cJSON *ready = simple_get("ready: the queue is not full and the shared job queue (--redis) answers",
                               "readyz", "application/json", type_schema("object"));
     add_problem(cJSON_GetObjectItem(cJSON_GetObjectItem(ready, "get"), "responses"), 503,
                 "queue full, shutting down, or " SHARED_QUEUE_DOWN);
-    cJSON_AddItemToObject(p, "/readyz", ready);
+    cJSON_AddItemToObject(p, "/readyz", open_to_probes(ready));
     cJSON_AddItemToObject(p, "/metrics", simple_get("Prometheus metrics", "metrics", "text/plain", type_schema("string")));
     cJSON_AddItemToObject(p, "/openapi.json", simple_get("this document", "openapi", "application/json", type_schema("object")));
     cJSON_AddItemToObject(p, "/version", simple_get("versions", "version", "application/json", type_schema("object")));

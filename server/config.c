@@ -61,7 +61,7 @@ static const opt_spec options[] = {
     SIZE_OPT("min-upload-rate", min_upload_rate, 0, 1e12, "4096",
              "bytes a second a body must average, after header-timeout (0 = none)"),
     INT_OPT("drain-seconds", drain_seconds, 0, 86400, "30", "on SIGTERM, wait this long for jobs"),
-    TEXT_OPT("token", token, "", "bearer token required on every route but /healthz"),
+    TEXT_OPT("token", token, "", "bearer token required on every route but /healthz and /readyz"),
     TEXT_OPT("cors-origin", cors_origin, "", "allowed CORS origins: * or a comma-separated list"),
     DIR_OPT("static-dir", static_dir, "clients/web", "directory served at / (if it exists)"),
     TEXT_OPT("replica-name", replica_name, "", "prefix of job ids (routing between replicas)"),

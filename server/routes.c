@@ -50,7 +50,7 @@ static int same_secret(const char *a, const char *b) {
 
 static int authorized(ps_request *r) {
     const char *token = r->srv->cfg->token;
-    if (!*token || r->route == PS_ROUTE_HEALTHZ) return 1;
+    if (!*token || r->route == PS_ROUTE_HEALTHZ || r->route == PS_ROUTE_READYZ) return 1; /* probes */
     const char *h = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_AUTHORIZATION);
     return h && !strncasecmp(h, "Bearer ", 7) && same_secret(h + 7, token);
 }

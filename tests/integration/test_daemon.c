@@ -367,7 +367,11 @@ static void test_token_and_static_files(void) {
     REQUIRE_STARTS(d, "--token", "s3cret", "--static-dir", dir, NULL);
     CHECK(get_status(&d, "/healthz", &r) == 200);
     ps_client_response_free(&r);
+    CHECK_MSG(get_status(&d, "/readyz", &r) == 200, "a readiness probe without the token: %ld", r.status);
+    ps_client_response_free(&r);
     CHECK(get_status(&d, "/version", &r) == 401 && is_problem(&r, 401));
+    ps_client_response_free(&r);
+    CHECK(get_status(&d, "/metrics", &r) == 401);
     ps_client_response_free(&r);
     d.client.token = "wrong!";
     CHECK(get_status(&d, "/version", &r) == 401);

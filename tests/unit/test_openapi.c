@@ -1,6 +1,7 @@
 /* test_openapi.c: the OpenAPI document (api/openapi.c) as strict tools read
  * it: no object repeats a key (JSON allows parsers to refuse that, and
- * YAML-based linters do), it names a server and a licence, and every
+ * YAML-based linters do), it names a server and a licence, the probes need
+ * no token, and every
  * parameter schema has one description.  The full lint is
  * tests/integration/openapi_lint.sh (Redocly). */
 #include "openapi.h"
@@ -62,6 +63,25 @@ static void test_servers_and_license(void) {
     cJSON_Delete(doc);
 }
 
+/* The probes (/healthz, /readyz) need no token: an empty security list and
+ * no 401; any other route keeps the document's bearer scheme and its 401. */
+static void test_probes_open_without_token(void) {
+    cJSON *doc = document();
+    REQUIRE(doc != NULL);
+    const cJSON *path;
+    cJSON_ArrayForEach(path, cJSON_GetObjectItemCaseSensitive(doc, "paths")) {
+        const cJSON *get = cJSON_GetObjectItemCaseSensitive(path, "get");
+        if (!get) continue;
+        int probe = !strcmp(path->string, "/healthz") || !strcmp(path->string, "/readyz");
+        const cJSON *security = cJSON_GetObjectItemCaseSensitive(get, "security");
+        const cJSON *refused = cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(get, "responses"), "401");
+        CHECK_MSG(probe ? cJSON_IsArray(security) && !cJSON_GetArraySize(security) && !refused
+                        : !security && refused,
+                  "GET %s", path->string);
+    }
+    cJSON_Delete(doc);
+}
+
 /* The multipart form's schema: each parameter with its help as description. */
 static void test_form_fields_described_by_their_help(void) {
     cJSON *doc = document();
@@ -91,4 +111,4 @@ static void test_form_fields_described_by_their_help(void) {
 }
 
 PS_TEST_MAIN(TEST(test_no_object_repeats_a_key), TEST(test_repeat_is_found), TEST(test_servers_and_license),
-             TEST(test_form_fields_described_by_their_help))
+             TEST(test_probes_open_without_token), TEST(test_form_fields_described_by_their_help))
