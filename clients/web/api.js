@@ -84,17 +84,23 @@ export async function submitJob(blob, filename, params, gzip = false) {
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 // Polls until the job ends; onProgress({phase, fraction, status}).
-// Returns {doc, text} of the result document.
+// Returns {doc, text} of the result document.  Once isCancelled() is true
+// (before or between polls) the job is deleted on the server and the poll
+// ends with a 'Cancelled' ServerError.
 export async function waitForJob(id, onProgress, isCancelled) {
+  const stopIfCancelled = async () => {
+    if (!isCancelled()) return;
+    await request(`jobs/${id}`, { method: 'DELETE' });
+    throw new ServerError(0, 'Cancelled', `job ${id} was cancelled`);
+  };
   for (;;) {
+    await stopIfCancelled();
     const st = await (await request(`jobs/${id}`)).json();
+    await stopIfCancelled();
     onProgress({ status: st.status, phase: st.progress.phase, fraction: st.progress.fraction });
     if (st.status === 'done') break;
     if (st.status === 'failed') throw new ServerError(st.error.status, 'The segmentation failed', st.error.detail);
     if (st.status === 'cancelled') throw new ServerError(0, 'Cancelled', `job ${id} was cancelled`);
-    if (isCancelled()) {
-      await request(`jobs/${id}`, { method: 'DELETE' });
-    }
     await sleep(POLL_MS);
   }
   const text = await (await request(`jobs/${id}/result`)).text();

@@ -23,7 +23,7 @@ const state = {
   level: 0,         // 0..depth.max = a tree level; depth.max + 1 = final segments
   highlight: -1,    // hovered segment
   hoverPoint: -1,   // the point under the cursor in the 3D view
-  cancelled: false,
+  job: null,        // {cancelled} of the job the page follows; a new run replaces it
   viewer: null,
   params: null,
   ramp: null,       // {index, lo, hi} of centrality
@@ -179,26 +179,35 @@ function showProgress({ status, phase, fraction }) {
   $('bar-fill').style.width = `${Math.round(100 * fraction)}%`;
 }
 
+// Segments state.input.  A job still followed (a file chosen while
+// another is segmented) is cancelled first: deleted on the server, and
+// its poll no longer touches the page.
 async function run() {
   if (!state.input) return;
+  if (state.job) state.job.cancelled = true;
+  const job = { cancelled: false };
+  state.job = job;
+  const current = () => state.job === job;
   clearError();
   setState('running');
-  state.cancelled = false;
   $('run').disabled = true;
   $('cancel').hidden = false;
   showProgress({ status: 'queued', phase: '', fraction: 0 });
   try {
     const params = state.params ? state.params.values() : {};
     const id = await submitJob(state.input.blob, state.input.name, params, state.input.gzip);
-    state.jobId = id;
-    const { doc, text } = await waitForJob(id, showProgress, () => state.cancelled);
-    showResult(doc, text);
+    if (current()) state.jobId = id;
+    const { doc, text } = await waitForJob(id, (p) => current() && showProgress(p), () => job.cancelled);
+    if (current()) showResult(doc, text);
   } catch (err) {
-    showError(err);
+    if (current()) showError(err);
   } finally {
-    $('run').disabled = false;
-    $('cancel').hidden = true;
-    $('progress').hidden = true;
+    if (current()) {
+      state.job = null;
+      $('run').disabled = false;
+      $('cancel').hidden = true;
+      $('progress').hidden = true;
+    }
   }
 }
 
@@ -285,7 +294,7 @@ function wireInput() {
   $('file').onchange = (e) => e.target.files[0] && useFile(e.target.files[0]);
   for (const b of document.querySelectorAll('.example')) b.onclick = () => useExample(b.dataset.shape);
   $('run').onclick = run;
-  $('cancel').onclick = () => (state.cancelled = true);
+  $('cancel').onclick = () => state.job && (state.job.cancelled = true);
   $('reset-params').onclick = () => state.params && state.params.reset();
   document.addEventListener('dragover', (e) => {
     e.preventDefault();

@@ -1,0 +1,186 @@
+// jobs.test.mjs: how the viewer follows a job, against /jobs answers the
+// test scripts (page.route) with result documents the real pointsegd made:
+// a second file chosen while the first is segmented (the first job is
+// deleted on the server and no longer polled, whether it would have run on
+// or ended first) and the Cancel button (DELETE /jobs/{id}, polling stops).
+//   node tests/browser/jobs.test.mjs BUILD
+
+import { makeDumbbell, makeHand } from '../../clients/web/shapes.js';
+import { LONG, assert, check, finish, launchChromium, sleep, startDaemon } from './harness.mjs';
+
+function xyzText(positions) {
+  const lines = [];
+  for (let i = 0; i < positions.length; i += 3) lines.push(`${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
+  return lines.join('\n') + '\n';
+}
+
+const FILES = {
+  hand: { name: 'hand.xyz', text: xyzText(makeHand()) },
+  dumbbell: { name: 'dumbbell.xyz', text: xyzText(makeDumbbell()) },
+};
+
+// The real result document of each file (what GET /jobs/{id}/result gives).
+async function realDocs(base) {
+  const docs = {};
+  for (const [key, file] of Object.entries(FILES)) {
+    const resp = await fetch(`${base}/segment?include=centrality,point_supernode`, {
+      method: 'POST', body: file.text, headers: { 'Content-Type': 'application/octet-stream' },
+    });
+    assert(resp.ok, `POST /segment of ${file.name}: ${resp.status}`);
+    docs[key] = await resp.text();
+  }
+  return docs;
+}
+
+// Answers the page's /jobs requests.  plan: {ids: job id of each POST in
+// turn, status(id, polls, log): 'running' | 'done' | {problem, retryAfter},
+// result: {id: document text}}.  Resolves the log: [{method, id, t}].
+async function mockJobs(page, plan) {
+  const log = [];
+  const cancelled = new Set();
+  let posts = 0;
+  const json = (route, status, body, headers = {}) =>
+    route.fulfill({ status, headers: { 'Content-Type': 'application/json', ...headers }, body: JSON.stringify(body) });
+  const statusDoc = (id, status) => ({ id, status, progress: { phase: 'knn', fraction: status === 'done' ? 1 : 0.3 }, points: 0 });
+  await page.route(/\/jobs([/?]|$)/, async (route) => {
+    const req = route.request();
+    const m = new URL(req.url()).pathname.match(/\/jobs(?:\/([^/]+))?(\/result)?$/);
+    const id = m[1] || plan.ids[posts++];
+    const entry = { method: req.method(), id, result: Boolean(m[2]), t: Date.now() };
+    log.push(entry);
+    if (req.method() === 'POST') return json(route, 202, { id, status: 'queued' }, { Location: `/jobs/${id}` });
+    if (req.method() === 'DELETE') {
+      cancelled.add(id);
+      return json(route, 202, statusDoc(id, 'cancelled'));
+    }
+    if (entry.result) return route.fulfill({ status: 200, contentType: 'application/json', body: plan.result[id] });
+    if (cancelled.has(id)) return json(route, 200, statusDoc(id, 'cancelled'));
+    const polls = log.filter((e) => e.method === 'GET' && e.id === id && !e.result).length;
+    const st = plan.status(id, polls, log);
+    if (typeof st === 'object') {
+      return route.fulfill({
+        status: st.problem, headers: { 'Content-Type': 'application/problem+json', 'Retry-After': String(st.retryAfter) },
+        body: JSON.stringify({ type: 'about:blank', title: 'Service Unavailable', status: st.problem, detail: 'too many connections' }),
+      });
+    }
+    return json(route, 200, statusDoc(id, st));
+  });
+  return log;
+}
+
+async function openPage(context, base) {
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(base + '/');
+  await page.waitForSelector('body[data-state=ready]', { timeout: 20000 });
+  return { page, errors };
+}
+
+function chooseFile(page, key) {
+  const f = FILES[key];
+  return page.setInputFiles('#file', { name: f.name, mimeType: 'text/plain', buffer: Buffer.from(f.text) });
+}
+
+const polls = (log, id) => log.filter((e) => e.method === 'GET' && e.id === id && !e.result).length;
+
+async function waitFor(what, cond, ms = 10000) {
+  const end = Date.now() + ms;
+  while (!cond()) {
+    assert(Date.now() < end, `timed out waiting for ${what}`);
+    await sleep(50);
+  }
+}
+
+// The page after a second file: its result shown, no error, the first job
+// deleted and no longer polled.
+async function checkSecondWins(page, errors, log, docs) {
+  await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+  await sleep(1000);
+  const before = polls(log, 'a');
+  await sleep(1000);
+  const after = polls(log, 'a');
+  const error = await page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
+  const shown = await page.evaluate(() => ({
+    n: window.pointseg.state.doc && window.pointseg.state.doc.n_points, state: document.body.dataset.state,
+  }));
+  assert(!error, `the page shows an error: ${error}`);
+  assert(shown.state === 'done' && shown.n === JSON.parse(docs.dumbbell).n_points,
+    `state ${shown.state}, result of ${shown.n} points`);
+  assert(log.some((e) => e.method === 'DELETE' && e.id === 'a'), 'the first job was never deleted on the server');
+  assert(after === before, `the first job is still polled (${before} then ${after} polls)`);
+  assert(!errors.length, errors.join(' | '));
+}
+
+async function secondFile(context, base, docs) {
+  await check('second-file-cancels-first', async () => {
+    const { page, errors } = await openPage(context, base);
+    const log = await mockJobs(page, {
+      ids: ['a', 'b'], result: { a: docs.hand, b: docs.dumbbell },
+      status: (id, n) => (id === 'b' && n >= 3 ? 'done' : 'running'),
+    });
+    await chooseFile(page, 'hand');
+    await waitFor('two polls of the first job', () => polls(log, 'a') >= 2);
+    await chooseFile(page, 'dumbbell');
+    await checkSecondWins(page, errors, log, docs);
+    await page.close();
+  });
+  await check('second-file-first-ends-late', async () => {
+    const { page, errors } = await openPage(context, base);
+    // The first job ends once the second is posted; the second takes 5 polls.
+    const log = await mockJobs(page, {
+      ids: ['a', 'b'], result: { a: docs.hand, b: docs.dumbbell },
+      status: (id, n, all) => (id === 'b' ? (n >= 5 ? 'done' : 'running')
+        : all.some((e) => e.method === 'POST' && e.id === 'b') ? 'done' : 'running'),
+    });
+    await chooseFile(page, 'hand');
+    await waitFor('two polls of the first job', () => polls(log, 'a') >= 2);
+    await chooseFile(page, 'dumbbell');
+    await waitFor('the second job posted', () => log.some((e) => e.method === 'POST' && e.id === 'b'));
+    await sleep(300);
+    const running = await page.evaluate(() => ({
+      cancel: !document.getElementById('cancel').hidden, progress: !document.getElementById('progress').hidden,
+    }));
+    assert(running.cancel && running.progress, `while the second job runs: cancel ${running.cancel}, progress ${running.progress}`);
+    await checkSecondWins(page, errors, log, docs);
+    await page.close();
+  });
+}
+
+async function cancelButton(context, base, docs) {
+  await check('cancel-deletes-job', async () => {
+    const { page, errors } = await openPage(context, base);
+    const log = await mockJobs(page, { ids: ['a'], result: { a: docs.hand }, status: () => 'running' });
+    await chooseFile(page, 'hand');
+    await waitFor('two polls', () => polls(log, 'a') >= 2);
+    const t = Date.now();
+    await page.click('#cancel');
+    await waitFor('DELETE /jobs/a', () => log.some((e) => e.method === 'DELETE' && e.id === 'a'), 2000);
+    const deleted = log.find((e) => e.method === 'DELETE').t - t;
+    await page.waitForSelector('body[data-state=error]', { timeout: 5000 });
+    const n = polls(log, 'a');
+    await sleep(1000);
+    assert(polls(log, 'a') === n, 'still polled after the cancel');
+    const text = await page.textContent('#error');
+    assert(text.includes('Cancelled'), `error box: '${text}'`);
+    assert(await page.isEnabled('#run') && await page.isHidden('#cancel'), 'Segment not enabled again, or Cancel still shown');
+    console.log(`  DELETE sent ${deleted} ms after the click`);
+    assert(!errors.length, errors.join(' | '));
+    await page.close();
+  });
+}
+
+async function main() {
+  const { proc, base } = await startDaemon();
+  const { context, close } = await launchChromium();
+  try {
+    const docs = await realDocs(base);
+    await secondFile(context, base, docs);
+    await cancelButton(context, base, docs);
+  } finally {
+    await close();
+    proc.kill('SIGTERM');
+  }
+}
+
+finish(main);
