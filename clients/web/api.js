@@ -1,31 +1,44 @@
 // api.js: the daemon's HTTP interface as the page uses it: the parameter
 // specs from /openapi.json, POST /jobs (FormData, or a gzip file with
-// Content-Encoding: gzip), polling GET /jobs/{id},
-// GET /jobs/{id}/result, and RFC 9457 problem+json turned into readable
-// errors.
+// Content-Encoding: gzip), polling GET /jobs/{id} (a 429 or 503 with
+// Retry-After waited out), GET /jobs/{id}/result, and RFC 9457
+// problem+json turned into readable errors.
 
 // Parameters the page shows (the rest: threads, output, include, it sets).
 const SHOWN = ['k', 'centrality', 'samples', 'persistence', 'ncut_threshold', 'feature_threshold', 'minima', 'f2'];
 const INCLUDE = 'centrality,point_supernode';
 const POLL_MS = 200;
+const RETRY_MS_MAX = 30000;   // the longest Retry-After waited out while polling
+const RETRIES = 10;           // 429/503 answers in a row before a poll gives up
 
 export class ServerError extends Error {
-  constructor(status, title, detail) {
+  constructor(status, title, detail, retryAfter = null) {
     super(detail ? `${title}: ${detail}` : title);
     this.status = status;
     this.title = title;
     this.detail = detail;
+    this.retryAfter = retryAfter;   // seconds of a Retry-After header, or null
   }
+}
+
+// Seconds of a Retry-After header (delay-seconds or an HTTP date), or null.
+function retryAfterOf(resp) {
+  const h = resp.headers.get('Retry-After');
+  if (h === null) return null;
+  if (/^\s*\d+\s*$/.test(h)) return Number(h);
+  const at = Date.parse(h);
+  return Number.isNaN(at) ? null : Math.max(0, (at - Date.now()) / 1000);
 }
 
 // A readable error from a non-2xx response (problem+json or anything else).
 async function errorOf(resp) {
   const text = await resp.text();
+  const retry = retryAfterOf(resp);
   try {
     const p = JSON.parse(text);
-    return new ServerError(p.status || resp.status, p.title || resp.statusText, p.detail || '');
+    return new ServerError(p.status || resp.status, p.title || resp.statusText, p.detail || '', retry);
   } catch {
-    return new ServerError(resp.status, `HTTP ${resp.status} ${resp.statusText}`, text.slice(0, 300));
+    return new ServerError(resp.status, `HTTP ${resp.status} ${resp.statusText}`, text.slice(0, 300), retry);
   }
 }
 
@@ -83,6 +96,22 @@ export async function submitJob(blob, filename, params, gzip = false) {
 
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
+// GET /jobs/{id}: the status document, or null after waiting out a 429 or
+// 503 with Retry-After (a busy or restarting service; the job is still
+// there), up to RETRIES of them in a row (busy.count).
+async function pollStatus(id, busy) {
+  try {
+    const st = await (await request(`jobs/${id}`)).json();
+    busy.count = 0;
+    return st;
+  } catch (err) {
+    const wait = err.status === 429 || err.status === 503 ? err.retryAfter : null;
+    if (wait === null || ++busy.count > RETRIES) throw err;
+    await sleep(Math.min(Math.max(1000 * wait, POLL_MS), RETRY_MS_MAX));
+    return null;
+  }
+}
+
 // Polls until the job ends; onProgress({phase, fraction, status}).
 // Returns {doc, text} of the result document.  Once isCancelled() is true
 // (before or between polls) the job is deleted on the server and the poll
@@ -93,9 +122,11 @@ export async function waitForJob(id, onProgress, isCancelled) {
     await request(`jobs/${id}`, { method: 'DELETE' });
     throw new ServerError(0, 'Cancelled', `job ${id} was cancelled`);
   };
+  const busy = { count: 0 };
   for (;;) {
     await stopIfCancelled();
-    const st = await (await request(`jobs/${id}`)).json();
+    const st = await pollStatus(id, busy);
+    if (!st) continue;
     await stopIfCancelled();
     onProgress({ status: st.status, phase: st.progress.phase, fraction: st.progress.fraction });
     if (st.status === 'done') break;

@@ -2,7 +2,8 @@
 // test scripts (page.route) with result documents the real pointsegd made:
 // a second file chosen while the first is segmented (the first job is
 // deleted on the server and no longer polled, whether it would have run on
-// or ended first) and the Cancel button (DELETE /jobs/{id}, polling stops).
+// or ended first), the Cancel button (DELETE /jobs/{id}, polling stops),
+// and a 503 with Retry-After while polling (waited out, not an error).
 //   node tests/browser/jobs.test.mjs BUILD
 
 import { makeDumbbell, makeHand } from '../../clients/web/shapes.js';
@@ -170,6 +171,26 @@ async function cancelButton(context, base, docs) {
   });
 }
 
+async function retryAfter(context, base, docs) {
+  await check('poll-503-retry-after', async () => {
+    const { page, errors } = await openPage(context, base);
+    // The second and third polls get a 503 with Retry-After: 1, then the job ends.
+    const log = await mockJobs(page, {
+      ids: ['a'], result: { a: docs.hand },
+      status: (id, n) => (n === 2 || n === 3 ? { problem: 503, retryAfter: 1 } : n >= 5 ? 'done' : 'running'),
+    });
+    await chooseFile(page, 'hand');
+    await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+    const error = await page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
+    assert(!error, `a 503 with Retry-After while polling gave: ${error}`);
+    const times = log.filter((e) => e.method === 'GET' && !e.result).map((e) => e.t);
+    assert(times[2] - times[1] >= 900 && times[3] - times[2] >= 900,
+      `polled again ${times[2] - times[1]} and ${times[3] - times[2]} ms after the 503s (Retry-After: 1)`);
+    assert(!errors.length, errors.join(' | '));
+    await page.close();
+  });
+}
+
 async function main() {
   const { proc, base } = await startDaemon();
   const { context, close } = await launchChromium();
@@ -177,6 +198,7 @@ async function main() {
     const docs = await realDocs(base);
     await secondFile(context, base, docs);
     await cancelButton(context, base, docs);
+    await retryAfter(context, base, docs);
   } finally {
     await close();
     proc.kill('SIGTERM');
