@@ -3,7 +3,7 @@
 // (../shared/data/models, or the synthetic hand when that is absent), and
 // checks the legend, the merges list, the hierarchy slider, toggles, downloads, a server
 // error, the missing-vendor message, gzip uploads, hover picking in the 3D
-// view and a million-point result.  Prints
+// view, choosing a file with the keyboard and a million-point result.  Prints
 // "PASS browser:<name>" / "FAIL browser:<name>: why" and "N passed, N failed".
 //   node tests/browser/viewer.test.mjs BUILD    (pointsegd in BUILD,
 //   screenshots in BUILD/browser-artifacts)
@@ -315,6 +315,30 @@ async function missingVendor(context, base) {
   });
 }
 
+// The file input reached with Tab alone and opened with Space, as a user
+// without a mouse chooses a scan.
+async function keyboardFile(context, base) {
+  await check('keyboard-choose-file', async () => {
+    const page = await context.newPage();
+    await page.goto(base + '/');
+    await page.waitForSelector('body[data-state=ready]', { timeout: 20000 });
+    let focused = '';
+    for (let i = 0; i < 10 && focused !== 'file'; i++) {
+      await page.keyboard.press('Tab');
+      focused = await page.evaluate(() => document.activeElement && document.activeElement.id);
+    }
+    assert(focused === 'file', 'Tab never reaches the file input');
+    const outline = await page.$eval('#drop', (e) => getComputedStyle(e).outlineStyle);
+    assert(outline !== 'none', 'the drop zone does not show that the file input has the focus');
+    const [chooser] = await Promise.all([page.waitForEvent('filechooser', { timeout: 5000 }), page.keyboard.press('Space')]);
+    await chooser.setFiles({ name: 'hand.xyz', mimeType: 'text/plain', buffer: Buffer.from(handXyz()) });
+    await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+    const error = await page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
+    assert(!error, `the page shows an error: ${error}`);
+    await page.close();
+  });
+}
+
 // A binary PLY of n points on a sphere, and a fake result of 4 segments.
 function millionCase(n) {
   const header = Buffer.from(`ply\nformat binary_little_endian 1.0\nelement vertex ${n}\n` +
@@ -397,6 +421,7 @@ async function main() {
   try {
     await mainFlow(context, base);
     await missingVendor(context, base);
+    await keyboardFile(context, base);
     await millionPoints(context, base);
   } finally {
     await close();
