@@ -223,8 +223,10 @@ export async function gunzip(bytes) {
 }
 
 // bytes: Uint8Array of the whole file, already decompressed (see gunzip).
+// A UTF-8 byte order mark in front is skipped, as the daemon does.
 export function parsePointFile(bytes) {
   if (isGzip(bytes)) throw new FormatError('the file is still gzip-compressed: gunzip it first');
+  if (bytes[0] === 0xef && bytes[1] === 0xbb && bytes[2] === 0xbf) bytes = bytes.subarray(3);
   const start = new TextDecoder('latin1').decode(bytes.subarray(0, 64)).trimStart();
   if (start.startsWith('ply')) return parsePly(bytes);
   const text = new TextDecoder().decode(bytes);

@@ -80,6 +80,11 @@ const FORMAT_CASES = [
   ['xy', '1 2\n3 4\n5 6\n', 3, 0, [1, 2, 0]],
   ['json-nested', '{"points": [[1, 2, 3], [4, 5, 6]], "params": {"k": 1}}', 2, 0, [1, 2, 3]],
   ['json-flat', '{"dimension": 4, "points": [1, 2, 3, 9, 4, 5, 6, 9]}', 2, 0, [1, 2, 3]],
+  // A UTF-8 byte order mark in front, which the daemon skips.
+  ['ply-bom', '\ufeffply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n' +
+    'property float z\nend_header\n1 2 3\n4 5 6\n', 2, 0, [1, 2, 3]],
+  ['json-bom', '\ufeff{"points": [[1, 2, 3], [4, 5, 6]]}', 2, 0, [1, 2, 3]],
+  ['csv-bom', '\ufeffx,y,z\n1,2,3\n4,5,6\n', 2, 0, [1, 2, 3]],
 ];
 
 async function pageParsers() {
@@ -281,6 +286,12 @@ async function mainFlow(context, base) {
     await shot(page, 'hand');
   });
   await gzipUploads(page, base);
+  await check('bom-json-upload', async () => {
+    const points = handXyz().trim().split('\n').map((l) => l.split(' ').map(Number));
+    const bom = Buffer.from('\ufeff' + JSON.stringify({ points }));
+    const got = await uploadFile(page, base, 'hand.json', bom);
+    assert(got.shown === points.length && got.server === points.length, `page ${got.shown}, server ${got.server} points`);
+  });
   await check('server-error', async () => {
     await page.click('#params-box summary');
     await page.fill('#param-k', '1000');
