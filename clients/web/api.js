@@ -5,7 +5,8 @@
 // problem+json turned into readable errors.
 
 // Parameters the page shows (the rest: threads, output, include, it sets).
-const SHOWN = ['k', 'centrality', 'samples', 'persistence', 'ncut_threshold', 'feature_threshold', 'minima', 'f2'];
+const SHOWN = ['method', 'k', 'centrality', 'samples', 'persistence', 'ncut_threshold', 'feature_threshold',
+  'minima', 'f2', 'smooth_normals'];
 const INCLUDE = 'centrality,point_supernode';
 const POLL_MS = 200;
 const RETRY_MS_MAX = 30000;   // the longest Retry-After waited out while polling

@@ -1,7 +1,8 @@
 // forms.test.mjs: multipart uploads as real clients send them, with
 // parameter fields (numbers and text) before and after the file part: Node's
 // own fetch + FormData, headless Chromium submitting a real
-// <form enctype="multipart/form-data">, and the viewer's own upload.  Each
+// <form enctype="multipart/form-data">, and the viewer's own upload (and
+// an input there for every parameter /openapi.json lists).  Each
 // answer must carry the fields' values in its "params" (a body read in
 // pieces once cut a field in two: 422 "got ''").
 //   node tests/browser/forms.test.mjs BUILD
@@ -90,6 +91,37 @@ async function viewerUpload(context, base) {
   });
 }
 
+// Every parameter /openapi.json lists for POST /jobs has an input in the
+// page, but those the page sets itself; method=paper and smooth_normals
+// off are among the fields sent, and the latter is in the answer's params
+// (which do not list method).
+async function viewerEveryParam(context, base) {
+  await check('viewer-every-param', async () => {
+    const doc = await (await fetch(`${base}/openapi.json`)).json();
+    const names = doc.paths['/jobs'].post.parameters.map((p) => p.name)
+      .filter((n) => !['threads', 'output', 'include'].includes(n));
+    const page = await context.newPage();
+    await page.goto(base + '/');
+    await page.waitForSelector('body[data-state=ready]', { timeout: 20000 });
+    const shown = await page.$$eval('#params [name]', (els) => els.map((e) => e.name));
+    const missing = names.filter((n) => !shown.includes(n));
+    assert(!missing.length, `no input for ${missing.join(', ')}`);
+    await page.click('#params-box summary');
+    await page.selectOption('#param-method', 'paper');
+    await page.setChecked('#param-smooth_normals', false);
+    const values = await page.evaluate(() => window.pointseg.state.params.values());
+    assert(values.method === 'paper' && values.smooth_normals === 'false', `sends ${JSON.stringify(values)}`);
+    await page.setInputFiles('#file', { name: 'hand.xyz', mimeType: 'text/plain', buffer: Buffer.from(smallXyz()) });
+    await page.waitForSelector('body[data-state=done], body[data-state=error]', { timeout: LONG });
+    const error = await page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
+    assert(!error, `the page shows an error: ${error}`);
+    const id = await page.evaluate(() => window.pointseg.state.jobId);
+    const result = await (await fetch(`${base}/jobs/${id}/result`)).json();
+    checkParams(result, { smooth_normals: false }, 'viewer upload');
+    await page.close();
+  });
+}
+
 async function main() {
   const { proc, base } = await startDaemon();
   try {
@@ -98,6 +130,7 @@ async function main() {
     try {
       await htmlForm(context, base);
       await viewerUpload(context, base);
+      await viewerEveryParam(context, base);
     } finally {
       await close();
     }
