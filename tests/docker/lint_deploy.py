@@ -9,8 +9,12 @@ probe and health check (k8s httpGet, the Dockerfile's HEALTHCHECK) names a
 port the container listens on and a path the daemon answers 200; a
 Deployment whose image is `:latest` (or untagged) sets imagePullPolicy, since
 Kubernetes would otherwise pull it on every start (Always) and never use an
-image loaded into the cluster (kind load, minikube image load).  Prints
-PASS/FAIL lines.
+image loaded into the cluster (kind load, minikube image load); a
+Deployment's pointsegd has a preStop sleep (at SIGTERM it stops taking work
+at once, so without one the Service still routes requests to it for a
+moment) and a terminationGracePeriodSeconds longer than that sleep, its
+--drain-seconds and the 5 s the daemon then waits for its last answers.
+Prints PASS/FAIL lines.
 """
 import glob
 import os
@@ -131,3 +135,39 @@ for name, ds in k8s.items():
                 latest.append("%s: %s" % (name, image))
 report(not latest, "k8s-latest-image-pull-policy",
        "image with tag latest and no imagePullPolicy (Kubernetes pulls it: Always): %s" % latest)
+
+# preStop sleep + --drain-seconds + the last answers (main.c's ANSWER_SECONDS)
+# within terminationGracePeriodSeconds (30 when not given).
+def pre_stop_seconds(c):
+    handler = c.get("lifecycle", {}).get("preStop", {})
+    argv = handler.get("exec", {}).get("command", [])
+    if len(argv) == 2 and argv[0] in ("sleep", "/bin/sleep"):
+        return float(argv[1])
+    return float(handler.get("sleep", {}).get("seconds", 0))
+
+
+def drain_seconds(c):
+    argv = c.get("args", []) + c.get("command", [])
+    if "--drain-seconds" in argv:
+        return float(argv[argv.index("--drain-seconds") + 1])
+    env = {e["name"]: e.get("value") for e in c.get("env", [])}
+    return float(env.get("POINTSEG_DRAIN_SECONDS", 30))
+
+
+stops = []
+for name, ds in k8s.items():
+    for d in ds:
+        if d.get("kind") != "Deployment":
+            continue
+        grace = d["spec"]["template"]["spec"].get("terminationGracePeriodSeconds", 30)
+        for c in pod_containers(d):
+            if "pointseg" not in c.get("image", ""):
+                continue
+            pre, drain = pre_stop_seconds(c), drain_seconds(c)
+            if pre < 1:
+                stops.append("%s: no preStop sleep" % name)
+            if grace < pre + drain + 5:
+                stops.append("%s: terminationGracePeriodSeconds %s < preStop %g + drain %g + 5"
+                             % (name, grace, pre, drain))
+report(stops == [] and any(d.get("kind") == "Deployment" for ds in k8s.values() for d in ds),
+       "k8s-prestop-and-grace", "; ".join(stops) or "no Deployment found")

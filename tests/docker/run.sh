@@ -104,6 +104,9 @@ run_single() {
     port=$(docker port "$single" 8080 | head -n 1 | sed 's/.*://')
     wait_http "http://127.0.0.1:$port/healthz" 30 || { fail run "no /healthz: $(docker logs "$single" 2>&1 | tail -n 3)"; return; }
     [ "$(docker exec "$single" id -u)" = 10001 ] && pass runs-as-non-root || fail runs-as-non-root "uid $(docker exec "$single" id -u)"
+    # docker/k8s/deployment.yaml's preStop hook runs `sleep` in the container.
+    docker exec "$single" sleep 0 && pass image-has-prestop-sleep ||
+        fail image-has-prestop-sleep "docker exec sleep 0 failed"
     curl -fsS -X POST -H 'Content-Type: application/octet-stream' --data-binary "@$input" \
         "http://127.0.0.1:$port/segment?output=labels" >"$tmp/docker.labels" 2>"$tmp/curl.err"
     "$BUILD/pointseg" segment "$input" --output labels >"$tmp/local.labels"
