@@ -6,7 +6,8 @@ Needs no Docker (tests/docker/run.sh runs it first).  Checks: every
 --flag and POINTSEG_* variable that docker/Dockerfile, compose.yaml,
 k8s/*.yaml and pointsegd.service give is one `pointsegd --help` lists; every
 probe and health check (k8s httpGet, the Dockerfile's HEALTHCHECK) names a
-port the container listens on and a path the daemon answers 200; a
+port the container listens on (the HEALTHCHECK's: ${POINTSEG_PORT:-N}, N
+the Dockerfile's POINTSEG_PORT) and a path the daemon answers 200; a
 Deployment whose image is `:latest` (or untagged) sets imagePullPolicy, since
 Kubernetes would otherwise pull it on every start (Always) and never use an
 image loaded into the cluster (kind load, minikube image load); a
@@ -95,10 +96,18 @@ for name, ds in k8s.items():
                 if "--port" in argv and int(argv[argv.index("--port") + 1]) != port:
                     bad_ports.append("%s %s: port %s, daemon --port %s" %
                                      (name, kind, port, argv[argv.index("--port") + 1]))
-for port, path in re.findall(r"HEALTHCHECK[^\n]*\n?[^\n]*http://127\.0\.0\.1:(\d+)(/\S*)", dockerfile):
+# The HEALTHCHECK follows POINTSEG_PORT (docker run -e POINTSEG_PORT=...),
+# with the Dockerfile's own value as its default.
+checks = re.findall(r"HEALTHCHECK[^\n]*\n?[^\n]*http://127\.0\.0\.1:([^/\s\"]+)(/[^\s\"]*)", dockerfile)
+if not checks:
+    bad_ports.append("Dockerfile: no HEALTHCHECK on http://127.0.0.1:PORT/PATH")
+for port, path in checks:
     probes.append(("Dockerfile HEALTHCHECK", path))
-    if "POINTSEG_PORT=%s" % port not in dockerfile:
-        bad_ports.append("Dockerfile HEALTHCHECK: port %s is not POINTSEG_PORT" % port)
+    default = re.fullmatch(r"\$\{POINTSEG_PORT:-(\d+)\}", port)
+    if not default:
+        bad_ports.append("Dockerfile HEALTHCHECK: port %s, not ${POINTSEG_PORT:-N}" % port)
+    elif "POINTSEG_PORT=%s" % default.group(1) not in dockerfile:
+        bad_ports.append("Dockerfile HEALTHCHECK: default port %s is not POINTSEG_PORT" % default.group(1))
 report(probes and not bad_ports, "deploy-probe-ports", "; ".join(bad_ports) or "no probe found")
 
 port = free_port()

@@ -1,5 +1,6 @@
 # run.sh: make test-docker: builds docker/Dockerfile, runs the image and
-# segments the horse through it, then brings up docker/compose.yaml (redis,
+# segments the horse through it, checks its HEALTHCHECK on another
+# POINTSEG_PORT, then brings up docker/compose.yaml (redis,
 # 3 pointsegd replicas, nginx) and runs compose_driver.py's checks on it,
 # `docker kill` included.  First lint_deploy.py reads docker/'s files against
 # `pointsegd --help` and the routes (no Docker needed).
@@ -124,6 +125,22 @@ run_single() {
     single=""
 }
 
+# The image's HEALTHCHECK on another POINTSEG_PORT (run every second here).
+run_health_port() {
+    single=$(docker run -d -e POINTSEG_PORT=9090 --health-interval 1s pointseg:latest) ||
+        { fail healthcheck-follows-port "docker run failed"; return; }
+    status=starting
+    for _ in $(seq 40); do
+        status=$(docker inspect -f '{{.State.Health.Status}}' "$single")
+        [ "$status" = starting ] || break
+        sleep 0.5
+    done
+    [ "$status" = healthy ] && pass healthcheck-follows-port ||
+        fail healthcheck-follows-port "POINTSEG_PORT=9090: $status"
+    docker rm -f "$single" >/dev/null 2>&1
+    single=""
+}
+
 run_compose() {
     port=$(free_port)
     # shellcheck disable=SC2086
@@ -167,5 +184,6 @@ else
     finish
 fi
 run_single
+run_health_port
 run_compose
 finish
