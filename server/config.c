@@ -112,15 +112,22 @@ static int is_directory(const char *path) {
     return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
-/* The machine's memory, or the cgroup's limit (a container) when lower. */
+size_t ps_memory_capped(size_t bytes, const char *cgroup_file) {
+    unsigned long long limit;
+    FILE *f = fopen(cgroup_file, "r");
+    if (!f) return bytes;
+    if (fscanf(f, "%llu", &limit) == 1 && limit > 0 && limit < bytes) bytes = (size_t)limit;
+    fclose(f);
+    return bytes;
+}
+
+/* The machine's memory, or the cgroup's limit (a container) when lower:
+ * cgroup v2's memory.max, or v1's memory controller. */
 static size_t usable_memory(void) {
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
     size_t bytes = pages > 0 && page > 0 ? (size_t)pages * (size_t)page : (size_t)1 << 32;
-    unsigned long long limit;
-    FILE *f = fopen("/sys/fs/cgroup/memory.max", "r");
-    if (f && fscanf(f, "%llu", &limit) == 1 && limit < bytes) bytes = (size_t)limit;
-    if (f) fclose(f);
-    return bytes;
+    bytes = ps_memory_capped(bytes, "/sys/fs/cgroup/memory.max");
+    return ps_memory_capped(bytes, "/sys/fs/cgroup/memory/memory.limit_in_bytes");
 }
 
 /* Every option's default, from the table (the text --help shows). */

@@ -42,4 +42,10 @@ int ps_config_load(ps_config *c, int argc, char **argv, FILE *out, FILE *err);
 /* Prints every flag with its environment variable and default. */
 void ps_config_usage(FILE *out);
 
+/* bytes, or the memory limit in cgroup_file when lower: a cgroup v2
+ * memory.max or a v1 memory.limit_in_bytes.  A missing file, "max", 0 and
+ * v1's "unlimited" (a number near 2^63, above any machine) leave bytes.
+ * The --max-memory default is half of it. */
+size_t ps_memory_capped(size_t bytes, const char *cgroup_file);
+
 #endif
