@@ -23,6 +23,7 @@
 #include <semaphore.h>
 #include <signal.h>
 #include <stdio.h>
+#include <time.h>
 
 #define ANSWER_SECONDS 5.0
 #define MAX_WORKER_LOSSES 3
@@ -51,6 +52,24 @@ static int wait_for_stop_signal(void) {
 
 /* The store of asynchronous jobs: Redis with --redis, else the in-process
  * queue.  NULL after saying why on stderr. */
+static double monotonic_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* Lets the running jobs of both queues (the shared store's and the
+ * in-process one's, which run side by side) finish within one budget of
+ * `seconds`; the store hands its unfinished jobs back, the rest are
+ * cancelled. */
+static void drain(ps_jobs *jobs, ps_jobstore *store, double seconds) {
+    double start = monotonic_seconds();
+    ps_jobs_stop_taking(jobs);
+    ps_jobstore_drain(store, seconds);
+    double left = seconds - (monotonic_seconds() - start);
+    ps_jobs_drain(jobs, left > 0 ? left : 0);
+}
+
 static ps_jobstore *open_store(const ps_config *cfg, ps_jobs *jobs) {
     char why[512];
     if (!cfg->redis[0]) return ps_jobstore_memory_new(jobs);
@@ -100,9 +119,7 @@ int main(int argc, char **argv) {
     int sig = wait_for_stop_signal();
     fprintf(stderr, "pointsegd: signal %d, draining\n", sig);
     ps_http_quiesce(http);
-    ps_jobs_stop_taking(jobs);
-    ps_jobstore_drain(store, cfg.drain_seconds);
-    ps_jobs_drain(jobs, cfg.drain_seconds);
+    drain(jobs, store, cfg.drain_seconds);
     ps_http_wait_idle(http, ANSWER_SECONDS);
     ps_http_stop(http);
     ps_jobstore_free(store);

@@ -891,6 +891,52 @@ static void test_redis_replica_refuses_work_from_sigterm(void) {
     ps_test_redis_cleanup(&redis);
 }
 
+typedef struct slow_segment {
+    const ps_daemon *d;
+    const ps_client_body *body;
+    long status;
+} slow_segment;
+
+static void *post_slow_segment(void *arg) {
+    slow_segment *s = arg;
+    ps_client_response r;
+    s->status = ps_client_segment(&s->d->client, s->body, "centrality=exact", &r) == 0 ? r.status : 0;
+    ps_client_response_free(&r);
+    return NULL;
+}
+
+/* With --redis a replica runs shared jobs and its own POST /segment side
+ * by side; at SIGTERM both kinds get one --drain-seconds between them, not
+ * one each after the other (a pod's grace period is sized for one). */
+static void test_drain_seconds_bound_both_queues(void) {
+    enum { DRAIN_S = 3 };
+    char why[256], url[64], id[128];
+    ps_client_body slow;
+    ps_test_redis redis;
+    ps_daemon d;
+    pthread_t t;
+    if (ps_test_redis_start(&redis, why, sizeof why)) SKIP("%s", why);
+    snprintf(url, sizeof url, "redis://127.0.0.1:%d", redis.port);
+    if (ps_daemon_start(&d, (const char *const[]){"--threads", "1", "--drain-seconds", "3", "--redis", url, NULL})) {
+        ps_test_fail(__FILE__, __LINE__, "pointsegd did not start: %s", d.why);
+        ps_test_redis_cleanup(&redis);
+        return;
+    }
+    char *xyz = run_slow_job(&d, &slow, id, sizeof id);
+    CHECK_MSG(xyz != NULL, "the shared exact job never ran");
+    slow_segment local = {&d, &slow, -1};
+    if (xyz) pthread_create(&t, NULL, post_slow_segment, &local);
+    CHECK_MSG(xyz && metrics_show(&d, "pointseg_jobs_running 1", 10), "the local exact job never ran");
+    double t0 = seconds_now();
+    CHECK_STOPS(d, 30);
+    double took = seconds_now() - t0;
+    if (xyz) pthread_join(t, NULL);
+    CHECK_MSG(took < DRAIN_S + 1.5, "stopped %.1f s after SIGTERM with --drain-seconds %d", took, DRAIN_S);
+    CHECK_MSG(local.status == 503, "the local job cut by the drain answered %ld", local.status);
+    free(xyz);
+    ps_test_redis_cleanup(&redis);
+}
+
 /* 1 when process pid holds an epoll instance. */
 static int holds_epoll(pid_t pid) {
     char dir[64], path[320], target[128];
@@ -995,6 +1041,7 @@ int main(int argc, char **argv) {
         TEST(test_full_queue_and_cancel), TEST(test_job_progress_moves_within_phases),
         TEST(test_client_going_away_cancels),
         TEST(test_sigterm_drains), TEST(test_refusal_while_draining_says_why),
+        TEST(test_drain_seconds_bound_both_queues),
         TEST(test_redis_replica_refuses_work_from_sigterm),
         TEST(test_sigterm_under_incoming_connections),
         TEST(test_port_in_use_refused)};
