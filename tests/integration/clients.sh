@@ -56,10 +56,20 @@ json_labels() {
 check() {
     name=$1
     shift
-    if timeout 60 "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"; then return 0; fi
-    fail "$name" "exit status $?: $(tail -c 300 "$tmp/$name.err")"
+    timeout 60 "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"
+    status=$?
+    [ "$status" -eq 0 ] && return 0
+    fail "$name" "exit status $status: $(tail -c 300 "$tmp/$name.err")"
     return 1
 }
+
+# check names the command's own exit status when it fails (in a subshell,
+# so that this failure it reports is not counted).
+said=$(check check-status sh -c 'echo oops >&2; exit 3')
+case $said in
+*"exit status 3: oops"*) pass check-reports-status ;;
+*) fail check-reports-status "check said: $said" ;;
+esac
 
 for f in "$PS" "$PSD"; do
     [ -x "$f" ] || { fail setup "$f is not built"; exit 1; }
