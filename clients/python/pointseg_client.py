@@ -79,17 +79,28 @@ def _decode(raw, output):
     return json.loads(raw)
 
 
-def _wait(server, job_id, token, poll_seconds, timeout):
+def _seconds_left(deadline, message):
+    """The seconds left before deadline (None: no deadline); when none are,
+    raises PointsegError with status 0 and message."""
+    if deadline is None:
+        return None
+    left = deadline - time.monotonic()
+    if left <= 0:
+        raise PointsegError(0, message)
+    return left
+
+
+def _wait(server, job_id, token, poll_seconds, deadline, timeout):
     """Polls the job until it is final; returns its status document."""
-    deadline = time.monotonic() + timeout if timeout else None
+    late = "job %s not finished after %g s" % (job_id, timeout or 0)
     while True:
-        _, _, raw = _request(server, "GET", "/jobs/" + job_id, token)
+        _, _, raw = _request(server, "GET", "/jobs/" + job_id, token,
+                             timeout=_seconds_left(deadline, late))
         status = json.loads(raw)
         if status["status"] in FINAL_STATES:
             return status
-        if deadline and time.monotonic() > deadline:
-            raise PointsegError(0, "job %s not finished after %g s" % (job_id, timeout))
-        time.sleep(poll_seconds)
+        left = _seconds_left(deadline, late)
+        time.sleep(poll_seconds if left is None else min(poll_seconds, left))
 
 
 def segment(path_or_points, server=DEFAULT_SERVER, token=None, output="json",
@@ -98,9 +109,13 @@ def segment(path_or_points, server=DEFAULT_SERVER, token=None, output="json",
 
     params are segmentation parameters (k=10, persistence=0.05, ...), sent in
     the query string.  With async_=True the job is queued (POST /jobs) and
-    polled every poll_seconds until done.  Returns the document (see the
+    polled every poll_seconds until done.  timeout (seconds, None = none)
+    bounds the whole call, every poll and the result request included: each
+    request has the time left as its socket timeout, and a call out of time
+    raises PointsegError with status 0.  Returns the document (see the
     module comment).
     """
+    deadline = time.monotonic() + timeout if timeout else None
     body, content_type = _body_of(path_or_points)
     query = dict(params, output=output)
     query = urllib.parse.urlencode({k: _param_text(v) for k, v in query.items()})
@@ -110,8 +125,10 @@ def segment(path_or_points, server=DEFAULT_SERVER, token=None, output="json",
         return _decode(raw, output)
     _, _, raw = _request(server, "POST", "/jobs?" + query, token, body, content_type, timeout)
     job_id = json.loads(raw)["id"]
-    _wait(server, job_id, token, poll_seconds, timeout)
-    _, _, raw = _request(server, "GET", "/jobs/%s/result" % job_id, token)
+    _wait(server, job_id, token, poll_seconds, deadline, timeout)
+    late = "job %s: no result after %g s" % (job_id, timeout or 0)
+    _, _, raw = _request(server, "GET", "/jobs/%s/result" % job_id, token,
+                         timeout=_seconds_left(deadline, late))
     return _decode(raw, output)
 
 

@@ -4,9 +4,10 @@
 # Starts two pointsegd on free ports (one with --token), runs every curl
 # script, the Python client (CLI sync and async, and imported) and
 # `pointseg segment --server` (sync, async, token), and checks each answer's
-# labels equal a local `pointseg segment --output labels` of the same input.
+# labels equal a local `pointseg segment --output labels` of the same input;
+# stand-ins that close, hold or answer jobs wrongly check the clients' errors.
 # Prints "PASS clients:NAME" / "FAIL clients:NAME: why"; exits 1 on any
-# failure; stops both daemons.
+# failure; stops the daemons and stand-ins.
 set -u
 BUILD=${1:-build}
 PS=$BUILD/pointseg
@@ -181,6 +182,72 @@ python3 "$py" segment "$SAMPLE" --server "$closing" >/dev/null 2>"$tmp/e"
 rc=$?
 if [ "$rc" -eq 1 ] && grep -q "no answer from $closing" "$tmp/e"; then pass python-cli-no-answer
 else fail python-cli-no-answer "exit status $rc: $(head -c 200 "$tmp/e")"; fi
+
+# A stand-in daemon whose job answers go wrong; the first segment of the
+# path (the server URL's own path) says how:
+#   stall-poll    POST .../jobs: 202 with an id; GET .../jobs/ID: no answer
+#   stall-result  GET .../jobs/ID: done; GET .../jobs/ID/result: no answer
+#   no-id         POST .../jobs: 202 without an id
+#   bad-status    GET .../jobs/ID: 200, not JSON
+cat >"$tmp/wrong.py" <<'WRONG'
+import http.server, time
+
+class Answers(http.server.BaseHTTPRequestHandler):
+    protocol_version = "HTTP/1.1"
+
+    def log_message(self, *args):
+        pass
+
+    def answer(self, status, body):
+        self.send_response(status)
+        self.send_header("Content-Type", "application/json")
+        self.send_header("Content-Length", str(len(body)))
+        self.end_headers()
+        self.wfile.write(body)
+
+    def do_POST(self):
+        self.rfile.read(int(self.headers.get("Content-Length", 0)))
+        if self.path.startswith("/no-id/"):
+            self.answer(202, b'{"status": "queued"}')
+        else:
+            self.answer(202, b'{"id": "j1", "status": "queued"}')
+
+    def do_GET(self):
+        mode = self.path.split("/")[1]
+        result = self.path.endswith("/result")
+        if mode == "stall-poll" or (mode == "stall-result" and result):
+            time.sleep(3600)
+        elif mode == "bad-status":
+            self.answer(200, b"not JSON")
+        else:
+            self.answer(200, b'{"labels": []}' if result else b'{"id": "j1", "status": "done"}')
+
+server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Answers)
+server.daemon_threads = True
+print(server.server_address[1], flush=True)
+server.serve_forever()
+WRONG
+python3 "$tmp/wrong.py" >"$tmp/wrong.port" &
+pids="$pids $!"
+sleep 0.5
+wrong=http://127.0.0.1:$(cat "$tmp/wrong.port")
+
+# segment(async_=True, timeout=...) is bounded by the timeout, polls and
+# result request included (they had none: a stalled daemon hung it).
+check python-async-timeout timeout 10 python3 -c '
+import sys, time
+sys.path.insert(0, sys.argv[1])
+import pointseg_client as pc
+for mode in ("stall-poll", "stall-result"):
+    start = time.monotonic()
+    try:
+        pc.segment(sys.argv[2], server=sys.argv[3] + "/" + mode, async_=True, timeout=1)
+        sys.exit(mode + ": an answer")
+    except pc.PointsegError as e:
+        assert e.status == 0, e
+    took = time.monotonic() - start
+    assert took < 3, "%s: a 1 s timeout took %.1f s" % (mode, took)
+' "$ROOT/clients/python" "$SAMPLE" "$wrong" && pass python-async-timeout
 
 # ---- pointseg segment --server ----
 check cli-server "$PS" segment "$SAMPLE" --server "$plain" --output labels &&
