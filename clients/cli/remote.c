@@ -151,9 +151,14 @@ static int run_async(const ps_client *c, const ps_client_body *body, const char 
                      const char *what, char **answer, size_t *answer_len) {
     char id[128];
     ps_client_response res;
-    ps_client_submit(c, body, query, id, sizeof id, &res);
+    int id_unread = ps_client_submit(c, body, query, id, sizeof id, &res) != 0;
     if (res.status != 202) return take_answer(what, c->base_url, &res, answer, answer_len);
     ps_client_response_free(&res);
+    if (id_unread) {
+        fprintf(stderr, "pointseg: %s: %s answered 202 without a readable job id\n", what,
+                c->base_url);
+        return EXIT_INTERNAL;
+    }
     int rc = wait_for_job(c, id, what);
     if (rc) return rc;
     ps_client_result(c, id, &res);

@@ -287,4 +287,15 @@ rc=$?
 if [ "$rc" -eq 2 ] && grep -q 'answered 4' "$tmp/e"; then pass cli-server-bad-input
 else fail cli-server-bad-input "exit status $rc: $(head -c 200 "$tmp/e")"; fi
 
+# wrong_answer NAME MODE PATTERN: `pointseg segment --server --async` on the
+# stand-in's MODE exits 1 (a bad server answer) within 10 s, PATTERN on
+# stderr.
+wrong_answer() {
+    timeout 10 "$PS" segment "$SAMPLE" --server "$wrong/$2" --async >/dev/null 2>"$tmp/e"
+    rc=$?
+    if [ "$rc" -eq 1 ] && grep -q "$3" "$tmp/e"; then pass "$1"
+    else fail "$1" "exit status $rc: $(head -c 200 "$tmp/e")"; fi
+}
+wrong_answer cli-server-no-job-id no-id "answered 202 without a readable job id"
+
 [ "$failures" -eq 0 ]
