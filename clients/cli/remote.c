@@ -128,7 +128,9 @@ static int take_answer(const char *what, const char *server, ps_client_response 
     return 0;
 }
 
-/* Polls job id until it is done, failed or cancelled; 0 or an exit status. */
+/* Polls job id until it is done, failed or cancelled; 0 or an exit status.
+ * A status answer without a readable status ends the wait: polling again
+ * would not make it readable. */
 static int wait_for_job(const ps_client *c, const char *id, const char *what) {
     struct timespec pause = {0, POLL_MS * 1000L * 1000L};
     char state[32];
@@ -142,6 +144,11 @@ static int wait_for_job(const ps_client *c, const char *id, const char *what) {
         }
         json_text(res.body, "status", state, sizeof state);
         ps_client_response_free(&res);
+        if (!state[0]) {
+            fprintf(stderr, "pointseg: %s: %s answered GET /jobs/%s without a readable status\n",
+                    what, c->base_url, id);
+            return EXIT_INTERNAL;
+        }
         if (ps_client_job_is_final(state)) return 0;
         nanosleep(&pause, NULL);
     }

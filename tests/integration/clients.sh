@@ -297,5 +297,6 @@ wrong_answer() {
     else fail "$1" "exit status $rc: $(head -c 200 "$tmp/e")"; fi
 }
 wrong_answer cli-server-no-job-id no-id "answered 202 without a readable job id"
+wrong_answer cli-server-bad-status bad-status "without a readable status"
 
 [ "$failures" -eq 0 ]
