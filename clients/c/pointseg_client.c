@@ -1,8 +1,10 @@
-/* pointseg_client.c: the libcurl client of pointsegd. */
+/* pointseg_client.c: the libcurl client of pointsegd.  URLs and header
+ * lines are sized to fit: a long query, token or job id goes out whole. */
 #include "pointseg_client.h"
 
 #include <cJSON.h>
 #include <curl/curl.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,36 +50,60 @@ static size_t on_header(char *line, size_t size, size_t n, void *user) {
     return len;
 }
 
-static struct curl_slist *build_headers(const ps_client *c, const ps_client_body *body,
-                                        const char *const *extra) {
+/* The formatted text, malloc'ed to fit; NULL when out of memory. */
+static char *text_of(const char *format, ...) {
+    va_list args;
+    va_start(args, format);
+    int len = vsnprintf(NULL, 0, format, args);
+    va_end(args);
+    char *text = len < 0 ? NULL : malloc((size_t)len + 1);
+    if (!text) return NULL;
+    va_start(args, format);
+    vsnprintf(text, (size_t)len + 1, format, args);
+    va_end(args);
+    return text;
+}
+
+/* Appends line (NULL: out of memory) to *h and frees it; -1 when out of
+ * memory. */
+static int append_line(struct curl_slist **h, char *line) {
+    struct curl_slist *grown = line ? curl_slist_append(*h, line) : NULL;
+    free(line);
+    if (!grown) return -1;
+    *h = grown;
+    return 0;
+}
+
+/* The request's header lines into *out; -1 (and none) when out of memory. */
+static int build_headers(const ps_client *c, const ps_client_body *body,
+                         const char *const *extra, struct curl_slist **out) {
     struct curl_slist *h = NULL;
-    char line[512];
+    int rc = 0;
     if (body) {
-        snprintf(line, sizeof line, "Content-Type: %s",
-                 body->content_type ? body->content_type : "application/octet-stream");
-        h = curl_slist_append(h, line);
-        if (body->content_encoding) {
-            snprintf(line, sizeof line, "Content-Encoding: %s", body->content_encoding);
-            h = curl_slist_append(h, line);
-        }
+        const char *type = body->content_type ? body->content_type : "application/octet-stream";
+        rc |= append_line(&h, text_of("Content-Type: %s", type));
+        if (body->content_encoding)
+            rc |= append_line(&h, text_of("Content-Encoding: %s", body->content_encoding));
     }
-    if (c->token) {
-        snprintf(line, sizeof line, "Authorization: Bearer %s", c->token);
-        h = curl_slist_append(h, line);
-    }
-    h = curl_slist_append(h, "Expect:");
-    for (; extra && *extra; extra++) h = curl_slist_append(h, *extra);
-    return h;
+    if (c->token) rc |= append_line(&h, text_of("Authorization: Bearer %s", c->token));
+    rc |= append_line(&h, text_of("Expect:"));
+    for (; extra && *extra; extra++) rc |= append_line(&h, text_of("%s", *extra));
+    if (rc) curl_slist_free_all(h);
+    *out = rc ? NULL : h;
+    return rc;
 }
 
 int ps_client_request(const ps_client *c, const char *method, const char *path,
                       const ps_client_body *body, const char *const *headers, ps_client_response *out) {
-    char url[1024];
     memset(out, 0, sizeof *out);
-    CURL *curl = curl_easy_init();
-    if (!curl) return snprintf(out->error, sizeof out->error, "curl_easy_init failed"), -1;
-    snprintf(url, sizeof url, "%s%s", c->base_url, path);
-    struct curl_slist *h = build_headers(c, body, headers);
+    char *url = text_of("%s%s", c->base_url, path);
+    struct curl_slist *h = NULL;
+    CURL *curl = url && build_headers(c, body, headers, &h) == 0 ? curl_easy_init() : NULL;
+    if (!curl) {
+        curl_slist_free_all(h);
+        free(url);
+        return snprintf(out->error, sizeof out->error, "out of memory"), -1;
+    }
     curl_easy_setopt(curl, CURLOPT_URL, url);
     curl_easy_setopt(curl, CURLOPT_CUSTOMREQUEST, method);
     curl_easy_setopt(curl, CURLOPT_NOSIGNAL, 1L);
@@ -97,18 +123,29 @@ int ps_client_request(const ps_client *c, const char *method, const char *path,
     else snprintf(out->error, sizeof out->error, "%s", curl_easy_strerror(rc));
     curl_slist_free_all(h);
     curl_easy_cleanup(curl);
+    free(url);
     return rc == CURLE_OK ? 0 : -1;
 }
 
-static void with_query(char *out, size_t cap, const char *path, const char *query) {
-    snprintf(out, cap, "%s%s%s", path, query && *query ? "?" : "", query ? query : "");
+/* ps_client_request on path (malloc'ed, freed here; NULL: out of memory). */
+static int request_path(const ps_client *c, const char *method, char *path,
+                        const ps_client_body *body, ps_client_response *out) {
+    if (!path) {
+        memset(out, 0, sizeof *out);
+        return snprintf(out->error, sizeof out->error, "out of memory"), -1;
+    }
+    int rc = ps_client_request(c, method, path, body, NULL, out);
+    free(path);
+    return rc;
+}
+
+static char *with_query(const char *path, const char *query) {
+    return text_of("%s%s%s", path, query && *query ? "?" : "", query ? query : "");
 }
 
 int ps_client_segment(const ps_client *c, const ps_client_body *body, const char *query,
                       ps_client_response *out) {
-    char path[512];
-    with_query(path, sizeof path, "/segment", query);
-    return ps_client_request(c, "POST", path, body, NULL, out);
+    return request_path(c, "POST", with_query("/segment", query), body, out);
 }
 
 /* The string member `name` of a JSON object text into out. */
@@ -123,18 +160,14 @@ static int json_string(const char *text, const char *name, char *out, size_t cap
 
 int ps_client_submit(const ps_client *c, const ps_client_body *body, const char *query,
                      char *id, size_t cap, ps_client_response *out) {
-    char path[512];
-    with_query(path, sizeof path, "/jobs", query);
-    if (ps_client_request(c, "POST", path, body, NULL, out)) return -1;
+    if (request_path(c, "POST", with_query("/jobs", query), body, out)) return -1;
     if (out->status != 202) return 0;
     return json_string(out->body, "id", id, cap);
 }
 
 static int job_request(const ps_client *c, const char *method, const char *id, const char *suffix,
                        ps_client_response *out) {
-    char path[512];
-    snprintf(path, sizeof path, "/jobs/%s%s", id, suffix);
-    return ps_client_request(c, method, path, NULL, NULL, out);
+    return request_path(c, method, text_of("/jobs/%s%s", id, suffix), NULL, out);
 }
 
 int ps_client_poll(const ps_client *c, const char *id, ps_client_response *out) {

@@ -1,7 +1,8 @@
 /*
  * test_client.c: the C client's pieces that need no daemon (the calls that
  * do are tested against a live pointsegd in tests/integration/test_daemon.c),
- * and ps_client_wait against a stand-in server that answers slowly.
+ * ps_client_wait against a stand-in server that answers slowly, and long
+ * requests against one that keeps the request head it reads.
  */
 #include "pointseg_client.h"
 #include "testlib.h"
@@ -49,17 +50,17 @@ static void *serve_slowly(void *arg) {
     return NULL;
 }
 
-/* Listens on a free loopback port; its URL into url.  0 or -1. */
-static int slow_server_listen(slow_server *s, char *url, size_t cap) {
+/* Listens on a free loopback port (*fd); its URL into url.  0 or -1. */
+static int listen_loopback(int *fd, char *url, size_t cap) {
     struct sockaddr_in a = {0};
     socklen_t len = sizeof a;
     a.sin_family = AF_INET;
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    s->fd = socket(AF_INET, SOCK_STREAM, 0);
-    if (s->fd < 0) return -1;
-    if (bind(s->fd, (struct sockaddr *)&a, sizeof a) || listen(s->fd, 8) ||
-        getsockname(s->fd, (struct sockaddr *)&a, &len)) {
-        close(s->fd);
+    *fd = socket(AF_INET, SOCK_STREAM, 0);
+    if (*fd < 0) return -1;
+    if (bind(*fd, (struct sockaddr *)&a, sizeof a) || listen(*fd, 8) ||
+        getsockname(*fd, (struct sockaddr *)&a, &len)) {
+        close(*fd);
         return -1;
     }
     snprintf(url, cap, "http://127.0.0.1:%d", ntohs(a.sin_port));
@@ -79,7 +80,7 @@ static void test_wait_timeout_counts_slow_polls(void) {
     char url[64], state[32] = "";
     pthread_t thread;
     REQUIRE(ps_client_global_init() == 0);
-    REQUIRE(slow_server_listen(&s, url, sizeof url) == 0);
+    REQUIRE(listen_loopback(&s.fd, url, sizeof url) == 0);
     REQUIRE(pthread_create(&thread, NULL, serve_slowly, &s) == 0);
     ps_client c = {url, NULL, 0};
     struct timespec t0;
@@ -92,4 +93,79 @@ static void test_wait_timeout_counts_slow_polls(void) {
     close(s.fd);
 }
 
-PS_TEST_MAIN(TEST(test_final_states), TEST(test_wait_timeout_counts_slow_polls))
+/* A loopback server answering one request with "{}", the request's head
+ * (up to its blank line) kept in head. */
+typedef struct recording_server {
+    int fd;
+    char head[16384];
+    size_t len;
+} recording_server;
+
+static void *serve_recording(void *arg) {
+    recording_server *s = arg;
+    static const char answer[] = "HTTP/1.1 200 OK\r\nContent-Length: 2\r\n"
+                                 "Connection: close\r\n\r\n{}";
+    int conn = accept(s->fd, NULL, NULL);
+    if (conn < 0) return NULL;
+    ssize_t got = 1;
+    while (got > 0 && s->len < sizeof s->head - 1 && !strstr(s->head, "\r\n\r\n")) {
+        got = recv(conn, s->head + s->len, sizeof s->head - 1 - s->len, 0);
+        if (got > 0) s->len += (size_t)got;
+        s->head[s->len] = 0;
+    }
+    (void)send(conn, answer, sizeof answer - 1, MSG_NOSIGNAL);
+    close(conn);
+    return NULL;
+}
+
+/* Sends one request with client c (its base_url set here) to a recording
+ * server s: POST /segment?query, or with query NULL GET /jobs/{id}.  0 when
+ * it was answered 200; its head is then in s->head. */
+static int record_request(recording_server *s, ps_client *c, const char *id, const char *query) {
+    char url[64];
+    pthread_t thread;
+    ps_client_response r;
+    memset(s, 0, sizeof *s);
+    if (listen_loopback(&s->fd, url, sizeof url) || pthread_create(&thread, NULL, serve_recording, s))
+        return -1;
+    c->base_url = url;
+    int rc = query ? ps_client_segment(c, NULL, query, &r) : ps_client_poll(c, id, &r);
+    rc = rc == 0 && r.status == 200 ? 0 : -1;
+    ps_client_response_free(&r);
+    shutdown(s->fd, SHUT_RDWR);
+    pthread_join(thread, NULL);
+    close(s->fd);
+    c->base_url = NULL;
+    return rc;
+}
+
+/* prefix, n times fill, then suffix into out. */
+static void long_text(char *out, size_t cap, const char *prefix, char fill, size_t n,
+                      const char *suffix) {
+    size_t at = (size_t)snprintf(out, cap, "%s", prefix);
+    for (size_t i = 0; i < n && at + 1 < cap; i++) out[at++] = fill;
+    snprintf(out + at, cap - at, "%s", suffix);
+}
+
+/* A long query, token or job id goes out whole (they were cut at the
+ * client's 512- and 1024-byte buffers: the daemon got another request). */
+static void test_long_requests_sent_whole(void) {
+    static recording_server s;
+    char query[3001], token[2001], id[1501], want[3200];
+    long_text(query, sizeof query, "", 'q', 3000, "");
+    long_text(token, sizeof token, "", 't', 2000, "");
+    long_text(id, sizeof id, "", 'i', 1500, "");
+    REQUIRE(ps_client_global_init() == 0);
+    ps_client c = {NULL, token, 0};
+    REQUIRE(record_request(&s, &c, NULL, query) == 0);
+    long_text(want, sizeof want, "POST /segment?", 'q', 3000, " HTTP/1.1\r\n");
+    CHECK_MSG(strstr(s.head, want) != NULL, "request line cut: %.80s...", s.head);
+    long_text(want, sizeof want, "\r\nAuthorization: Bearer ", 't', 2000, "\r\n");
+    CHECK_MSG(strstr(s.head, want) != NULL, "token cut (%zu head bytes)", s.len);
+    REQUIRE(record_request(&s, &c, id, NULL) == 0);
+    long_text(want, sizeof want, "GET /jobs/", 'i', 1500, " HTTP/1.1\r\n");
+    CHECK_MSG(strstr(s.head, want) != NULL, "job path cut: %.80s...", s.head);
+}
+
+PS_TEST_MAIN(TEST(test_final_states), TEST(test_wait_timeout_counts_slow_polls),
+             TEST(test_long_requests_sent_whole))
