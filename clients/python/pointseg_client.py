@@ -5,6 +5,10 @@ Command line:
     python3 pointseg_client.py segment FILE [--server URL] [--async]
         [--output json|labels|ply] [-o OUT] [--token TOKEN] [--param NAME=VALUE ...]
 
+As with pointseg's flags, of a parameter given more than once (--param
+ncut-threshold=... and ncut_threshold=... are one, --output is --param
+output=...) the last is sent, and only it: the daemon refuses a second.
+
 As a module:
     import pointseg_client
     doc = pointseg_client.segment("scan.ply", server="http://127.0.0.1:8080", k=10)
@@ -28,6 +32,8 @@ import urllib.request
 
 DEFAULT_SERVER = os.environ.get("POINTSEG_SERVER", "http://127.0.0.1:8080")
 FINAL_STATES = ("done", "failed", "cancelled")
+OUTPUTS = ("json", "labels", "ply")
+POLL_SECONDS = 0.2
 
 
 class PointsegError(Exception):
@@ -104,7 +110,7 @@ def _wait(server, job_id, token, poll_seconds, deadline, timeout):
 
 
 def segment(path_or_points, server=DEFAULT_SERVER, token=None, output="json",
-            async_=False, poll_seconds=0.2, timeout=None, **params):
+            async_=False, poll_seconds=POLL_SECONDS, timeout=None, **params):
     """Segments a file (path) or a list of points on pointsegd.
 
     params are segmentation parameters (k=10, persistence=0.05, ...), sent in
@@ -115,6 +121,12 @@ def segment(path_or_points, server=DEFAULT_SERVER, token=None, output="json",
     raises PointsegError with status 0.  Returns the document (see the
     module comment).
     """
+    return _segment(path_or_points, server, token, output, async_, poll_seconds, timeout,
+                    params)
+
+
+def _segment(path_or_points, server, token, output, async_, poll_seconds, timeout, params):
+    """segment() with its parameters in a dict, so that any name can be one."""
     deadline = time.monotonic() + timeout if timeout else None
     body, content_type = _body_of(path_or_points)
     query = dict(params, output=output)
@@ -153,6 +165,29 @@ def _write(doc, output, out):
             f.write(raw)
 
 
+class _InOrder(argparse.Action):
+    """Keeps --param NAME=VALUE and --output VALUE (as output=VALUE) in
+    args.params in the order given, so that a later one can override."""
+
+    def __call__(self, parser, namespace, value, option_string=None):
+        item = value if option_string == "--param" else "output=" + value
+        namespace.params = namespace.params + [item]
+
+
+def _last_params(items):
+    """{name: value} of "NAME=VALUE" items, of a name given more than once the
+    last ('-' and '_' alike, as the daemon takes them); None on an item
+    without '='."""
+    params = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        if not sep:
+            print("pointseg_client.py: --param %s: expected NAME=VALUE" % item, file=sys.stderr)
+            return None
+        params[name.replace("-", "_")] = value
+    return params
+
+
 def _parse_args(argv):
     parser = argparse.ArgumentParser(prog="pointseg_client.py",
                                      description="Segment a point set on pointsegd.")
@@ -162,34 +197,38 @@ def _parse_args(argv):
     seg.add_argument("--server", default=DEFAULT_SERVER, help="daemon URL (%(default)s)")
     seg.add_argument("--async", dest="async_", action="store_true",
                      help="queue a job (POST /jobs) and poll it")
-    seg.add_argument("--output", choices=("json", "labels", "ply"), default="json")
+    seg.add_argument("--output", dest="params", action=_InOrder, default=[], choices=OUTPUTS,
+                     help="json (default), labels or ply; the same as --param output=...")
     seg.add_argument("-o", dest="out", help="write the result here (default stdout)")
     seg.add_argument("--token", default=os.environ.get("POINTSEG_TOKEN"),
                      help="bearer token (default $POINTSEG_TOKEN)")
-    seg.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                     help="a segmentation parameter, e.g. --param k=10 (repeatable)")
+    seg.add_argument("--param", dest="params", action=_InOrder, default=[],
+                     metavar="NAME=VALUE",
+                     help="a segmentation parameter, e.g. --param k=10 (repeatable; as "
+                          "with pointseg's flags, a later one overrides an earlier one)")
     return parser.parse_args(argv)
 
 
 def main(argv=None):
     args = _parse_args(sys.argv[1:] if argv is None else argv)
-    params = {}
-    for item in args.param:
-        name, sep, value = item.partition("=")
-        if not sep:
-            print("pointseg_client.py: --param %s: expected NAME=VALUE" % item, file=sys.stderr)
-            return 2
-        params[name] = value
+    params = _last_params(args.params)
+    if params is None:
+        return 2
+    output = params.pop("output", "json")
+    if output not in OUTPUTS:
+        print("pointseg_client.py: output=%s: expected one of %s" % (output, ", ".join(OUTPUTS)),
+              file=sys.stderr)
+        return 2
     try:
-        doc = segment(args.file, server=args.server, token=args.token, output=args.output,
-                      async_=args.async_, **params)
+        doc = _segment(args.file, args.server, args.token, output, args.async_, POLL_SECONDS,
+                       None, params)
     except PointsegError as e:
         print("pointseg_client.py: %s: %s" % (args.file, e), file=sys.stderr)
         return 2 if 400 <= e.status < 500 else 1
     except OSError as e:
         print("pointseg_client.py: %s" % e, file=sys.stderr)
         return 2
-    _write(doc, args.output, args.out)
+    _write(doc, output, args.out)
     return 0
 
 

@@ -126,6 +126,24 @@ check python-async python3 "$py" segment "$SAMPLE" --server "$plain" --async --o
 check python-token python3 "$py" segment "$SAMPLE" --server "$secured" --token "$TOKEN" \
     --output json -o "$tmp/py.json" && json_labels "$tmp/py.json" >"$tmp/b" &&
     same_labels python-token "$tmp/b"
+# As with pointseg's flags, of a parameter given twice only the last is sent
+# (the daemon refuses a second): --param NAME twice, ncut-threshold and
+# ncut_threshold, --output and --param output= in either order.
+check python-param-twice python3 "$py" segment "$SAMPLE" --server "$plain" --param k=0 \
+    --param k=7 --param ncut-threshold=0.9 --param ncut_threshold=0 --output labels &&
+    same_labels python-param-twice "$tmp/python-param-twice.out"
+check python-param-output python3 "$py" segment "$SAMPLE" --server "$plain" \
+    --param output=json --output labels &&
+    same_labels python-param-output "$tmp/python-param-output.out"
+check python-output-param python3 "$py" segment "$SAMPLE" --server "$plain" \
+    --output json --param output=labels &&
+    same_labels python-output-param "$tmp/python-output-param.out"
+# A --param named like one of segment()'s own arguments is still a
+# parameter for the daemon (an unknown one), not the client's token.
+python3 "$py" segment "$SAMPLE" --server "$plain" --param token=x >/dev/null 2>"$tmp/e"
+rc=$?
+if [ "$rc" -eq 2 ] && grep -q "unknown parameter 'token'" "$tmp/e"; then pass python-param-token
+else fail python-param-token "exit status $rc: $(head -c 200 "$tmp/e")"; fi
 check python-import python3 -c '
 import sys
 sys.path.insert(0, sys.argv[1])
