@@ -63,8 +63,10 @@ end_header
 3 0 1 2
 PLY
 
-if ! "$PS" render "$tmp/tri.ply" -o "$tmp/tri.png" --width 64 --height 48 2>"$tmp/err"; then
-    fail triangle "exit status $?: $(cat "$tmp/err")"
+"$PS" render "$tmp/tri.ply" -o "$tmp/tri.png" --width 64 --height 48 2>"$tmp/err"
+status=$?
+if [ "$status" -ne 0 ]; then
+    fail triangle "exit status $status: $(cat "$tmp/err")"
 else
     size=$(png_size "$tmp/tri.png")
     [ "$size" = "64 48" ] && pass size || fail size "IHDR says $size"
@@ -98,14 +100,16 @@ end_header
 0 0 0 0 0 1
 4 0 0 0 1 0
 PLY
-if "$PS" render "$tmp/pts.ply" -o "$tmp/pts.png" --width 100 --height 20 2>"$tmp/err"; then
+"$PS" render "$tmp/pts.ply" -o "$tmp/pts.png" --width 100 --height 20 2>"$tmp/err"
+status=$?
+if [ "$status" -eq 0 ]; then
     left=$(pixel "$tmp/pts.png" 6 10) right=$(pixel "$tmp/pts.png" 93 10)
     case "$left/$right" in
         "0 0 "*"/0 "*" 0") pass points ;;
         *) fail points "left '$left' (want blue), right '$right' (want green)" ;;
     esac
 else
-    fail points "exit status $?: $(cat "$tmp/err")"
+    fail points "exit status $status: $(cat "$tmp/err")"
 fi
 
 expect_usage() { # NAME ARGS...
