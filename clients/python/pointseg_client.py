@@ -17,7 +17,8 @@ As a module:
 segment() returns the document: a dict for output="json" (see README), a list
 of int labels for output="labels", the PLY bytes for output="ply".  Errors
 from the daemon raise PointsegError with the HTTP status and the problem's
-detail; no answer (unreachable, connection closed, timeout) one with status 0.
+detail; no answer (unreachable, connection closed, timeout) or an unreadable
+job answer one with status 0.
 """
 
 import argparse
@@ -85,6 +86,18 @@ def _decode(raw, output):
     return json.loads(raw)
 
 
+def _answer_with(raw, server, member):
+    """The JSON object of an answer holding member; PointsegError (status 0)
+    when the answer is no such object (a wrong server or proxy)."""
+    try:
+        doc = json.loads(raw)
+    except ValueError:
+        doc = None
+    if not isinstance(doc, dict) or member not in doc:
+        raise PointsegError(0, "%s answered without a readable %s" % (server, member))
+    return doc
+
+
 def _seconds_left(deadline, message):
     """The seconds left before deadline (None: no deadline); when none are,
     raises PointsegError with status 0 and message."""
@@ -102,7 +115,7 @@ def _wait(server, job_id, token, poll_seconds, deadline, timeout):
     while True:
         _, _, raw = _request(server, "GET", "/jobs/" + job_id, token,
                              timeout=_seconds_left(deadline, late))
-        status = json.loads(raw)
+        status = _answer_with(raw, server, "status")
         if status["status"] in FINAL_STATES:
             return status
         left = _seconds_left(deadline, late)
@@ -136,7 +149,7 @@ def _segment(path_or_points, server, token, output, async_, poll_seconds, timeou
                              timeout)
         return _decode(raw, output)
     _, _, raw = _request(server, "POST", "/jobs?" + query, token, body, content_type, timeout)
-    job_id = json.loads(raw)["id"]
+    job_id = str(_answer_with(raw, server, "id")["id"])
     _wait(server, job_id, token, poll_seconds, deadline, timeout)
     late = "job %s: no result after %g s" % (job_id, timeout or 0)
     _, _, raw = _request(server, "GET", "/jobs/%s/result" % job_id, token,

@@ -178,13 +178,21 @@ while True:
     else:
         held.append(conn)
 MUTE
+# port_of FILE: the port a stand-in printed into FILE, waiting up to 10 s
+# for it (a loaded machine starts python slowly).
+port_of() {
+    for _ in $(seq 100); do
+        [ -s "$1" ] && break
+        sleep 0.1
+    done
+    cat "$1"
+}
 python3 "$tmp/mute.py" close >"$tmp/close.port" &
 pids="$pids $!"
 python3 "$tmp/mute.py" hold >"$tmp/hold.port" &
 pids="$pids $!"
-sleep 0.5
-closing=http://127.0.0.1:$(cat "$tmp/close.port")
-holding=http://127.0.0.1:$(cat "$tmp/hold.port")
+closing=http://127.0.0.1:$(port_of "$tmp/close.port")
+holding=http://127.0.0.1:$(port_of "$tmp/hold.port")
 check python-no-answer python3 -c '
 import sys
 sys.path.insert(0, sys.argv[1])
@@ -247,8 +255,7 @@ server.serve_forever()
 WRONG
 python3 "$tmp/wrong.py" >"$tmp/wrong.port" &
 pids="$pids $!"
-sleep 0.5
-wrong=http://127.0.0.1:$(cat "$tmp/wrong.port")
+wrong=http://127.0.0.1:$(port_of "$tmp/wrong.port")
 
 # segment(async_=True, timeout=...) is bounded by the timeout, polls and
 # result request included (they had none: a stalled daemon hung it).
@@ -266,6 +273,26 @@ for mode in ("stall-poll", "stall-result"):
     took = time.monotonic() - start
     assert took < 3, "%s: a 1 s timeout took %.1f s" % (mode, took)
 ' "$ROOT/clients/python" "$SAMPLE" "$wrong" && pass python-async-timeout
+
+# A job answer without its id or status (not JSON) is a PointsegError with
+# status 0, and the command line exits 1 naming it (it was a raw KeyError
+# or ValueError traceback).
+check python-unreadable-job-answers timeout 10 python3 -c '
+import sys
+sys.path.insert(0, sys.argv[1])
+import pointseg_client as pc
+for mode, member in (("no-id", "id"), ("bad-status", "status")):
+    try:
+        pc.segment(sys.argv[2], server=sys.argv[3] + "/" + mode, async_=True, timeout=5)
+        sys.exit(mode + ": an answer")
+    except pc.PointsegError as e:
+        assert e.status == 0 and "without a readable " + member in str(e), e
+' "$ROOT/clients/python" "$SAMPLE" "$wrong" && pass python-unreadable-job-answers
+timeout 10 python3 "$ROOT/clients/python/pointseg_client.py" segment "$SAMPLE" --server "$wrong/no-id" \
+    --async >/dev/null 2>"$tmp/e"
+rc=$?
+if [ "$rc" -eq 1 ] && grep -q "without a readable id" "$tmp/e"; then pass python-cli-unreadable-job
+else fail python-cli-unreadable-job "exit status $rc: $(head -c 200 "$tmp/e")"; fi
 
 # ---- pointseg segment --server ----
 check cli-server "$PS" segment "$SAMPLE" --server "$plain" --output labels &&
