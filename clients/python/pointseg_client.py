@@ -8,6 +8,8 @@ Command line:
 As with pointseg's flags, of a parameter given more than once (--param
 ncut-threshold=... and ncut_threshold=... are one, --output is --param
 output=...) the last is sent, and only it: the daemon refuses a second.
+A parameter given here also drops its namesake from a JSON input's
+"params".
 
 As a module:
     import pointseg_client
@@ -53,6 +55,26 @@ def _body_of(path_or_points):
             return f.read(), "application/octet-stream"
     points = [list(map(float, p)) for p in path_or_points]
     return json.dumps({"points": points}).encode(), "application/json"
+
+
+def _without_overridden(body, names):
+    """A JSON object body without the members of its "params" that names
+    (spelt with '_') override: those go in the query string, and the daemon
+    refuses a parameter given twice.  Any other body as it is."""
+    if not body.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{"):
+        return body
+    try:
+        doc = json.loads(body)
+    except ValueError:
+        return body
+    params = doc.get("params")
+    if not isinstance(params, dict):
+        return body
+    kept = {k: v for k, v in params.items() if k.replace("-", "_") not in names}
+    if len(kept) == len(params):
+        return body
+    doc["params"] = kept
+    return json.dumps(doc).encode()
 
 
 def _request(server, method, path, token=None, body=None, content_type=None, timeout=None):
@@ -143,6 +165,7 @@ def _segment(path_or_points, server, token, output, async_, poll_seconds, timeou
     deadline = time.monotonic() + timeout if timeout else None
     body, content_type = _body_of(path_or_points)
     query = dict(params, output=output)
+    body = _without_overridden(body, {name.replace("-", "_") for name in query})
     query = urllib.parse.urlencode({k: _param_text(v) for k, v in query.items()})
     if not async_:
         _, _, raw = _request(server, "POST", "/segment?" + query, token, body, content_type,

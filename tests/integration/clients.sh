@@ -323,6 +323,14 @@ same_as_local() {
 same_as_local cli-server-json-params
 same_as_local cli-server-flag-over-json --k 10 --ncut_threshold 0.1
 same_as_local cli-server-flag-twice --output json
+# The Python command line drops a JSON input's "params" that a --param
+# overrides, as pointseg does (the daemon answered the pair with a 400).
+if "$PS" segment "$tmp/params.json" --k 10 --ncut_threshold 0.1 --output labels >"$tmp/local.labels" 2>"$tmp/e"
+then
+    check python-param-over-json python3 "$py" segment "$tmp/params.json" --server "$plain" \
+        --param k=10 --param ncut-threshold=0.1 --output labels &&
+        same_labels python-param-over-json "$tmp/python-param-over-json.out"
+else fail python-param-over-json "local segment: $(head -c 200 "$tmp/e")"; fi
 "$PS" segment "$SAMPLE" --server "$secured" >/dev/null 2>"$tmp/e"
 rc=$?
 if [ "$rc" -eq 2 ] && grep -q 'answered 401' "$tmp/e"; then pass cli-server-no-token
