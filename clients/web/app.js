@@ -1,16 +1,17 @@
-// app.js: the viewer page's controller.  Reads the chosen file (or makes a
-// synthetic example), posts it to /jobs, follows the job, then shows the
-// result: colours by segment, by a level of the hierarchy or by centrality,
-// the legend, merges, sinks and downloads.  Hovering a legend row or a
-// point in the 3D view lights that point's segment.  Its state is exposed as
-// window.pointseg for scripted checks (tests/browser/viewer.test.mjs).
+// app.js: the viewer page's controller.  Reads the chosen file (in a
+// worker: read_file.js) or makes a synthetic example, posts it to /jobs,
+// follows the job, then shows the result: colours by segment, by a level
+// of the hierarchy or by centrality, the legend, merges, sinks and
+// downloads.  Hovering a legend row or a point in the 3D view lights that
+// point's segment.  Its state is exposed as window.pointseg for scripted
+// checks (tests/browser/viewer.test.mjs).
 
 import { fetchParamSpecs, submitJob, waitForJob } from './api.js';
 import { paint, rampCss, rampIndex, rampTable, segmentTable } from './colours.js';
 import { colouredPlyBlob, jsonBlob, labelsBlob, pointsPlyBlob, saveBlob } from './downloads.js';
-import { gunzip, isGzip, parsePointFile } from './formats.js';
 import { levelTable, nodeDepths } from './hierarchy.js';
 import { buildParamsForm, fillLegend, fillMerges, markLegendRow, segmentSize } from './panels.js';
+import { readPointFile } from './read_file.js';
 import { makeDumbbell, makeHand } from './shapes.js';
 
 const $ = (id) => document.getElementById(id);
@@ -24,6 +25,7 @@ const state = {
   highlight: -1,    // hovered segment
   hoverPoint: -1,   // the point under the cursor in the 3D view
   job: null,        // {cancelled} of the job the page follows; a new run replaces it
+  reading: null,    // {promise, cancel} of the file being read; a new file replaces it
   viewer: null,
   params: null,
   ramp: null,       // {index, lo, hi} of centrality
@@ -239,20 +241,49 @@ function useInput(name, blob, parsed, gzip = false) {
   return run();
 }
 
+// Stops reading a file, if one is being read: its result is dropped.
+function dropReading() {
+  if (state.reading) state.reading.cancel();
+  state.reading = null;
+}
+
+// Reads and parses the file in a worker (the page stays responsive), then
+// segments it.  The job followed until now is cancelled at once; a file
+// or example chosen meanwhile replaces this one.
 async function useFile(file) {
+  dropReading();
+  if (state.job) state.job.cancelled = true;
+  state.job = null;
   clearError();
   setState('reading');
+  $('run').disabled = true;
+  $('cancel').hidden = true;
+  $('progress').hidden = true;
+  const reading = readPointFile(file);
+  state.reading = reading;
+  const current = () => state.reading === reading;
+  let parsed;
   try {
-    const bytes = new Uint8Array(await file.arrayBuffer());
-    const gzip = isGzip(bytes);
-    const parsed = parsePointFile(gzip ? await gunzip(bytes) : bytes);
-    await useInput(file.name, file, parsed, gzip);
+    parsed = await reading.promise;
+  } catch (err) {
+    if (!current()) return;
+    state.reading = null;
+    $('run').disabled = !state.input;
+    showError({ title: `Cannot read ${file.name}`, detail: err.message });
+    return;
+  }
+  if (!current()) return;
+  state.reading = null;
+  const { gzip, ...points } = parsed;
+  try {
+    await useInput(file.name, file, points, gzip);
   } catch (err) {
     showError({ title: `Cannot read ${file.name}`, detail: err.message });
   }
 }
 
 function useExample(shape) {
+  dropReading();
   const positions = shape === 'hand' ? makeHand() : makeDumbbell();
   return useInput(`${shape}.ply`, pointsPlyBlob(positions), { count: positions.length / 3, positions, faces: null });
 }

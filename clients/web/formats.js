@@ -1,7 +1,8 @@
-// formats.js: reads the uploaded file in the page, so the viewer has the
-// coordinates (the server's JSON carries labels, not points).  Recognizes
-// the formats the daemon does, from the content: PLY (ascii, binary little
-// and big endian, any vertex properties, faces), OFF, OBJ, XYZ/CSV and the
+// formats.js: reads the uploaded file in the browser, so the viewer has
+// the coordinates (the server's JSON carries labels, not points); the page
+// runs it in parse_worker.js, off its main thread.  Recognizes the
+// formats the daemon does, from the content: PLY (ascii, binary little and
+// big endian, any vertex properties, faces), OFF, OBJ, XYZ/CSV and the
 // JSON request document.  Returns {count, positions: Float32Array #P*3,
 // faces: Uint32Array #F*3 (triangles, fans of polygons) or null}.  Points
 // of dimension 2 get z = 0; of dimension > 3 keep their first three.
