@@ -11,7 +11,7 @@ import { paint, rampCss, rampIndex, rampTable, segmentTable } from './colours.js
 import { colouredPlyBlob, jsonBlob, labelsBlob, pointsPlyBlob, saveBlob } from './downloads.js';
 import { levelTable, nodeDepths } from './hierarchy.js';
 import { buildParamsForm, fillLegend, fillMerges, markLegendRow, segmentSize } from './panels.js';
-import { readPointFile } from './read_file.js';
+import { ReadCancelled, readPointFile } from './read_file.js';
 import { makeDumbbell, makeHand } from './shapes.js';
 
 const $ = (id) => document.getElementById(id);
@@ -176,6 +176,7 @@ function updateRamp() {
 
 function showProgress({ status, phase, fraction }) {
   $('progress').hidden = false;
+  $('progress').classList.remove('busy');
   $('phase').textContent = status === 'queued' ? 'queued' : phase;
   $('percent').textContent = status === 'queued' ? '' : `${Math.round(100 * fraction)}%`;
   $('bar-fill').style.width = `${Math.round(100 * fraction)}%`;
@@ -241,6 +242,16 @@ function useInput(name, blob, parsed, gzip = false) {
   return run();
 }
 
+// While a file is read: the phase (reading, decompressing, parsing) and
+// its size over a moving bar, and Cancel.
+function showReading(file, phase) {
+  $('progress').hidden = false;
+  $('progress').classList.add('busy');
+  $('phase').textContent = `${phase} ${file.name}`;
+  $('percent').textContent = `${(file.size / 1e6).toFixed(file.size < 1e7 ? 1 : 0)} MB`;
+  $('cancel').hidden = false;
+}
+
 // Stops reading a file, if one is being read: its result is dropped.
 function dropReading() {
   if (state.reading) state.reading.cancel();
@@ -249,7 +260,7 @@ function dropReading() {
 
 // Reads and parses the file in a worker (the page stays responsive), then
 // segments it.  The job followed until now is cancelled at once; a file
-// or example chosen meanwhile replaces this one.
+// or example chosen meanwhile replaces this one; Cancel stops the reading.
 async function useFile(file) {
   dropReading();
   if (state.job) state.job.cancelled = true;
@@ -257,11 +268,11 @@ async function useFile(file) {
   clearError();
   setState('reading');
   $('run').disabled = true;
-  $('cancel').hidden = true;
-  $('progress').hidden = true;
-  const reading = readPointFile(file);
-  state.reading = reading;
+  showReading(file, 'reading');
+  let reading = null;
   const current = () => state.reading === reading;
+  reading = readPointFile(file, (phase) => current() && showReading(file, phase));
+  state.reading = reading;
   let parsed;
   try {
     parsed = await reading.promise;
@@ -269,7 +280,10 @@ async function useFile(file) {
     if (!current()) return;
     state.reading = null;
     $('run').disabled = !state.input;
-    showError({ title: `Cannot read ${file.name}`, detail: err.message });
+    $('cancel').hidden = true;
+    $('progress').hidden = true;
+    showError(err instanceof ReadCancelled ? { title: 'Cancelled', detail: err.message }
+      : { title: `Cannot read ${file.name}`, detail: err.message });
     return;
   }
   if (!current()) return;
@@ -325,7 +339,10 @@ function wireInput() {
   $('file').onchange = (e) => e.target.files[0] && useFile(e.target.files[0]);
   for (const b of document.querySelectorAll('.example')) b.onclick = () => useExample(b.dataset.shape);
   $('run').onclick = run;
-  $('cancel').onclick = () => state.job && (state.job.cancelled = true);
+  $('cancel').onclick = () => {
+    if (state.reading) state.reading.cancel();
+    else if (state.job) state.job.cancelled = true;
+  };
   $('reset-params').onclick = () => state.params && state.params.reset();
   document.addEventListener('dragover', (e) => {
     e.preventDefault();

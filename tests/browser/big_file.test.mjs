@@ -2,14 +2,15 @@
 // 100 MB XYZ file (3.7 million points) is chosen; a 50 ms interval timer
 // in the page must keep firing while the file is read and parsed (the
 // longest gap under 1 s; parsed on the main thread it was 2 to 4 s), and
-// the page must end with the file's point count.  Files that do not parse
-// show the parser's message as before.
+// the page must end with the file's point count, and show what it is
+// doing; Cancel stops the reading.  Files that do not parse show the
+// parser's message as before.
 //   node tests/browser/big_file.test.mjs BUILD
 
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { LONG, assert, check, finish, launchChromium, startDaemon } from './harness.mjs';
+import { LONG, assert, check, finish, launchChromium, shot, startDaemon } from './harness.mjs';
 
 const MAX_GAP_MS = 1000;
 
@@ -43,14 +44,16 @@ async function openPage(context, base) {
   return { page, errors };
 }
 
-// Ticks every 50 ms and notes when a file is chosen and when the page
-// leaves the 'reading' state, in window.probe.
+// Ticks every 50 ms and notes when a file is chosen, the phases shown
+// and when the page leaves the 'reading' state, in window.probe.
 function installProbe(page) {
   return page.evaluate(() => {
-    const probe = { ticks: [], chosen: null, read: null };
+    const probe = { ticks: [], chosen: null, read: null, phases: [] };
     window.probe = probe;
     setInterval(() => probe.ticks.push(performance.now()), 50);
     document.getElementById('file').addEventListener('change', () => (probe.chosen = performance.now()));
+    const phase = document.getElementById('phase');
+    new MutationObserver(() => probe.phases.push(phase.textContent)).observe(phase, { childList: true });
     new MutationObserver(() => {
       if (probe.chosen !== null && probe.read === null && document.body.dataset.state !== 'reading')
         probe.read = performance.now();
@@ -67,7 +70,7 @@ function probeResult(page) {
     const times = [chosen, ...inside, read];
     let gap = 0;
     for (let i = 1; i < times.length; i++) gap = Math.max(gap, times[i] - times[i - 1]);
-    return { ms: Math.round(read - chosen), gap: Math.round(gap), ticks: inside.length };
+    return { ms: Math.round(read - chosen), gap: Math.round(gap), ticks: inside.length, phases: window.probe.phases };
   });
 }
 
@@ -82,8 +85,35 @@ async function responsive(context, base, big) {
     const name = await page.textContent('#input-name');
     console.log(`  100 MB XYZ: read in ${got.ms} ms, ${got.ticks} ticks, longest gap ${got.gap} ms`);
     assert(got.gap < MAX_GAP_MS, `the page did not run a timer for ${got.gap} ms while reading`);
+    assert(got.phases.includes('parsing big.xyz'), `phases shown: ${JSON.stringify(got.phases)}`);
     assert(count === big.count, `the page read ${count} points, the file has ${big.count}`);
     assert(name.includes(big.count.toLocaleString('en')), `input shown as '${name}'`);
+    assert(!errors.length, errors.join(' | '));
+    await page.close();
+  });
+}
+
+// Cancel while the big file is read: the reading stops, the page says so,
+// and the next file is read as usual.
+async function cancelReading(context, base, big) {
+  await check('big-file-cancel', async () => {
+    const { page, errors } = await openPage(context, base);
+    await page.setInputFiles('#file', big.path);
+    await page.waitForFunction(() => /^parsing big\.xyz/.test(document.getElementById('phase').textContent),
+      null, { timeout: LONG });
+    const shown = await page.isVisible('#progress') && await page.isVisible('#cancel');
+    assert(shown, 'no progress or Cancel while reading');
+    await shot(page, 'reading');
+    await page.click('#cancel');
+    await page.waitForSelector('body[data-state=error]', { timeout: 5000 });
+    const text = await page.textContent('#error');
+    assert(text === 'Cancelledreading big.xyz was cancelled', `error box: '${text}'`);
+    const input = await page.evaluate(() => window.pointseg.state.input);
+    assert(input === null && await page.isHidden('#cancel'), 'the cancelled file was used, or Cancel still shown');
+    const small = '0 0 0\n1 0 0\n0 1 0\n';
+    await page.setInputFiles('#file', { name: 'small.xyz', mimeType: 'text/plain', buffer: Buffer.from(small) });
+    await page.waitForFunction(() => window.pointseg.state.input, null, { timeout: LONG });
+    assert(await page.evaluate(() => window.pointseg.state.input.count) === 3, 'the next file was not read');
     assert(!errors.length, errors.join(' | '));
     await page.close();
   });
@@ -114,7 +144,9 @@ async function main() {
   const { context, close } = await launchChromium();
   try {
     await parseErrors(context, base);
-    await responsive(context, base, writeBigXyz(dir, 100));
+    const big = writeBigXyz(dir, 100);
+    await responsive(context, base, big);
+    await cancelReading(context, base, big);
   } finally {
     await close();
     proc.kill('SIGTERM');
