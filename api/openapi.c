@@ -162,19 +162,24 @@ static cJSON *operation(const char *summary, const char *id, cJSON *responses) {
 #define SHARED_QUEUE_DOWN "the shared job queue (pointsegd --redis) is unreachable (see Retry-After)"
 #define JOB_ROUTE_503 "over --max-connections, or " SHARED_QUEUE_DOWN
 
+/* The 200 answer holding a segmentation, in the format output= asked for. */
+static void add_segmentation(cJSON *responses, const char *description) {
+    cJSON *c = cJSON_CreateObject(), *ok = cJSON_CreateObject();
+    cJSON_AddStringToObject(ok, "description", description);
+    cJSON_AddItemToObject(c, "application/json", media(ref("#/components/schemas/Segmentation")));
+    cJSON_AddItemToObject(c, "application/ply", media(binary_schema()));
+    cJSON_AddItemToObject(c, "text/plain", media(binary_schema()));
+    cJSON_AddItemToObject(ok, "content", c);
+    cJSON_AddItemToObject(responses, "200", ok);
+}
+
 static cJSON *segment_responses(int async) {
     cJSON *r = cJSON_CreateObject();
     if (async) {
         add_response(r, "202", "queued; Location names the job", "application/json",
                      ref("#/components/schemas/JobAccepted"));
     } else {
-        cJSON *c = cJSON_CreateObject(), *ok = cJSON_CreateObject();
-        cJSON_AddStringToObject(ok, "description", "the segmentation (output=json, labels or ply)");
-        cJSON_AddItemToObject(c, "application/json", media(ref("#/components/schemas/Segmentation")));
-        cJSON_AddItemToObject(c, "application/ply", media(binary_schema()));
-        cJSON_AddItemToObject(c, "text/plain", media(binary_schema()));
-        cJSON_AddItemToObject(ok, "content", c);
-        cJSON_AddItemToObject(r, "200", ok);
+        add_segmentation(r, "the segmentation (output=json, labels or ply)");
     }
     add_problem(r, 400, "malformed body (bytes in no known format, not PLY for application/ply, "
                         "not JSON for application/json) or request head, unknown parameter, a "
@@ -243,7 +248,7 @@ static cJSON *job_path(void) {
 
 static cJSON *result_path(void) {
     cJSON *path = cJSON_CreateObject(), *r = cJSON_CreateObject();
-    add_response(r, "200", "the segmentation document", "application/json", ref("#/components/schemas/Segmentation"));
+    add_segmentation(r, "the segmentation, in the job's output format (json, labels or ply)");
     add_problem(r, 404, "no such job");
     add_problem(r, 409, "the job is not done (queued, running or cancelled)");
     add_problem(r, 422, "the job failed: its input was unusable");

@@ -1,14 +1,16 @@
 /* test_openapi.c: the OpenAPI document (api/openapi.c) as strict tools read
  * it: no object repeats a key (JSON allows parsers to refuse that, and
  * YAML-based linters do), it names a server and a licence, the probes need
- * no token, and every
- * parameter schema has one description.  The full lint is
+ * no token, every
+ * parameter schema has one description, and a job's result is described in
+ * every output format.  The full lint is
  * tests/integration/openapi_lint.sh (Redocly). */
 #include "openapi.h"
 #include "params_table.h"
 #include "testlib.h"
 
 #include <cJSON.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -110,5 +112,38 @@ static void test_form_fields_described_by_their_help(void) {
     cJSON_Delete(doc);
 }
 
+/* The media types of a path's 200 answer to method, joined by ' '. */
+static void answer_types(const cJSON *doc, const char *path, const char *method, char *out, size_t cap) {
+    const cJSON *content = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(
+            cJSON_GetObjectItemCaseSensitive(
+                cJSON_GetObjectItemCaseSensitive(
+                    cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(doc, "paths"), path),
+                    method),
+                "responses"),
+            "200"),
+        "content");
+    const cJSON *type;
+    out[0] = 0;
+    cJSON_ArrayForEach(type, content) {
+        size_t used = strlen(out);
+        snprintf(out + used, cap - used, "%s%s", used ? " " : "", type->string);
+    }
+}
+
+/* A job's result comes in the output format the job asked for, as a
+ * synchronous answer does: labels as text/plain, ply as application/ply. */
+static void test_job_result_in_every_output_format(void) {
+    cJSON *doc = document();
+    REQUIRE(doc != NULL);
+    char segment[128], result[128];
+    answer_types(doc, "/segment", "post", segment, sizeof segment);
+    answer_types(doc, "/jobs/{id}/result", "get", result, sizeof result);
+    CHECK_MSG(!strcmp(segment, "application/json application/ply text/plain"), "/segment: %s", segment);
+    CHECK_MSG(!strcmp(result, segment), "/jobs/{id}/result: %s, /segment: %s", result, segment);
+    cJSON_Delete(doc);
+}
+
 PS_TEST_MAIN(TEST(test_no_object_repeats_a_key), TEST(test_repeat_is_found), TEST(test_servers_and_license),
-             TEST(test_probes_open_without_token), TEST(test_form_fields_described_by_their_help))
+             TEST(test_probes_open_without_token), TEST(test_form_fields_described_by_their_help),
+             TEST(test_job_result_in_every_output_format))
