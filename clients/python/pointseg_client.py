@@ -19,7 +19,8 @@ As a module:
 segment() returns the document: a dict for output="json" (see README), a list
 of int labels for output="labels", the PLY bytes for output="ply".  Errors
 from the daemon raise PointsegError with the HTTP status and the problem's
-detail; no answer (unreachable, connection closed, timeout) or an unreadable
+detail (also when the daemon answers before taking a large body, as it does
+a 401); no answer (unreachable, connection closed, timeout) or an unreadable
 job answer one with status 0.
 """
 
@@ -77,6 +78,39 @@ def _without_overridden(body, names):
     return json.dumps(doc).encode()
 
 
+class _EarlyAnswer:
+    """A connection that, when the daemon answers before taking the whole
+    body (a 401, 413 or 415 decided from the request head) and closes, stops
+    sending and reads that answer instead of failing with a broken pipe."""
+
+    def send(self, data):
+        try:
+            super().send(data)
+        except (BrokenPipeError, ConnectionResetError):
+            pass  # getresponse() reads the answer, or finds none (no answer)
+
+
+class _EarlyAnswerHTTP(_EarlyAnswer, http.client.HTTPConnection):
+    pass
+
+
+class _EarlyAnswerHTTPS(_EarlyAnswer, http.client.HTTPSConnection):
+    pass
+
+
+class _HTTPHandler(urllib.request.HTTPHandler):
+    def http_open(self, req):
+        return self.do_open(_EarlyAnswerHTTP, req)
+
+
+class _HTTPSHandler(urllib.request.HTTPSHandler):
+    def https_open(self, req):
+        return self.do_open(_EarlyAnswerHTTPS, req, context=self._context)
+
+
+_OPENER = urllib.request.build_opener(_HTTPHandler, _HTTPSHandler)
+
+
 def _request(server, method, path, token=None, body=None, content_type=None, timeout=None):
     """(status, headers, bytes) of one request; raises PointsegError on 4xx/5xx."""
     request = urllib.request.Request(server.rstrip("/") + path, data=body, method=method)
@@ -85,7 +119,7 @@ def _request(server, method, path, token=None, body=None, content_type=None, tim
     if token:
         request.add_header("Authorization", "Bearer " + token)
     try:
-        with urllib.request.urlopen(request, timeout=timeout) as answer:
+        with _OPENER.open(request, timeout=timeout) as answer:
             return answer.status, answer.headers, answer.read()
     except urllib.error.HTTPError as e:
         raw = e.read()

@@ -126,6 +126,20 @@ check python-async python3 "$py" segment "$SAMPLE" --server "$plain" --async --o
 check python-token python3 "$py" segment "$SAMPLE" --server "$secured" --token "$TOKEN" \
     --output json -o "$tmp/py.json" && json_labels "$tmp/py.json" >"$tmp/b" &&
     same_labels python-token "$tmp/b"
+# The daemon answers a body of megabytes without the token from its head
+# (401) and closes: the client reads that answer, where it failed with
+# "cannot reach ...: Broken pipe" (status 0, exit 1).
+python3 -c '
+import random, sys
+random.seed(1)
+with open(sys.argv[1], "w") as f:
+    for _ in range(300000):
+        f.write("%.6f %.6f %.6f\n" % (random.random(), random.random(), random.random()))
+' "$tmp/big.xyz"
+python3 "$py" segment "$tmp/big.xyz" --server "$secured" >/dev/null 2>"$tmp/e"
+rc=$?
+if [ "$rc" -eq 2 ] && grep -q "HTTP 401" "$tmp/e"; then pass python-early-answer
+else fail python-early-answer "exit status $rc: $(head -c 200 "$tmp/e")"; fi
 # As with pointseg's flags, of a parameter given twice only the last is sent
 # (the daemon refuses a second): --param NAME twice, ncut-threshold and
 # ncut_threshold, --output and --param output= in either order.
