@@ -6,6 +6,7 @@
 
 #include <cJSON.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char *const problem_ref = "#/components/schemas/Problem";
@@ -20,6 +21,15 @@ static cJSON *choices_array(const char *const *choices) {
     cJSON *a = cJSON_CreateArray();
     for (; choices && *choices; choices++) cJSON_AddItemToArray(a, cJSON_CreateString(*choices));
     return a;
+}
+
+/* The default of parameter p as its schema's type has it (7, not "7"), as
+ * strict code generators read it. */
+static void add_default(cJSON *schema, const ps_param_spec *p) {
+    if (p->type == PS_PT_INT || p->type == PS_PT_DOUBLE)
+        cJSON_AddNumberToObject(schema, "default", strtod(p->default_text, NULL));
+    else if (p->type == PS_PT_BOOL) cJSON_AddBoolToObject(schema, "default", !strcmp(p->default_text, "true"));
+    else cJSON_AddStringToObject(schema, "default", p->default_text);
 }
 
 /* The schema of parameter p; description may be NULL. */
@@ -39,7 +49,7 @@ static cJSON *param_schema(const ps_param_spec *p, const char *description) {
         cJSON_AddStringToObject(s, "pattern", pattern);
     }
     if (description) cJSON_AddStringToObject(s, "description", description);
-    cJSON_AddStringToObject(s, "default", p->default_text);
+    add_default(s, p);
     return s;
 }
 

@@ -63,7 +63,7 @@ export async function fetchParamSpecs() {
     .map((p) => ({
       name: p.name,
       type: p.schema.type,
-      default: p.schema.default,
+      default: String(p.schema.default),   // typed in the document (7, true): text, as inputs hold it
       min: p.schema.minimum,
       max: p.schema.maximum,
       choices: p.schema.enum || null,

@@ -1,9 +1,9 @@
 /* test_openapi.c: the OpenAPI document (api/openapi.c) as strict tools read
  * it: no object repeats a key (JSON allows parsers to refuse that, and
  * YAML-based linters do), it names a server and a licence, the probes need
- * no token, every
- * parameter schema has one description, and a job's result is described in
- * every output format.  The full lint is
+ * no token, defaults have their parameter's type, every parameter schema
+ * has one description, and a job's result is described in every output
+ * format.  The full lint is
  * tests/integration/openapi_lint.sh (Redocly). */
 #include "openapi.h"
 #include "params_table.h"
@@ -84,6 +84,41 @@ static void test_probes_open_without_token(void) {
     cJSON_Delete(doc);
 }
 
+/* The schema of the query parameter `name` among params, or NULL. */
+static const cJSON *schema_named(const cJSON *params, const char *name) {
+    const cJSON *p;
+    cJSON_ArrayForEach(p, params) {
+        const char *n = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(p, "name"));
+        if (n && !strcmp(n, name)) return cJSON_GetObjectItemCaseSensitive(p, "schema");
+    }
+    return NULL;
+}
+
+/* Every parameter's default has its schema's type (a number for integer
+ * and number, a boolean for boolean), and is the table's default. */
+static void test_defaults_typed(void) {
+    cJSON *doc = document();
+    REQUIRE(doc != NULL);
+    const cJSON *segment = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(doc, "paths"), "/segment"), "post");
+    const cJSON *params = cJSON_GetObjectItemCaseSensitive(segment, "parameters");
+    size_t n;
+    const ps_param_spec *table = ps_param_table(&n);
+    for (size_t i = 0; i < n; i++) {
+        const cJSON *schema = schema_named(params, table[i].name);
+        const char *type = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(schema, "type"));
+        const cJSON *d = cJSON_GetObjectItemCaseSensitive(schema, "default");
+        CHECK_MSG(type && d, "%s: no schema with a type and a default", table[i].name);
+        if (!type || !d) continue;
+        int ok = !strcmp(type, "boolean") ? cJSON_IsBool(d) && cJSON_IsTrue(d) == !strcmp(table[i].default_text, "true")
+                 : !strcmp(type, "integer") || !strcmp(type, "number")
+                     ? cJSON_IsNumber(d) && d->valuedouble == strtod(table[i].default_text, NULL)
+                     : cJSON_IsString(d) && !strcmp(d->valuestring, table[i].default_text);
+        CHECK_MSG(ok, "%s: default of type %s", table[i].name, type);
+    }
+    cJSON_Delete(doc);
+}
+
 /* The multipart form's schema: each parameter with its help as description. */
 static void test_form_fields_described_by_their_help(void) {
     cJSON *doc = document();
@@ -145,5 +180,6 @@ static void test_job_result_in_every_output_format(void) {
 }
 
 PS_TEST_MAIN(TEST(test_no_object_repeats_a_key), TEST(test_repeat_is_found), TEST(test_servers_and_license),
-             TEST(test_probes_open_without_token), TEST(test_form_fields_described_by_their_help),
+             TEST(test_probes_open_without_token), TEST(test_defaults_typed),
+             TEST(test_form_fields_described_by_their_help),
              TEST(test_job_result_in_every_output_format))
