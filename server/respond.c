@@ -94,11 +94,11 @@ enum MHD_Result ps_respond_error(ps_request *r, const ps_api_error *err) {
     return ps_respond_problem(r, status, status == 503 ? ps_retry_after_header : NULL, "%s", err->message);
 }
 
-enum MHD_Result ps_respond_preflight(ps_request *r) {
-    static const char *const headers[] = {
-        "Access-Control-Allow-Methods", "GET, POST, DELETE, OPTIONS",
+enum MHD_Result ps_respond_preflight(ps_request *r, const char *methods) {
+    const char *const headers[] = {
+        "Access-Control-Allow-Methods", methods,
         "Access-Control-Allow-Headers", "Authorization, Content-Type, Content-Encoding, Accept",
         "Access-Control-Max-Age", "600",
-        MHD_HTTP_HEADER_ALLOW, "GET, POST, DELETE, OPTIONS", NULL};
+        MHD_HTTP_HEADER_ALLOW, methods, NULL};
     return ps_respond(r, 204, NULL, NULL, 0, ps_cors_allowed_origin(r) ? headers : headers + 6);
 }

@@ -31,8 +31,9 @@ enum MHD_Result ps_respond_problem(ps_request *r, int status, const char *const 
 /* A problem+json answer from an api error (503 gets Retry-After). */
 enum MHD_Result ps_respond_error(ps_request *r, const ps_api_error *err);
 
-/* The CORS preflight answer for OPTIONS. */
-enum MHD_Result ps_respond_preflight(ps_request *r);
+/* The answer to OPTIONS (a CORS preflight): methods, the route's, in Allow
+ * and, for an allowed origin, Access-Control-Allow-Methods. */
+enum MHD_Result ps_respond_preflight(ps_request *r, const char *methods);
 
 /* 1 when the request's Origin may read answers (and which value to echo). */
 const char *ps_cors_allowed_origin(ps_request *r);

@@ -15,7 +15,7 @@
 
 static const char *const allow_get[] = {MHD_HTTP_HEADER_ALLOW, "GET, HEAD, OPTIONS", NULL};
 static const char *const allow_post[] = {MHD_HTTP_HEADER_ALLOW, "POST, OPTIONS", NULL};
-static const char *const allow_job[] = {MHD_HTTP_HEADER_ALLOW, "GET, DELETE, OPTIONS", NULL};
+static const char *const allow_job[] = {MHD_HTTP_HEADER_ALLOW, "GET, HEAD, DELETE, OPTIONS", NULL};
 
 static int is(const ps_request *r, const char *method) { return !strcmp(r->method, method); }
 
@@ -237,7 +237,7 @@ static enum MHD_Result begin_upload(ps_request *r) {
 }
 
 enum MHD_Result ps_routes_begin(ps_request *r) {
-    if (is(r, "OPTIONS")) return ps_respond_preflight(r);
+    if (is(r, "OPTIONS")) return ps_respond_preflight(r, allowed_methods(r->route)[1]);
     if (!authorized(r)) {
         static const char *const challenge[] = {MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer", NULL};
         return ps_respond_problem(r, 401, challenge, "a valid bearer token is required");

@@ -332,6 +332,13 @@ static void test_service_endpoints(void) {
     ps_client_response_free(&r);
     const char *const preflight[] = {"Origin: http://viewer.example", "Access-Control-Request-Method: POST", NULL};
     CHECK(ps_client_request(&d.client, "OPTIONS", "/segment", NULL, preflight, &r) == 0 && r.status == 204);
+    CHECK_MSG(!strcmp(r.allow, "POST, OPTIONS"), "OPTIONS /segment: Allow %s (the 405 says POST, OPTIONS)", r.allow);
+    ps_client_response_free(&r);
+    CHECK(ps_client_request(&d.client, "OPTIONS", "/jobs/abc", NULL, preflight, &r) == 0 && r.status == 204 &&
+          !strcmp(r.allow, "GET, HEAD, DELETE, OPTIONS"));
+    ps_client_response_free(&r);
+    CHECK(ps_client_request(&d.client, "POST", "/jobs/abc", NULL, NULL, &r) == 0 && is_problem(&r, 405) &&
+          !strcmp(r.allow, "GET, HEAD, DELETE, OPTIONS"));
     ps_client_response_free(&r);
     CHECK_STOPS(d, 10);
 }
