@@ -111,6 +111,22 @@ class _HTTPSHandler(urllib.request.HTTPSHandler):
 _OPENER = urllib.request.build_opener(_HTTPHandler, _HTTPSHandler)
 
 
+def _read_within(answer, server, timeout):
+    """The answer's body, read in pieces so that a daemon sending it a few
+    bytes at a time cannot hold the call past timeout seconds (each read
+    waits at most that long on its own)."""
+    if timeout is None:
+        return answer.read()
+    deadline, pieces = time.monotonic() + timeout, []
+    while True:
+        piece = answer.read1(1 << 16)
+        if not piece:
+            return b"".join(pieces)
+        pieces.append(piece)
+        if time.monotonic() > deadline:
+            raise PointsegError(0, "no complete answer from %s within %g s" % (server, timeout))
+
+
 def _request(server, method, path, token=None, body=None, content_type=None, timeout=None):
     """(status, headers, bytes) of one request; raises PointsegError on 4xx/5xx."""
     request = urllib.request.Request(server.rstrip("/") + path, data=body, method=method)
@@ -120,7 +136,7 @@ def _request(server, method, path, token=None, body=None, content_type=None, tim
         request.add_header("Authorization", "Bearer " + token)
     try:
         with _OPENER.open(request, timeout=timeout) as answer:
-            return answer.status, answer.headers, answer.read()
+            return answer.status, answer.headers, _read_within(answer, server, timeout)
     except urllib.error.HTTPError as e:
         raw = e.read()
         try:

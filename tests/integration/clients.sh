@@ -229,6 +229,7 @@ else fail python-cli-no-answer "exit status $rc: $(head -c 200 "$tmp/e")"; fi
 #   stall-result  GET .../jobs/ID: done; GET .../jobs/ID/result: no answer
 #   no-id         POST .../jobs: 202 without an id
 #   bad-status    GET .../jobs/ID: 200, not JSON
+#   trickle       POST .../segment: 200 whose body comes a byte every 0.2 s
 cat >"$tmp/wrong.py" <<'WRONG'
 import http.server, time
 
@@ -247,7 +248,19 @@ class Answers(http.server.BaseHTTPRequestHandler):
 
     def do_POST(self):
         self.rfile.read(int(self.headers.get("Content-Length", 0)))
-        if self.path.startswith("/no-id/"):
+        if self.path.startswith("/trickle/"):
+            self.send_response(200)
+            self.send_header("Content-Type", "application/json")
+            self.send_header("Content-Length", "100000")
+            self.end_headers()
+            try:
+                for _ in range(100000):
+                    self.wfile.write(b" ")
+                    self.wfile.flush()
+                    time.sleep(0.2)
+            except OSError:
+                pass  # the client gave up
+        elif self.path.startswith("/no-id/"):
             self.answer(202, b'{"status": "queued"}')
         else:
             self.answer(202, b'{"id": "j1", "status": "queued"}')
@@ -287,6 +300,23 @@ for mode in ("stall-poll", "stall-result"):
     took = time.monotonic() - start
     assert took < 3, "%s: a 1 s timeout took %.1f s" % (mode, took)
 ' "$ROOT/clients/python" "$SAMPLE" "$wrong" && pass python-async-timeout
+
+# A daemon that sends its answer a byte at a time cannot hold segment()
+# past its timeout (each read waited the timeout on its own: the call ran
+# on as long as bytes came).
+check python-trickle-timeout timeout 10 python3 -c '
+import sys, time
+sys.path.insert(0, sys.argv[1])
+import pointseg_client as pc
+start = time.monotonic()
+try:
+    pc.segment(sys.argv[2], server=sys.argv[3] + "/trickle", timeout=1)
+    sys.exit("an answer")
+except pc.PointsegError as e:
+    assert e.status == 0, e
+took = time.monotonic() - start
+assert took < 3, "a 1 s timeout took %.1f s" % took
+' "$ROOT/clients/python" "$SAMPLE" "$wrong" && pass python-trickle-timeout
 
 # A job answer without its id or status (not JSON) is a PointsegError with
 # status 0, and the command line exits 1 naming it (it was a raw KeyError
