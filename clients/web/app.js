@@ -42,6 +42,8 @@ function showError(err) {
   title.textContent = err.title || 'Error';
   const detail = document.createElement('span');
   detail.textContent = err.title ? err.detail || '' : err.message;
+  // A busy or draining service says when to come back (429, 503).
+  if (err.retryAfter != null) detail.textContent += ` (try again in ${Math.max(1, Math.ceil(err.retryAfter))} s)`;
   box.append(title, detail);
   box.hidden = false;
   box.scrollIntoView({ block: 'nearest' });

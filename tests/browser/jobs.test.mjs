@@ -3,7 +3,8 @@
 // a second file chosen while the first is segmented (the first job is
 // deleted on the server and no longer polled, whether it would have run on
 // or ended first), the Cancel button (DELETE /jobs/{id}, polling stops),
-// and a 503 with Retry-After while polling (waited out, not an error).
+// a 503 with Retry-After while polling (waited out, not an error), and a
+// 503 to POST /jobs (the error says when to try again).
 //   node tests/browser/jobs.test.mjs BUILD
 
 import { makeDumbbell, makeHand } from '../../clients/web/shapes.js';
@@ -35,13 +36,19 @@ async function realDocs(base) {
 
 // Answers the page's /jobs requests.  plan: {ids: job id of each POST in
 // turn, status(id, polls, log): 'running' | 'done' | {problem, retryAfter},
-// result: {id: document text}}.  Resolves the log: [{method, id, t}].
+// result: {id: document text}, refuse: {problem, retryAfter, detail} to
+// answer every POST with}.  Resolves the log: [{method, id, t}].
 async function mockJobs(page, plan) {
   const log = [];
   const cancelled = new Set();
   let posts = 0;
   const json = (route, status, body, headers = {}) =>
     route.fulfill({ status, headers: { 'Content-Type': 'application/json', ...headers }, body: JSON.stringify(body) });
+  const problem = (route, st) => route.fulfill({
+    status: st.problem, headers: { 'Content-Type': 'application/problem+json', 'Retry-After': String(st.retryAfter) },
+    body: JSON.stringify({ type: 'about:blank', title: 'Service Unavailable', status: st.problem,
+      detail: st.detail || 'too many connections' }),
+  });
   const statusDoc = (id, status) => ({ id, status, progress: { phase: 'knn', fraction: status === 'done' ? 1 : 0.3 }, points: 0 });
   await page.route(/\/jobs([/?]|$)/, async (route) => {
     const req = route.request();
@@ -49,6 +56,7 @@ async function mockJobs(page, plan) {
     const id = m[1] || plan.ids[posts++];
     const entry = { method: req.method(), id, result: Boolean(m[2]), t: Date.now() };
     log.push(entry);
+    if (req.method() === 'POST' && plan.refuse) return problem(route, plan.refuse);
     if (req.method() === 'POST') return json(route, 202, { id, status: 'queued' }, { Location: `/jobs/${id}` });
     if (req.method() === 'DELETE') {
       cancelled.add(id);
@@ -58,12 +66,7 @@ async function mockJobs(page, plan) {
     if (cancelled.has(id)) return json(route, 200, statusDoc(id, 'cancelled'));
     const polls = log.filter((e) => e.method === 'GET' && e.id === id && !e.result).length;
     const st = plan.status(id, polls, log);
-    if (typeof st === 'object') {
-      return route.fulfill({
-        status: st.problem, headers: { 'Content-Type': 'application/problem+json', 'Retry-After': String(st.retryAfter) },
-        body: JSON.stringify({ type: 'about:blank', title: 'Service Unavailable', status: st.problem, detail: 'too many connections' }),
-      });
-    }
+    if (typeof st === 'object') return problem(route, st);
     return json(route, 200, statusDoc(id, st));
   });
   return log;
@@ -191,6 +194,22 @@ async function retryAfter(context, base, docs) {
   });
 }
 
+async function busyService(context, base, docs) {
+  await check('submit-503-says-when', async () => {
+    const { page, errors } = await openPage(context, base);
+    await mockJobs(page, {
+      ids: ['a'], result: { a: docs.hand }, status: () => 'running',
+      refuse: { problem: 503, retryAfter: 7, detail: 'the job queue is full' },
+    });
+    await chooseFile(page, 'hand');
+    await page.waitForSelector('body[data-state=error]', { timeout: LONG });
+    const text = await page.textContent('#error');
+    assert(text.includes('the job queue is full') && text.includes('try again in 7 s'), `error box: '${text}'`);
+    assert(!errors.length, errors.join(' | '));
+    await page.close();
+  });
+}
+
 async function main() {
   const { proc, base } = await startDaemon();
   const { context, close } = await launchChromium();
@@ -199,6 +218,7 @@ async function main() {
     await secondFile(context, base, docs);
     await cancelButton(context, base, docs);
     await retryAfter(context, base, docs);
+    await busyService(context, base, docs);
   } finally {
     await close();
     proc.kill('SIGTERM');
