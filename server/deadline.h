@@ -1,8 +1,11 @@
 /*
- * deadline.h: the absolute time `ms` milliseconds from now on CLOCK_REALTIME,
- * the clock pthread_cond_timedwait measures its deadline on.
+ * deadline.h: the server's two clocks.
+ * ps_deadline_in_ms: the absolute time `ms` milliseconds from now on
+ * CLOCK_REALTIME, the clock pthread_cond_timedwait measures its deadline on.
  *   ms  milliseconds from now, >= 0
  *   returns  the deadline, tv_nsec normalized to [0, 1e9)
+ * ps_monotonic_seconds: seconds on CLOCK_MONOTONIC, for measuring how long
+ * something took (no wall-clock steps).
  */
 #ifndef PS_DEADLINE_H
 #define PS_DEADLINE_H
@@ -19,6 +22,12 @@ static inline struct timespec ps_deadline_in_ms(long ms) {
         ts.tv_nsec -= 1000000000L;
     }
     return ts;
+}
+
+static inline double ps_monotonic_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
 #endif

@@ -2,6 +2,8 @@
  * socket (direct_answer.h). */
 #include "direct_answer.h"
 
+#include "deadline.h"
+
 #include <errno.h>
 #include <microhttpd.h>
 #include <poll.h>
@@ -30,12 +32,6 @@ static enum MHD_Result add_header(void *cls, enum MHD_ValueKind kind, const char
     return MHD_YES;
 }
 
-static double monotonic_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
 /* Sends all of data on the non-blocking fd by the monotonic deadline. */
 static int send_by(int fd, const char *data, size_t len, double deadline) {
     while (len) {
@@ -46,7 +42,7 @@ static int send_by(int fd, const char *data, size_t len, double deadline) {
             continue;
         }
         if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) return -1;
-        double left = deadline - monotonic_seconds();
+        double left = deadline - ps_monotonic_seconds();
         struct pollfd p = {fd, POLLOUT, 0};
         if (left <= 0 || poll(&p, 1, (int)(left * 1000) + 1) < 0 || (p.revents & (POLLERR | POLLHUP))) return -1;
     }
@@ -79,6 +75,6 @@ int ps_direct_answer(int fd, int status, struct MHD_Response *resp, const char *
     append(&h, "%s: %s\r\n", MHD_HTTP_HEADER_CONTENT_LENGTH, length);
     append(&h, "%s: %s\r\n\r\n", MHD_HTTP_HEADER_CONNECTION, "close");
     if (fd < 0 || h.overflow) return -1;
-    double deadline = monotonic_seconds() + timeout_s;
+    double deadline = ps_monotonic_seconds() + timeout_s;
     return send_by(fd, h.text, h.len, deadline) || send_by(fd, body, len, deadline) ? -1 : 0;
 }

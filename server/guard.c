@@ -1,6 +1,8 @@
 /* guard.c: per-connection deadlines and the health room (guard.h). */
 #include "guard.h"
 
+#include "deadline.h"
+
 #include <pthread.h>
 #include <stdlib.h>
 #include <sys/socket.h>
@@ -29,12 +31,6 @@ struct ps_guard {
     double header_timeout, min_upload_rate;
 };
 
-static double monotonic_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
 ps_guard *ps_guard_new(int max_connections, double header_timeout, double min_upload_rate) {
     ps_guard *g = calloc(1, sizeof *g);
     if (!g) return NULL;
@@ -59,7 +55,7 @@ ps_guard_conn *ps_guard_opened(ps_guard *g, int fd) {
     if (!c) return NULL;
     c->fd = fd;
     c->phase = PHASE_IDLE;
-    c->since = monotonic_seconds();
+    c->since = ps_monotonic_seconds();
     pthread_mutex_lock(&g->lock);
     c->health_room = g->open >= (size_t)g->max_connections;
     c->next = g->conns;
@@ -85,7 +81,7 @@ static void enter(ps_guard *g, ps_guard_conn *c, conn_phase phase) {
     if (!c) return;
     pthread_mutex_lock(&g->lock);
     c->phase = phase;
-    c->since = monotonic_seconds();
+    c->since = ps_monotonic_seconds();
     c->received = 0;
     c->eof_since = 0;
     pthread_mutex_unlock(&g->lock);
@@ -134,7 +130,7 @@ static int past_deadline(const ps_guard *g, const ps_guard_conn *c, double now) 
  * released) after ps_guard_closed, so the fd is still its own. */
 size_t ps_guard_sweep(ps_guard *g) {
     size_t cut = 0;
-    double now = monotonic_seconds();
+    double now = ps_monotonic_seconds();
     pthread_mutex_lock(&g->lock);
     for (ps_guard_conn *c = g->conns; c; c = c->next) {
         int late = past_deadline(g, c, now);

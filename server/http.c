@@ -34,18 +34,12 @@ struct ps_http {
     int port;
 };
 
-static double monotonic_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
 static ps_request *request_new(ps_server *s, struct MHD_Connection *conn) {
     ps_request *r = calloc(1, sizeof *r);
     if (!r) return NULL;
     r->srv = s;
     r->conn = conn;
-    r->t0 = monotonic_seconds();
+    r->t0 = ps_monotonic_seconds();
     r->route = PS_ROUTE_OTHER;
     pthread_mutex_lock(&s->lock);
     s->in_flight++;
@@ -149,7 +143,7 @@ static void on_completed(void *cls, struct MHD_Connection *conn, void **state,
     ps_request *r = *state;
     (void)conn;
     if (!r) return;
-    double seconds = monotonic_seconds() - r->t0;
+    double seconds = ps_monotonic_seconds() - r->t0;
     int status = r->status ? r->status : 499; /* answered nothing: the client went away */
     if (toe != MHD_REQUEST_TERMINATED_COMPLETED_OK && status < 400 && !r->sent_direct) status = 499;
     ps_metrics_observe(r->route, status, seconds);
@@ -300,9 +294,9 @@ void ps_http_quiesce(ps_http *h) {
 }
 
 void ps_http_wait_idle(ps_http *h, double seconds) {
-    double deadline = monotonic_seconds() + seconds;
+    double deadline = ps_monotonic_seconds() + seconds;
     pthread_mutex_lock(&h->srv.lock);
-    while (h->srv.in_flight && monotonic_seconds() < deadline) {
+    while (h->srv.in_flight && ps_monotonic_seconds() < deadline) {
         struct timespec ts = ps_deadline_in_ms(50);
         pthread_cond_timedwait(&h->srv.changed, &h->srv.lock, &ts);
     }

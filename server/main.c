@@ -14,6 +14,7 @@
  * large requests keeps growing (120 synchronous horse requests with
  * include=centrality,point_supernode: 62 MB instead of 28 MB). */
 #include "config.h"
+#include "deadline.h"
 #include "http.h"
 #include "jobs.h"
 #include "jobstore_redis.h"
@@ -23,7 +24,6 @@
 #include <semaphore.h>
 #include <signal.h>
 #include <stdio.h>
-#include <time.h>
 
 #define ANSWER_SECONDS 5.0
 #define MAX_WORKER_LOSSES 3
@@ -52,21 +52,15 @@ static int wait_for_stop_signal(void) {
 
 /* The store of asynchronous jobs: Redis with --redis, else the in-process
  * queue.  NULL after saying why on stderr. */
-static double monotonic_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
 /* Lets the running jobs of both queues (the shared store's and the
  * in-process one's, which run side by side) finish within one budget of
  * `seconds`; the store hands its unfinished jobs back, the rest are
  * cancelled. */
 static void drain(ps_jobs *jobs, ps_jobstore *store, double seconds) {
-    double start = monotonic_seconds();
+    double start = ps_monotonic_seconds();
     ps_jobs_stop_taking(jobs);
     ps_jobstore_drain(store, seconds);
-    double left = seconds - (monotonic_seconds() - start);
+    double left = seconds - (ps_monotonic_seconds() - start);
     ps_jobs_drain(jobs, left > 0 ? left : 0);
 }
 

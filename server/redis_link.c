@@ -2,6 +2,8 @@
  * the --redis URL, and the counters. */
 #include "redis_link.h"
 
+#include "deadline.h"
+
 #include <errno.h>
 #include <pthread.h>
 #include <stdarg.h>
@@ -32,12 +34,6 @@ struct ps_redis_pool {
 
 static pthread_mutex_t counters_lock = PTHREAD_MUTEX_INITIALIZER;
 static ps_redis_counters counters;
-
-static double monotonic_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 void ps_redis_counters_get(ps_redis_counters *c) {
     pthread_mutex_lock(&counters_lock);
@@ -161,7 +157,7 @@ failed:
 
 static int ensure_connected(ps_redis_link *l) {
     if (l->ctx) return 0;
-    double now = monotonic_seconds();
+    double now = ps_monotonic_seconds();
     if (now < l->retry_at) return -1;
     l->retry_at = now + RETRY_AFTER_S;
     l->ctx = redisConnectWithTimeout(l->url.host, l->url.port, timeval_of(l->timeout_s));
@@ -187,7 +183,7 @@ static redisReply *attempt(ps_redis_link *l, int argc, const char **argv, const 
 
 redisReply *ps_redis_run(ps_redis_link *l, int argc, const char **argv, const size_t *lens,
                          char *why, size_t why_cap) {
-    double t0 = monotonic_seconds();
+    double t0 = ps_monotonic_seconds();
     int was_connected = l->ctx != NULL;
     redisReply *r = attempt(l, argc, argv, lens);
     if (!r && was_connected) { /* a connection from before a Redis restart: once more, on a new one */
@@ -200,7 +196,7 @@ redisReply *ps_redis_run(ps_redis_link *l, int argc, const char **argv, const si
         freeReplyObject(r);
         r = NULL;
     }
-    count(argv[0], monotonic_seconds() - t0, r == NULL);
+    count(argv[0], ps_monotonic_seconds() - t0, r == NULL);
     return r;
 }
 
