@@ -861,23 +861,35 @@ static char *redis_job_state(const ps_test_redis *redis, const char *id) {
     return state;
 }
 
+/* Starts a redis-server and a replica on it (--threads 1, --drain-seconds
+ * drain_s): 0; 1 when Redis cannot start (why says why: skip); -1 when the
+ * daemon did not (a failure, reported; Redis stopped). */
+static int start_redis_replica(ps_test_redis *redis, ps_daemon *d, int drain_s, char *why, size_t cap) {
+    char url[64], drain[16];
+    if (ps_test_redis_start(redis, why, cap)) return 1;
+    snprintf(url, sizeof url, "redis://127.0.0.1:%d", redis->port);
+    snprintf(drain, sizeof drain, "%d", drain_s);
+    if (ps_daemon_start(d, (const char *const[]){"--threads", "1", "--drain-seconds", drain, "--redis", url, NULL})) {
+        ps_test_fail(__FILE__, __LINE__, "pointsegd did not start: %s", d->why);
+        ps_test_redis_cleanup(redis);
+        return -1;
+    }
+    return 0;
+}
+
 /* The same with --redis, while the replica's worker runs a job taken from
  * the shared queue (its progress seen, so the worker holds it): from
  * SIGTERM on, /readyz, POST /segment and POST /jobs answer 503 with
  * Retry-After, "the service is shutting down"; the job then finishes or
  * goes back to the shared queue. */
 static void test_redis_replica_refuses_work_from_sigterm(void) {
-    char why[256], url[64], id[128], answer[8192];
+    char why[256], id[128], answer[8192];
     ps_client_body slow;
     ps_test_redis redis;
     ps_daemon d;
-    if (ps_test_redis_start(&redis, why, sizeof why)) SKIP("%s", why);
-    snprintf(url, sizeof url, "redis://127.0.0.1:%d", redis.port);
-    if (ps_daemon_start(&d, (const char *const[]){"--threads", "1", "--drain-seconds", "5", "--redis", url, NULL})) {
-        ps_test_fail(__FILE__, __LINE__, "pointsegd did not start: %s", d.why);
-        ps_test_redis_cleanup(&redis);
-        return;
-    }
+    int up = start_redis_replica(&redis, &d, 5, why, sizeof why);
+    if (up > 0) SKIP("%s", why);
+    if (up < 0) return;
     char *xyz = run_slow_job(&d, &slow, id, sizeof id);
     CHECK_MSG(xyz && wait_job_shows(&d, id, "\"phase\":\"centrality\"", 20), "the exact job never ran");
     int fd = ps_daemon_connect(&d, 5);
@@ -917,18 +929,14 @@ static void *post_slow_segment(void *arg) {
  * one each after the other (a pod's grace period is sized for one). */
 static void test_drain_seconds_bound_both_queues(void) {
     enum { DRAIN_S = 3 };
-    char why[256], url[64], id[128];
+    char why[256], id[128];
     ps_client_body slow;
     ps_test_redis redis;
     ps_daemon d;
     pthread_t t;
-    if (ps_test_redis_start(&redis, why, sizeof why)) SKIP("%s", why);
-    snprintf(url, sizeof url, "redis://127.0.0.1:%d", redis.port);
-    if (ps_daemon_start(&d, (const char *const[]){"--threads", "1", "--drain-seconds", "3", "--redis", url, NULL})) {
-        ps_test_fail(__FILE__, __LINE__, "pointsegd did not start: %s", d.why);
-        ps_test_redis_cleanup(&redis);
-        return;
-    }
+    int up = start_redis_replica(&redis, &d, DRAIN_S, why, sizeof why);
+    if (up > 0) SKIP("%s", why);
+    if (up < 0) return;
     char *xyz = run_slow_job(&d, &slow, id, sizeof id);
     CHECK_MSG(xyz != NULL, "the shared exact job never ran");
     slow_segment local = {&d, &slow, -1};

@@ -266,6 +266,19 @@ static int run_abandoned(int prior_losses, ps_job_state want, abandoned *out) {
     return run_abandoned_via(server.port, prior_losses, want, out);
 }
 
+/* The same with the worker behind a relay that loses the answer to the
+ * first call holding `marker` (after Redis ran it); out->answer_lost says
+ * whether it did. */
+static int run_abandoned_behind_cut(const char *marker, int prior_losses, ps_job_state want,
+                                    abandoned *out) {
+    ps_reply_cut *cut = ps_reply_cut_start(server.port, marker);
+    if (!cut) return -1;
+    int rc = run_abandoned_via(ps_reply_cut_port(cut), prior_losses, want, out);
+    out->answer_lost = ps_reply_cut_done(cut);
+    ps_reply_cut_stop(cut);
+    return rc;
+}
+
 /* The store's worker takes the job over once the lease lapses, and
  * finishes it. */
 static void test_lapsed_lease_is_taken_over(void) {
@@ -303,13 +316,8 @@ static void test_third_loss_fails_job(void) {
 static void test_takeover_retried_counts_one_loss(void) {
     if (!need_server()) SKIP("%s", skip_why);
     abandoned a;
-    ps_reply_cut *cut = ps_reply_cut_start(server.port, "HINCRBY");
-    REQUIRE(cut);
-    int rc = run_abandoned_via(ps_reply_cut_port(cut), 1, PS_JOB_DONE, &a);
-    int lost_answer = ps_reply_cut_done(cut);
-    ps_reply_cut_stop(cut);
-    REQUIRE(rc == 0);
-    CHECK_MSG(lost_answer, "the takeover's answer was not lost: the test did not test");
+    REQUIRE(run_abandoned_behind_cut("HINCRBY", 1, PS_JOB_DONE, &a) == 0);
+    CHECK_MSG(a.answer_lost, "the takeover's answer was not lost: the test did not test");
     CHECK_MSG(a.status.state == PS_JOB_DONE, "state %s: %s", ps_job_state_name(a.status.state),
               a.status.error);
     CHECK_MSG(a.losses == 2, "losses %lld", a.losses);
@@ -355,13 +363,8 @@ static int run_behind_cut(const char *marker, int lapsed, abandoned *out) {
 static void test_lost_failure_answer_still_counted(void) {
     if (!need_server()) SKIP("%s", skip_why);
     abandoned a;
-    ps_reply_cut *cut = ps_reply_cut_start(server.port, "HINCRBY");
-    REQUIRE(cut);
-    int rc = run_abandoned_via(ps_reply_cut_port(cut), 2, PS_JOB_FAILED, &a);
-    int lost_answer = ps_reply_cut_done(cut);
-    ps_reply_cut_stop(cut);
-    REQUIRE(rc == 0);
-    CHECK_MSG(lost_answer, "the START's answer was not lost: the test did not test");
+    REQUIRE(run_abandoned_behind_cut("HINCRBY", 2, PS_JOB_FAILED, &a) == 0);
+    CHECK_MSG(a.answer_lost, "the START's answer was not lost: the test did not test");
     CHECK(a.status.state == PS_JOB_FAILED && strstr(a.status.error, "lost its worker 3 times"));
     CHECK_MSG(a.losses == 3, "losses %lld", a.losses);
     CHECK_MSG(a.stats.reclaimed == 1 && a.stats.lost_failed == 1, "reclaimed %llu, lost_failed %llu",
