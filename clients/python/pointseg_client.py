@@ -58,9 +58,14 @@ def _body_of(path_or_points):
     return json.dumps({"points": points}).encode(), "application/json"
 
 
+def _spelt(name):
+    """A parameter's name as the daemon takes it: '-' and '_' alike."""
+    return name.replace("-", "_")
+
+
 def _without_overridden(body, names):
     """A JSON object body without the members of its "params" that names
-    (spelt with '_') override: those go in the query string, and the daemon
+    (_spelt) override: those go in the query string, and the daemon
     refuses a parameter given twice.  Any other body as it is."""
     if not body.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{"):
         return body
@@ -71,7 +76,7 @@ def _without_overridden(body, names):
     params = doc.get("params")
     if not isinstance(params, dict):
         return body
-    kept = {k: v for k, v in params.items() if k.replace("-", "_") not in names}
+    kept = {k: v for k, v in params.items() if _spelt(k) not in names}
     if len(kept) == len(params):
         return body
     doc["params"] = kept
@@ -215,7 +220,7 @@ def _segment(path_or_points, server, token, output, async_, poll_seconds, timeou
     deadline = time.monotonic() + timeout if timeout else None
     body, content_type = _body_of(path_or_points)
     query = dict(params, output=output)
-    body = _without_overridden(body, {name.replace("-", "_") for name in query})
+    body = _without_overridden(body, {_spelt(name) for name in query})
     query = urllib.parse.urlencode({k: _param_text(v) for k, v in query.items()})
     if not async_:
         _, _, raw = _request(server, "POST", "/segment?" + query, token, body, content_type,
@@ -262,7 +267,7 @@ class _InOrder(argparse.Action):
 
 def _last_params(items):
     """{name: value} of "NAME=VALUE" items, of a name given more than once the
-    last ('-' and '_' alike, as the daemon takes them); None on an item
+    last (_spelt); None on an item
     without '='."""
     params = {}
     for item in items:
@@ -270,7 +275,7 @@ def _last_params(items):
         if not sep:
             print("pointseg_client.py: --param %s: expected NAME=VALUE" % item, file=sys.stderr)
             return None
-        params[name.replace("-", "_")] = value
+        params[_spelt(name)] = value
     return params
 
 

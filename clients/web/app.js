@@ -184,12 +184,18 @@ function showProgress({ status, phase, fraction }) {
   $('bar-fill').style.width = `${Math.round(100 * fraction)}%`;
 }
 
+// Stops following the job the page follows, if any: it is deleted on the
+// server and its poll no longer touches the page.
+function dropJob() {
+  if (state.job) state.job.cancelled = true;
+  state.job = null;
+}
+
 // Segments state.input.  A job still followed (a file chosen while
-// another is segmented) is cancelled first: deleted on the server, and
-// its poll no longer touches the page.
+// another is segmented) is dropped first (dropJob).
 async function run() {
   if (!state.input) return;
-  if (state.job) state.job.cancelled = true;
+  dropJob();
   const job = { cancelled: false };
   state.job = job;
   const current = () => state.job === job;
@@ -265,8 +271,7 @@ function dropReading() {
 // or example chosen meanwhile replaces this one; Cancel stops the reading.
 async function useFile(file) {
   dropReading();
-  if (state.job) state.job.cancelled = true;
-  state.job = null;
+  dropJob();
   clearError();
   setState('reading');
   $('run').disabled = true;
