@@ -120,15 +120,13 @@ size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params) {
     int scaled = in->points && ps_input_scale_exponent(in->points, n, dim) != 0;
     if (lift) dim = 3;
     size_t copied = lift || scaled ? n * (size_t)dim * sizeof(double) : 0;
-    /* A bare point set under the reference sampling is estimated as a mesh
-     * filled (the estimate does not know which it will be once deduplicated
-     * and covers both). */
-    int fills = ps_surface_fill_wanted(params, dim, n);
-    size_t run = estimate_of(n, dim, fills, params);
-    /* A mesh over it may be filled too, when its distinct points are fewer
-     * (an unwelded mesh repeats each corner per triangle): the larger of
-     * its own run and the fills. */
-    if (!fills && in->n_faces > 0 && ps_surface_fill_wanted(params, dim, 0)) {
+    /* A mesh under the reference sampling is filled up to it; one over it
+     * may be too, when its distinct points are fewer (an unwelded mesh
+     * repeats each corner per triangle), and one too rough to fill runs on
+     * its own: the larger of its own run and the fills.  A bare point set
+     * is never filled. */
+    size_t run = estimate_of(n, dim, 0, params);
+    if (in->n_faces > 0 && ps_surface_fill_wanted(params, dim, 0)) {
         size_t filled = estimate_of(n, dim, 1, params);
         if (filled > run) run = filled;
     }
