@@ -1,8 +1,8 @@
 // api.js: the daemon's HTTP interface as the page uses it: the parameter
 // specs from /openapi.json, POST /jobs (FormData, or a gzip file with
 // Content-Encoding: gzip), polling GET /jobs/{id} (a 429 or 503 with
-// Retry-After waited out), GET /jobs/{id}/result, and RFC 9457
-// problem+json turned into readable errors.
+// Retry-After waited out), GET /jobs/{id}/result, DELETE /jobs/{id} when
+// the page cancels, and RFC 9457 problem+json turned into readable errors.
 
 // Parameters the page shows (the rest: threads, output, include, it sets).
 const SHOWN = ['method', 'k', 'centrality', 'samples', 'persistence', 'ncut_threshold', 'feature_threshold',
@@ -95,6 +95,10 @@ export async function submitJob(blob, filename, params, gzip = false) {
   return (await resp.json()).id;
 }
 
+// The end of a job the page cancelled itself (waitForJob's isCancelled),
+// which is no failure; a job cancelled by someone else is a ServerError.
+export class JobCancelled extends Error {}
+
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 // GET /jobs/{id}: the status document, or null after waiting out a 429 or
@@ -116,12 +120,12 @@ async function pollStatus(id, busy) {
 // Polls until the job ends; onProgress({phase, fraction, status}).
 // Returns {doc, text} of the result document.  Once isCancelled() is true
 // (before or between polls) the job is deleted on the server and the poll
-// ends with a 'Cancelled' ServerError.
+// ends with JobCancelled (with a ServerError if the DELETE fails).
 export async function waitForJob(id, onProgress, isCancelled) {
   const stopIfCancelled = async () => {
     if (!isCancelled()) return;
     await request(`jobs/${id}`, { method: 'DELETE' });
-    throw new ServerError(0, 'Cancelled', `job ${id} was cancelled`);
+    throw new JobCancelled(`job ${id} was cancelled`);
   };
   const busy = { count: 0 };
   for (;;) {

@@ -6,7 +6,7 @@
 // point's segment.  Its state is exposed as window.pointseg for scripted
 // checks (tests/browser/viewer.test.mjs).
 
-import { fetchParamSpecs, submitJob, waitForJob } from './api.js';
+import { JobCancelled, fetchParamSpecs, submitJob, waitForJob } from './api.js';
 import { paint, rampCss, rampIndex, rampTable, segmentTable } from './colours.js';
 import { colouredPlyBlob, jsonBlob, labelsBlob, pointsPlyBlob, saveBlob } from './downloads.js';
 import { levelTable, nodeDepths } from './hierarchy.js';
@@ -52,6 +52,15 @@ function showError(err) {
 
 function clearError() {
   $('error').hidden = true;
+}
+
+// A cancel the user asked for: said where the progress goes, no error.
+function showCancelled(message) {
+  $('progress').hidden = false;
+  $('progress').className = 'ended';
+  $('phase').textContent = message;
+  $('percent').textContent = '';
+  setState('cancelled');
 }
 
 // ---- colours ---------------------------------------------------------------
@@ -178,7 +187,7 @@ function updateRamp() {
 
 function showProgress({ status, phase, fraction }) {
   $('progress').hidden = false;
-  $('progress').classList.remove('busy');
+  $('progress').className = '';
   $('phase').textContent = status === 'queued' ? 'queued' : phase;
   $('percent').textContent = status === 'queued' ? '' : `${Math.round(100 * fraction)}%`;
   $('bar-fill').style.width = `${Math.round(100 * fraction)}%`;
@@ -191,8 +200,17 @@ function dropJob() {
   state.job = null;
 }
 
+// Ends the job the page follows: Segment again, no Cancel or progress.
+function endRun() {
+  state.job = null;
+  $('run').disabled = false;
+  $('cancel').hidden = true;
+  $('progress').hidden = true;
+}
+
 // Segments state.input.  A job still followed (a file chosen while
-// another is segmented) is dropped first (dropJob).
+// another is segmented) is dropped first (dropJob).  Its end shows the
+// result, the failure, or the cancel the user asked for.
 async function run() {
   if (!state.input) return;
   dropJob();
@@ -204,6 +222,7 @@ async function run() {
   $('run').disabled = true;
   $('cancel').hidden = false;
   showProgress({ status: 'queued', phase: '', fraction: 0 });
+  let end = null;   // what the job ended with, if not a result
   try {
     const params = state.params ? state.params.values() : {};
     const id = await submitJob(state.input.blob, state.input.name, params, state.input.gzip);
@@ -211,15 +230,12 @@ async function run() {
     const { doc, text } = await waitForJob(id, (p) => current() && showProgress(p), () => job.cancelled);
     if (current()) showResult(doc, text);
   } catch (err) {
-    if (current()) showError(err);
-  } finally {
-    if (current()) {
-      state.job = null;
-      $('run').disabled = false;
-      $('cancel').hidden = true;
-      $('progress').hidden = true;
-    }
+    end = err;
   }
+  if (!current()) return;
+  endRun();
+  if (end instanceof JobCancelled) showCancelled(end.message);
+  else if (end) showError(end);
 }
 
 // Gives the input's shape to the 3D view, grey (a result recolours it),
@@ -254,7 +270,7 @@ function useInput(name, blob, parsed, gzip = false) {
 // its size over a moving bar, and Cancel.
 function showReading(file, phase) {
   $('progress').hidden = false;
-  $('progress').classList.add('busy');
+  $('progress').className = 'busy';
   $('phase').textContent = `${phase} ${file.name}`;
   $('percent').textContent = `${(file.size / 1e6).toFixed(file.size < 1e7 ? 1 : 0)} MB`;
   $('cancel').hidden = false;
@@ -289,8 +305,8 @@ async function useFile(file) {
     $('run').disabled = !state.input;
     $('cancel').hidden = true;
     $('progress').hidden = true;
-    showError(err instanceof ReadCancelled ? { title: 'Cancelled', detail: err.message }
-      : { title: `Cannot read ${file.name}`, detail: err.message });
+    if (err instanceof ReadCancelled) showCancelled(err.message);
+    else showError({ title: `Cannot read ${file.name}`, detail: err.message });
     return;
   }
   if (!current()) return;

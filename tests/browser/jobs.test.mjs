@@ -2,9 +2,11 @@
 // test scripts (page.route) with result documents the real pointsegd made:
 // a second file chosen while the first is segmented (the first job is
 // deleted on the server and no longer polled, whether it would have run on
-// or ended first), the Cancel button (DELETE /jobs/{id}, polling stops),
-// a 503 with Retry-After while polling (waited out, not an error), and a
-// 503 to POST /jobs (the error says when to try again).
+// or ended first), the Cancel button (DELETE /jobs/{id}, polling stops,
+// a status says so and the error box stays empty; a failing run after it
+// shows its error, which the next run clears; a refused DELETE is an
+// error), a 503 with Retry-After while polling (waited out, not an error),
+// and a 503 to POST /jobs (the error says when to try again).
 //   node tests/browser/jobs.test.mjs BUILD
 
 import { makeDumbbell, makeHand } from '../../clients/web/shapes.js';
@@ -37,7 +39,8 @@ async function realDocs(base) {
 // Answers the page's /jobs requests.  plan: {ids: job id of each POST in
 // turn, status(id, polls, log): 'running' | 'done' | {problem, retryAfter},
 // result: {id: document text}, refuse: {problem, retryAfter, detail} to
-// answer every POST with}.  Resolves the log: [{method, id, t}].
+// answer every POST with, refuseDelete: the same for DELETE}, read at each
+// request.  Resolves the log: [{method, id, t}].
 async function mockJobs(page, plan) {
   const log = [];
   const cancelled = new Set();
@@ -58,6 +61,7 @@ async function mockJobs(page, plan) {
     log.push(entry);
     if (req.method() === 'POST' && plan.refuse) return problem(route, plan.refuse);
     if (req.method() === 'POST') return json(route, 202, { id, status: 'queued' }, { Location: `/jobs/${id}` });
+    if (req.method() === 'DELETE' && plan.refuseDelete) return problem(route, plan.refuseDelete);
     if (req.method() === 'DELETE') {
       cancelled.add(id);
       return json(route, 202, statusDoc(id, 'cancelled'));
@@ -161,14 +165,76 @@ async function cancelButton(context, base, docs) {
     await page.click('#cancel');
     await waitFor('DELETE /jobs/a', () => log.some((e) => e.method === 'DELETE' && e.id === 'a'), 2000);
     const deleted = log.find((e) => e.method === 'DELETE').t - t;
-    await page.waitForSelector('body[data-state=error]', { timeout: 5000 });
+    await page.waitForSelector('body[data-state=cancelled], body[data-state=error]', { timeout: 5000 });
     const n = polls(log, 'a');
     await sleep(1000);
     assert(polls(log, 'a') === n, 'still polled after the cancel');
-    const text = await page.textContent('#error');
-    assert(text.includes('Cancelled'), `error box: '${text}'`);
+    await checkCancelled(page, 'job a was cancelled');
     assert(await page.isEnabled('#run') && await page.isHidden('#cancel'), 'Segment not enabled again, or Cancel still shown');
     console.log(`  DELETE sent ${deleted} ms after the click`);
+    assert(!errors.length, errors.join(' | '));
+    await page.close();
+  });
+}
+
+// A cancel the user asked for is a status where the progress goes, not
+// an error: the error box hidden and empty.
+async function checkCancelled(page, status) {
+  const shown = await page.evaluate(() => ({
+    state: document.body.dataset.state, error: document.getElementById('error').textContent,
+    errorHidden: document.getElementById('error').hidden, progressHidden: document.getElementById('progress').hidden,
+    phase: document.getElementById('phase').textContent,
+  }));
+  assert(shown.errorHidden && !shown.error, `error box (${shown.errorHidden ? 'hidden' : 'shown'}): '${shown.error}'`);
+  assert(shown.state === 'cancelled', `page state ${shown.state}`);
+  assert(!shown.progressHidden && shown.phase === status, `status (${shown.progressHidden ? 'hidden' : 'shown'}): '${shown.phase}'`);
+}
+
+// Opens the page on plan's jobs (mockJobs), chooses the hand and clicks
+// Cancel once job a is polled; resolves {page, errors} once the run ended.
+async function cancelJobA(context, base, plan) {
+  const { page, errors } = await openPage(context, base);
+  const log = await mockJobs(page, plan);
+  await chooseFile(page, 'hand');
+  await waitFor('a poll', () => polls(log, 'a') >= 1);
+  await page.click('#cancel');
+  await page.waitForSelector('body[data-state=cancelled], body[data-state=error]', { timeout: 5000 });
+  return { page, errors };
+}
+
+// After a cancel, a run that fails shows its error (the status gone), and
+// the run after it clears that error.
+async function cancelThenFailure(context, base, docs) {
+  await check('cancel-then-failure', async () => {
+    const plan = { ids: ['a', 'b', 'c'], result: { c: docs.hand }, status: (id) => (id === 'c' ? 'done' : 'running') };
+    const { page, errors } = await cancelJobA(context, base, plan);
+    await checkCancelled(page, 'job a was cancelled');
+    plan.refuse = { problem: 503, retryAfter: 7, detail: 'the job queue is full' };
+    await page.click('#run');
+    await page.waitForSelector('body[data-state=error]', { timeout: 5000 });
+    const text = await page.textContent('#error');
+    assert(await page.isVisible('#error') && text.includes('the job queue is full'), `error box: '${text}'`);
+    assert(await page.isHidden('#progress'), 'the cancelled status is still shown beside the error');
+    plan.refuse = null;
+    await page.click('#run');
+    await page.waitForSelector('body[data-state=done]', { timeout: LONG });
+    assert(await page.isHidden('#error'), 'the error of the run before is still shown');
+    assert(!errors.length, errors.join(' | '));
+    await page.close();
+  });
+}
+
+// A cancel whose DELETE the server refuses is a failure: the job may run
+// on, and the error box says so.
+async function cancelRefused(context, base, docs) {
+  await check('cancel-delete-refused', async () => {
+    const { page, errors } = await cancelJobA(context, base, {
+      ids: ['a'], result: { a: docs.hand }, status: () => 'running',
+      refuseDelete: { problem: 503, retryAfter: 2, detail: 'shutting down' },
+    });
+    const text = await page.textContent('#error');
+    assert(await page.isVisible('#error') && text.includes('shutting down'), `error box: '${text}'`);
+    assert(await page.isHidden('#progress'), 'a status is shown beside the error');
     assert(!errors.length, errors.join(' | '));
     await page.close();
   });
@@ -217,6 +283,8 @@ async function main() {
     const docs = await realDocs(base);
     await secondFile(context, base, docs);
     await cancelButton(context, base, docs);
+    await cancelThenFailure(context, base, docs);
+    await cancelRefused(context, base, docs);
     await retryAfter(context, base, docs);
     await busyService(context, base, docs);
   } finally {
