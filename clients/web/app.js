@@ -2,9 +2,9 @@
 // worker: read_file.js) or makes a synthetic example, posts it to /jobs,
 // follows the job, then shows the result: colours by segment, by a level
 // of the hierarchy or by centrality, the legend, merges, sinks and
-// downloads.  Hovering a legend row or a point in the 3D view lights that
-// point's segment.  Its state is exposed as window.pointseg for scripted
-// checks (tests/browser/viewer.test.mjs).
+// downloads.  Hovering a point in the 3D view, or hovering or focusing
+// (Tab) a legend row, lights that segment.  Its state is exposed as
+// window.pointseg for scripted checks (tests/browser/viewer.test.mjs).
 
 import { JobCancelled, fetchParamSpecs, submitJob, waitForJob } from './api.js';
 import { paint, rampCss, rampIndex, rampTable, segmentTable } from './colours.js';

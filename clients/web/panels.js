@@ -71,7 +71,9 @@ export function segmentSize(seg, nPoints, unit = '') {
   return `${seg.size.toLocaleString('en')}${unit} (${((100 * seg.size) / nPoints).toFixed(1)}%)`;
 }
 
-// Rows of the legend; onHover(segment id or -1).
+// Rows of the legend, each in the Tab order and named as it reads
+// ("segment #3: 1,234 points (12.3%)"); onHover(segment id or -1) as the
+// mouse enters and leaves a row, and as a row takes and loses the focus.
 export function fillLegend(tbody, doc, onHover) {
   tbody.replaceChildren();
   for (const seg of doc.segments) {
@@ -84,8 +86,10 @@ export function fillLegend(tbody, doc, onHover) {
       element('td', { textContent: formatSize(seg.feature_size) }),
     ]);
     row.dataset.segment = seg.id;
-    row.addEventListener('mouseenter', () => onHover(seg.id));
-    row.addEventListener('mouseleave', () => onHover(-1));
+    row.tabIndex = 0;
+    row.setAttribute('aria-label', `segment #${seg.id}: ${segmentSize(seg, doc.n_points, ' points')}`);
+    for (const on of ['mouseenter', 'focus']) row.addEventListener(on, () => onHover(seg.id));
+    for (const off of ['mouseleave', 'blur']) row.addEventListener(off, () => onHover(-1));
     tbody.append(row);
   }
 }

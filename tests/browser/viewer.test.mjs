@@ -3,7 +3,8 @@
 // (../shared/data/models, or the synthetic hand when that is absent), and
 // checks the legend, the merges list, the hierarchy slider, toggles, downloads, a server
 // error, the missing-vendor message, gzip uploads, hover picking in the 3D
-// view, choosing a file with the keyboard and a million-point result.  Prints
+// view, the legend's rows lit by Tab as by hover, choosing a file with the
+// keyboard and a million-point result.  Prints
 // "PASS browser:<name>" / "FAIL browser:<name>: why" and "N passed, N failed".
 //   node tests/browser/viewer.test.mjs BUILD    (pointsegd in BUILD,
 //   screenshots in BUILD/browser-artifacts)
@@ -33,6 +34,16 @@ function nearestPoint(page) {
     }
     return { index, ...viewer.screenPosition(index) };
   });
+}
+
+// The legend row that has the focus (its segment id), the rows lit and
+// the segment the page highlights.
+function legendFocus(page) {
+  return page.evaluate(() => ({
+    focused: document.activeElement.dataset.segment,
+    lit: [...document.querySelectorAll('#legend tbody tr.lit')].map((r) => r.dataset.segment),
+    highlight: window.pointseg.state.highlight,
+  }));
 }
 
 async function setLevel(page, level) {
@@ -217,6 +228,29 @@ async function mainFlow(context, base) {
     await shot(page, 'hover');
     await page.mouse.move(100, 30);
     assert((await colourDigest(page)).colours === before.colours, 'leaving the legend did not restore colours');
+  });
+  await check('legend-keyboard', async () => {
+    await page.mouse.move(100, 30);
+    await page.focus('#fit');
+    const seen = [];
+    for (const n of [1, 2]) {
+      await page.keyboard.press('Tab');
+      seen.push(await legendFocus(page));
+      assert(seen[n - 1].focused === String(doc.segments[n - 1].id), `Tab ${n} focused '${seen[n - 1].focused}', not legend row ${n}`);
+    }
+    seen.forEach((s, i) => assert(s.lit.length === 1 && s.lit[0] === s.focused && s.highlight === Number(s.focused),
+      `focus on row ${i + 1} (segment ${s.focused}): rows lit ${JSON.stringify(s.lit)}, highlight ${s.highlight}`));
+    assert((await colourDigest(page)).colours !== before.colours, 'focusing a segment changed no colour');
+    const seg = doc.segments[1];
+    const name = `segment #${seg.id}: ${seg.size.toLocaleString('en')} points (${((100 * seg.size) / doc.n_points).toFixed(1)}%)`;
+    assert(await page.getByRole('row', { name, exact: true }).count() === 1, `no legend row named '${name}'`);
+    await shot(page, 'legend-focus');
+    await page.keyboard.press('Shift+Tab');
+    await page.keyboard.press('Shift+Tab');
+    const left = await legendFocus(page);
+    assert(!left.lit.length && left.highlight === -1, `after blur: rows lit ${JSON.stringify(left.lit)}, highlight ${left.highlight}`);
+    assert(await page.isHidden('#hover-info'), 'blur left the segment named over the view');
+    assert((await colourDigest(page)).colours === before.colours, 'blur did not restore the colours');
   });
   for (const surface of [true, false]) await check(`canvas-hover-${surface ? 'surface' : 'points'}`, async () => {
     const toggle = await page.isVisible('#surface-toggle');
