@@ -109,22 +109,21 @@ void ps_request_params_default(ps_request_params *rp) {
 
 /* ---- parsing text values ------------------------------------------------ */
 
-/* Decimal notation and nothing else: [-]digits[.digits][e[+-]digits].  No
+/* Decimal notation and nothing else: [-]digits[.digits][e[+-]digits],
+ * where either side of the point may be empty (".5", "5."), not both.  No
  * hexadecimal ("0x10"), no blanks or '+' in front, no "inf" or "nan". */
 static int is_decimal(const char *p) {
-    size_t digits;
+    size_t whole = 0, fraction = 0, exponent = 0;
     if (*p == '-') p++;
-    for (digits = 0; isdigit((unsigned char)*p); p++) digits++;
-    if (!digits) return 0;
-    if (*p == '.') {
-        for (p++, digits = 0; isdigit((unsigned char)*p); p++) digits++;
-        if (!digits) return 0;
-    }
+    for (; isdigit((unsigned char)*p); p++) whole++;
+    if (*p == '.')
+        for (p++; isdigit((unsigned char)*p); p++) fraction++;
+    if (!whole && !fraction) return 0;
     if (*p == 'e' || *p == 'E') {
         p++;
         if (*p == '+' || *p == '-') p++;
-        for (digits = 0; isdigit((unsigned char)*p); p++) digits++;
-        if (!digits) return 0;
+        for (; isdigit((unsigned char)*p); p++) exponent++;
+        if (!exponent) return 0;
     }
     return *p == 0;
 }
