@@ -5,9 +5,12 @@
 Needs no Docker (tests/docker/run.sh runs it first).  Checks: every
 --flag and POINTSEG_* variable that docker/Dockerfile, compose.yaml,
 k8s/*.yaml and pointsegd.service give is one `pointsegd --help` lists; every
-probe and health check (k8s httpGet, the Dockerfile's HEALTHCHECK) names a
-port the container listens on (the HEALTHCHECK's: ${POINTSEG_PORT:-N}, N
-the Dockerfile's POINTSEG_PORT) and a path the daemon answers 200; a
+k8s probe (httpGet) names a port the container listens on and a path the
+daemon answers 200; the Dockerfile's HEALTHCHECK, run beside pointsegd
+started as the image starts it, finds the daemon wherever docker run's
+flags or -e tell it to listen (another port, 127.0.0.2, this machine's own
+non-loopback address: a SKIP line when `hostname -I` has none) and says
+unhealthy once it is gone; a
 Deployment whose image is `:latest` (or untagged) sets imagePullPolicy, since
 Kubernetes would otherwise pull it on every start (Always) and never use an
 image loaded into the cluster (kind load, minikube image load); a
@@ -15,9 +18,11 @@ Deployment's pointsegd has a preStop sleep (at SIGTERM it stops taking work
 at once, so without one the Service still routes requests to it for a
 moment) and a terminationGracePeriodSeconds longer than that sleep, its
 --drain-seconds and the 5 s the daemon then waits for its last answers.
-Prints PASS/FAIL lines.
+Prints PASS/FAIL/SKIP lines.
 """
 import glob
+import ipaddress
+import json
 import os
 import re
 import subprocess
@@ -78,7 +83,8 @@ report(flags and not unknown, "deploy-flags-exist", "not in pointsegd --help: %s
 unknown = ["%s: %s" % e for e in envs if e[1].startswith("POINTSEG_") and e[1] not in ENVS]
 report(envs and not unknown, "deploy-env-exist", "not in pointsegd --help: %s" % unknown)
 
-# Probes and health checks: (file, port, path), the port as the container's.
+# The k8s probes: (file, port, path), the port as the container's (the
+# HEALTHCHECK is run below).
 probes, bad_ports = [], []
 for name, ds in k8s.items():
     for d in ds:
@@ -96,18 +102,6 @@ for name, ds in k8s.items():
                 if "--port" in argv and int(argv[argv.index("--port") + 1]) != port:
                     bad_ports.append("%s %s: port %s, daemon --port %s" %
                                      (name, kind, port, argv[argv.index("--port") + 1]))
-# The HEALTHCHECK follows POINTSEG_PORT (docker run -e POINTSEG_PORT=...),
-# with the Dockerfile's own value as its default.
-checks = re.findall(r"HEALTHCHECK[^\n]*\n?[^\n]*http://127\.0\.0\.1:([^/\s\"]+)(/[^\s\"]*)", dockerfile)
-if not checks:
-    bad_ports.append("Dockerfile: no HEALTHCHECK on http://127.0.0.1:PORT/PATH")
-for port, path in checks:
-    probes.append(("Dockerfile HEALTHCHECK", path))
-    default = re.fullmatch(r"\$\{POINTSEG_PORT:-(\d+)\}", port)
-    if not default:
-        bad_ports.append("Dockerfile HEALTHCHECK: port %s, not ${POINTSEG_PORT:-N}" % port)
-    elif "POINTSEG_PORT=%s" % default.group(1) not in dockerfile:
-        bad_ports.append("Dockerfile HEALTHCHECK: default port %s is not POINTSEG_PORT" % default.group(1))
 report(probes and not bad_ports, "deploy-probe-ports", "; ".join(bad_ports) or "no probe found")
 
 port = free_port()
@@ -180,3 +174,127 @@ for name, ds in k8s.items():
                              % (name, grace, pre, drain))
 report(stops == [] and any(d.get("kind") == "Deployment" for ds in k8s.values() for d in ds),
        "k8s-prestop-and-grace", "; ".join(stops) or "no Deployment found")
+
+
+# The HEALTHCHECK run as Docker runs it, beside pointsegd started as the
+# image starts it: its ENTRYPOINT, then its CMD or `docker run IMAGE ARGS`'s
+# ARGS, with its ENV under docker run's -e.  The check must find the daemon
+# where it was told to listen (--bind or POINTSEG_BIND, --port or
+# POINTSEG_PORT; a flag wins, as in pointsegd) and say unhealthy (1) once
+# it is gone.  The check's command gets the daemon's pid as its argument:
+# in the container the daemon is PID 1.
+def final_stage(text):
+    """The Dockerfile's last stage, continuation lines joined:
+    {INSTRUCTION: [its arguments, one a line]}."""
+    stage = re.sub(r"\\\n\s*", " ", text).split("\nFROM ")[-1]
+    out = {}
+    for line in stage.splitlines():
+        word, _, rest = line.strip().partition(" ")
+        if word.isupper():
+            out.setdefault(word, []).append(rest.strip())
+    return out
+
+
+STAGE = final_stage(dockerfile)
+IMAGE_ENV = dict(re.findall(r"(POINTSEG_[A-Z0-9_]+)=(\S+)", " ".join(STAGE.get("ENV", []))))
+# Where COPY puts each file of the checkout in the image.
+INSTALLED = {}
+for copy in STAGE.get("COPY", []):
+    words = copy.split()
+    if not words[0].startswith("--from"):
+        src, dest = words[-2:]
+        INSTALLED[dest + os.path.basename(src) if dest.endswith("/") else dest] = os.path.join(ROOT, src)
+
+
+def health_command(pid):
+    """The HEALTHCHECK's CMD, run from the checkout, pid its argument."""
+    text = STAGE["HEALTHCHECK"][0].partition(" CMD ")[2].strip()
+    if not text.startswith("["):
+        return ["/bin/sh", "-c", text, "sh", str(pid)]
+    argv = json.loads(text)
+    for dest, src in INSTALLED.items():
+        if argv[0] in (dest, os.path.basename(dest)):
+            argv[0] = src
+    return argv + [str(pid)]
+
+
+def health_status(pid, env):
+    try:
+        return subprocess.run(health_command(pid), env=env, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, timeout=10).returncode
+    except subprocess.TimeoutExpired:
+        return "a timeout"
+
+
+def answers(host, port, tries=50):
+    """True when something answers HTTP at host:port within tries tenths of a second."""
+    for _ in range(tries):
+        try:
+            urllib.request.urlopen("http://%s:%d/healthz" % (host, port), timeout=2)
+            return True
+        except urllib.error.HTTPError:
+            return True
+        except OSError:
+            time.sleep(0.1)
+    return False
+
+
+def local_address():
+    """An IPv4 address of this machine other than loopback, or None."""
+    try:
+        found = subprocess.run(["hostname", "-I"], capture_output=True, text=True).stdout.split()
+    except OSError:
+        return None
+    for a in found:
+        ip = ipaddress.ip_address(a)
+        if ip.version == 4 and not ip.is_loopback:
+            return a
+    return None
+
+
+def check_health(name, args, extra_env, host, port, while_up=None):
+    """pointsegd started as `docker run [-e extra_env] IMAGE [args]` (args None:
+    the CMD) must listen on host:port and the HEALTHCHECK say healthy (0);
+    while_up() runs before the daemon is stopped.  Returns the daemon's
+    environment and pid, or None when either failed."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("POINTSEG_")}
+    env.update(IMAGE_ENV)
+    env.update(extra_env)
+    entry = json.loads(STAGE["ENTRYPOINT"][0])
+    cmd = json.loads(STAGE["CMD"][0]) if "CMD" in STAGE else []
+    daemon = subprocess.Popen([PSD] + entry[1:] + (cmd if args is None else args), env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        up = answers(host, port)
+        status = health_status(daemon.pid, env) if up else None
+        report(up and status == 0, "healthcheck-" + name,
+               "exit status %s, not 0 (healthy)" % status if up
+               else "pointsegd does not answer on %s:%d" % (host, port))
+        if up and while_up:
+            while_up()
+    finally:
+        daemon.terminate()
+        daemon.wait()
+    return (env, daemon.pid) if up and status == 0 else None
+
+
+port = free_port()
+check_health("bind-flag-loopback", ["--bind", "127.0.0.2", "--port", str(port)], {}, "127.0.0.2", port)
+port = free_port()
+ran = check_health("follows-port", None, {"POINTSEG_PORT": str(port)}, "127.0.0.1", port)
+if ran:
+    status = health_status(ran[1], ran[0])
+    report(status == 1, "healthcheck-unhealthy-when-down", "exit status %s, not 1 (unhealthy)" % status)
+address = local_address()
+if address:
+    # Told by the environment, the daemon listens there only (a --bind in
+    # the CMD would win over docker run's -e POINTSEG_BIND).
+    port = free_port()
+    check_health("bind-env", None, {"POINTSEG_BIND": address, "POINTSEG_PORT": str(port)}, address, port,
+                 lambda: report(not answers("127.0.0.1", port, tries=1), "dockerfile-bind-env-honoured",
+                                "-e POINTSEG_BIND=%s: pointsegd answers on 127.0.0.1 too" % address))
+    port = free_port()
+    check_health("bind-flag", ["--bind=" + address, "--port=%d" % port], {}, address, port)
+else:
+    print("SKIP docker:healthcheck-non-loopback: no IPv4 address other than loopback in `hostname -I`: "
+          "the check was not run against a daemon on another address", flush=True)

@@ -1,8 +1,9 @@
 # run.sh: make test-docker: builds docker/Dockerfile, runs the image and
 # segments the horse through it, checks its HEALTHCHECK on another
-# POINTSEG_PORT, then brings up docker/compose.yaml (redis,
-# 3 pointsegd replicas, nginx) and runs compose_driver.py's checks on it,
-# `docker kill` included.  First lint_deploy.py reads docker/'s files against
+# POINTSEG_PORT and on docker run's --bind 127.0.0.2 (the daemon as PID 1,
+# whose command line the check reads), then brings up docker/compose.yaml
+# (redis, 3 pointsegd replicas, nginx) and runs compose_driver.py's checks
+# on it, `docker kill` included.  First lint_deploy.py reads docker/'s files against
 # `pointsegd --help` and the routes (no Docker needed).
 #   sh tests/docker/run.sh BUILD
 # Needs root: installs docker.io, docker-compose and debootstrap with
@@ -125,18 +126,19 @@ run_single() {
     single=""
 }
 
-# The image's HEALTHCHECK on another POINTSEG_PORT (run every second here).
-run_health_port() {
-    single=$(docker run -d -e POINTSEG_PORT=9090 --health-interval 1s pointseg:latest) ||
-        { fail healthcheck-follows-port "docker run failed"; return; }
+# The image's HEALTHCHECK (run every second here) says healthy with the
+# daemon started by `docker run -d ARGS...`.
+run_health() { # NAME ARGS...
+    name=$1
+    shift
+    single=$(docker run -d --health-interval 1s "$@") || { fail "$name" "docker run failed"; return; }
     status=starting
     for _ in $(seq 40); do
         status=$(docker inspect -f '{{.State.Health.Status}}' "$single")
         [ "$status" = starting ] || break
         sleep 0.5
     done
-    [ "$status" = healthy ] && pass healthcheck-follows-port ||
-        fail healthcheck-follows-port "POINTSEG_PORT=9090: $status"
+    [ "$status" = healthy ] && pass "$name" || fail "$name" "docker run $*: $status"
     docker rm -f "$single" >/dev/null 2>&1
     single=""
 }
@@ -169,6 +171,7 @@ rc=$?
 cat "$tmp/lint.out"
 passed=$((passed + $(grep -c '^PASS ' "$tmp/lint.out")))
 failed=$((failed + $(grep -c '^FAIL ' "$tmp/lint.out")))
+skipped=$((skipped + $(grep -c '^SKIP ' "$tmp/lint.out")))
 [ "$rc" -eq 0 ] || fail lint-deploy "exit status $rc"
 start_dockerd
 . "$ROOT/tests/docker/base-images.sh"
@@ -184,6 +187,7 @@ else
     finish
 fi
 run_single
-run_health_port
+run_health healthcheck-follows-port -e POINTSEG_PORT=9090 pointseg:latest
+run_health healthcheck-follows-bind-flag pointseg:latest --bind 127.0.0.2 --port 9091
 run_compose
 finish
