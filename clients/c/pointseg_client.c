@@ -1,5 +1,7 @@
 /* pointseg_client.c: the libcurl client of pointsegd.  URLs and header
- * lines are sized to fit: a long query, token or job id goes out whole. */
+ * lines are sized to fit: a long query, token or job id goes out whole,
+ * and an answer's header lines come in whole, up to PS_CLIENT_HEAD_MAX
+ * bytes in all. */
 #include "pointseg_client.h"
 
 #include <cJSON.h>
@@ -15,39 +17,67 @@ int ps_client_global_init(void) {
     return curl_global_init(CURL_GLOBAL_DEFAULT) == CURLE_OK ? 0 : -1;
 }
 
-static size_t on_body(char *data, size_t size, size_t n, void *user) {
-    ps_client_response *r = user;
-    size_t add = size * n;
-    char *grown = realloc(r->body, r->len + add + 1);
-    if (!grown) return 0;
-    memcpy(grown + r->len, data, add);
-    r->body = grown;
-    r->len += add;
-    r->body[r->len] = 0;
-    return add;
+/* An empty response: no body, no header lines, every header value "". */
+static void response_clear(ps_client_response *r) {
+    memset(r, 0, sizeof *r);
+    r->content_type = r->location = r->retry_after = r->allow = "";
 }
 
-/* Copies the value of header line `line` into out when its name is `name`. */
-static void take_header(const char *line, size_t len, const char *name, char *out, size_t cap) {
-    size_t n = strlen(name);
-    if (len <= n + 1 || strncasecmp(line, name, n) || line[n] != ':') return;
-    const char *v = line + n + 1;
-    size_t vlen = len - n - 1;
-    while (vlen && (*v == ' ' || *v == '\t')) v++, vlen--;
-    while (vlen && (v[vlen - 1] == '\r' || v[vlen - 1] == '\n' || v[vlen - 1] == ' ')) vlen--;
-    if (vlen >= cap) vlen = cap - 1;
-    memcpy(out, v, vlen);
-    out[vlen] = 0;
+/* Appends add bytes of data to the NUL-terminated *text of *len bytes;
+ * -1 (and "out of memory" in r->error) when out of memory. */
+static int append(ps_client_response *r, char **text, size_t *len, const char *data, size_t add) {
+    char *grown = realloc(*text, *len + add + 1);
+    if (!grown) return snprintf(r->error, sizeof r->error, "out of memory"), -1;
+    memcpy(grown + *len, data, add);
+    *text = grown;
+    *len += add;
+    grown[*len] = 0;
+    return 0;
+}
+
+static size_t on_body(char *data, size_t size, size_t n, void *user) {
+    ps_client_response *r = user;
+    return append(r, &r->body, &r->len, data, size * n) ? 0 : size * n;
 }
 
 static size_t on_header(char *line, size_t size, size_t n, void *user) {
     ps_client_response *r = user;
     size_t len = size * n;
-    take_header(line, len, "Content-Type", r->content_type, sizeof r->content_type);
-    take_header(line, len, "Location", r->location, sizeof r->location);
-    take_header(line, len, "Retry-After", r->retry_after, sizeof r->retry_after);
-    take_header(line, len, "Allow", r->allow, sizeof r->allow);
-    return len;
+    if (len > PS_CLIENT_HEAD_MAX - r->head_len) {
+        snprintf(r->error, sizeof r->error, "the answer's header lines pass %d bytes",
+                 PS_CLIENT_HEAD_MAX);
+        return 0;
+    }
+    return append(r, &r->head, &r->head_len, line, len) ? 0 : len;
+}
+
+/* When header line `line` (len bytes) is named `name`, its value, cut out
+ * in place (NUL-terminated where its trailing blanks were), into *out. */
+static void take_header(char *line, size_t len, const char *name, const char **out) {
+    size_t n = strlen(name);
+    if (len <= n + 1 || strncasecmp(line, name, n) || line[n] != ':') return;
+    char *v = line + n + 1;
+    size_t vlen = len - n - 1;
+    while (vlen && (*v == ' ' || *v == '\t')) v++, vlen--;
+    while (vlen && (v[vlen - 1] == '\r' || v[vlen - 1] == '\n' || v[vlen - 1] == ' ')) vlen--;
+    v[vlen] = 0;
+    *out = v;
+}
+
+/* Points r's header values at theirs in r->head (a name given twice: its
+ * last line). */
+static void point_headers(ps_client_response *r) {
+    char *line = r->head;
+    while (line && *line) {
+        char *end = strchr(line, '\n');
+        char *next = end ? end + 1 : line + strlen(line);
+        size_t len = (size_t)(next - line);
+        take_header(line, len, "Content-Type", &r->content_type);
+        take_header(line, len, "Location", &r->location);
+        take_header(line, len, "Retry-After", &r->retry_after);
+        take_header(line, len, "Allow", &r->allow);
+        line = next;
+    }
 }
 
 /* The formatted text, malloc'ed to fit; NULL when out of memory. */
@@ -95,7 +125,7 @@ static int build_headers(const ps_client *c, const ps_client_body *body,
 
 int ps_client_request(const ps_client *c, const char *method, const char *path,
                       const ps_client_body *body, const char *const *headers, ps_client_response *out) {
-    memset(out, 0, sizeof *out);
+    response_clear(out);
     char *url = text_of("%s%s", c->base_url, path);
     struct curl_slist *h = NULL;
     CURL *curl = url && build_headers(c, body, headers, &h) == 0 ? curl_easy_init() : NULL;
@@ -120,7 +150,8 @@ int ps_client_request(const ps_client *c, const char *method, const char *path,
     }
     CURLcode rc = curl_easy_perform(curl);
     if (rc == CURLE_OK) curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &out->status);
-    else snprintf(out->error, sizeof out->error, "%s", curl_easy_strerror(rc));
+    else if (!out->error[0]) snprintf(out->error, sizeof out->error, "%s", curl_easy_strerror(rc));
+    point_headers(out);
     curl_slist_free_all(h);
     curl_easy_cleanup(curl);
     free(url);
@@ -131,7 +162,7 @@ int ps_client_request(const ps_client *c, const char *method, const char *path,
 static int request_path(const ps_client *c, const char *method, char *path,
                         const ps_client_body *body, ps_client_response *out) {
     if (!path) {
-        memset(out, 0, sizeof *out);
+        response_clear(out);
         return snprintf(out->error, sizeof out->error, "out of memory"), -1;
     }
     int rc = ps_client_request(c, method, path, body, NULL, out);
@@ -213,6 +244,8 @@ int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *st
 
 void ps_client_response_free(ps_client_response *r) {
     free(r->body);
-    r->body = NULL;
-    r->len = 0;
+    free(r->head);
+    r->body = r->head = NULL;
+    r->len = r->head_len = 0;
+    r->content_type = r->location = r->retry_after = r->allow = "";
 }

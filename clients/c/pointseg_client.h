@@ -15,15 +15,21 @@ typedef struct ps_client {
     long timeout_ms;      /* whole request; 0 = none */
 } ps_client;
 
+/* Most bytes of an answer's header lines: past them the call fails. */
+#define PS_CLIENT_HEAD_MAX 65536
+
 typedef struct ps_client_response {
     long status;          /* HTTP status, 0 when the transfer failed */
     char *body;           /* malloc'ed, NUL-terminated (free with ps_client_response_free) */
     size_t len;
-    char content_type[128];
-    char location[256];
-    char retry_after[32];
-    char allow[128];
-    char error[256];      /* libcurl's message when status is 0 */
+    char *head;           /* its status and header lines as received, malloc'ed like body */
+    size_t head_len;
+    /* These headers' values, whole, in head: "" when absent (never NULL). */
+    const char *content_type;
+    const char *location;
+    const char *retry_after;
+    const char *allow;
+    char error[256];      /* why, when status is 0: libcurl's message or the client's */
 } ps_client_response;
 
 typedef struct ps_client_body {
@@ -62,6 +68,7 @@ int ps_client_wait(const ps_client *c, const char *id, long timeout_ms, char *st
  * any more: done, failed or cancelled. */
 int ps_client_job_is_final(const char *state);
 
+/* Frees the body and header lines; the header values are "" again. */
 void ps_client_response_free(ps_client_response *r);
 
 #endif

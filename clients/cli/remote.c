@@ -114,7 +114,7 @@ static int report_failure(const char *what, const char *server, const ps_client_
     return res->status >= 400 && res->status < 500 ? EXIT_USAGE : EXIT_INTERNAL;
 }
 
-/* Takes the body of a 200 answer; otherwise reports it. */
+/* Takes the body of a 200 answer; otherwise reports it.  Frees res. */
 static int take_answer(const char *what, const char *server, ps_client_response *res,
                        char **answer, size_t *answer_len) {
     if (res->status != 200) {
@@ -125,6 +125,7 @@ static int take_answer(const char *what, const char *server, ps_client_response 
     *answer = res->body;
     *answer_len = res->len;
     res->body = NULL;
+    ps_client_response_free(res);
     return 0;
 }
 
