@@ -159,7 +159,7 @@ static cJSON *operation(const char *summary, const char *id, cJSON *responses) {
     add_problem(responses, 401, "a bearer token is configured and missing or wrong");
     add_problem(responses, 405, "method not allowed (see the Allow header)");
     add_common_problem(responses, 400, "malformed request head: HTTP/1.1 without Host, conflicting "
-                       "Content-Length headers, an encoded NUL byte (%00) in the path, more than 64 "
+                       "Content-Length headers, both Content-Length and Transfer-Encoding, an encoded NUL byte (%00) in the path, more than 64 "
                        "query parameters, a NUL byte in one");
     add_common_problem(responses, 414, "URL path longer than 255 bytes");
     add_common_problem(responses, 501, "a Transfer-Encoding other than chunked");

@@ -67,6 +67,9 @@ int ps_admit_check(ps_request *r) {
     if (te && strcasecmp(te, "chunked"))
         return ps_respond_problem(r, 501, NULL, "Transfer-Encoding %.100s is not supported (use chunked, "
                                   "or Content-Encoding: gzip)", te);
+    if (te && header(r, MHD_HTTP_HEADER_CONTENT_LENGTH))
+        return ps_respond_problem(r, 400, NULL, "both Transfer-Encoding and Content-Length: the body's "
+                                  "length is ambiguous (send one of them)");
     if (ps_guard_conn_in_health_room(r->guard_conn) && !is_health_route(r->route))
         return ps_respond_problem(r, 503, ps_retry_after_header,
                                   "too many connections (%d); only health checks are served",

@@ -2,8 +2,10 @@
  * admit.h: the checks a request's head must pass before any route sees it:
  * a path that fits and holds no encoded NUL, at most PS_MAX_QUERY_PARAMS
  * query parameters, a Host header on HTTP/1.1 (RFC 9112), one
- * Content-Length, no transfer coding but chunked, and only health routes
- * over the connection limit.  Each refusal is answered at once with
+ * Content-Length, no transfer coding but chunked, not both a
+ * Content-Length and a Transfer-Encoding (RFC 9112 6.3: a proxy in front
+ * may have framed the body otherwise), and only health routes over the
+ * connection limit.  Each refusal is answered at once with
  * problem+json, and the connection closes.
  */
 #ifndef PS_ADMIT_H

@@ -467,6 +467,16 @@ static void test_strict_parameters_and_headers(void) {
     static const char two_lengths[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 24\r\n"
                                       "Content-Length: 12\r\n\r\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
     CHECK(exchange(&d, two_lengths, sizeof two_lengths - 1, 2, &x) == 0 && first_status(&x) == 400);
+    /* Both framings: a proxy in front may have read a different body
+     * (RFC 9112 6.3), so the request is refused and the connection closed
+     * before the pipelined GET behind it is read. */
+    static const char both_framings[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\n"
+                                        "Transfer-Encoding: chunked\r\n\r\n5\r\n0 0 0\r\n0\r\n\r\n"
+                                        "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n";
+    CHECK(exchange(&d, both_framings, sizeof both_framings - 1, 2, &x) == 0);
+    CHECK_MSG(first_status(&x) == 400 && count_answers(&x) == 1 && x.closed &&
+                  strstr(x.text, "application/problem+json"),
+              "Content-Length and chunked: %d answers, closed %d: %.200s", count_answers(&x), x.closed, x.text);
     static const char no_host[] = "GET /healthz HTTP/1.1\r\n\r\n";
     CHECK(exchange(&d, no_host, sizeof no_host - 1, 2, &x) == 0 && first_status(&x) == 400);
     static const char old_no_host[] = "GET /healthz HTTP/1.0\r\n\r\n";
