@@ -3,8 +3,10 @@
 #include "body.h"
 
 #include <microhttpd.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <zlib.h>
 
 #define INFLATE_CHUNK 65536
@@ -102,6 +104,37 @@ static enum MHD_Result on_part(void *cls, enum MHD_ValueKind kind, const char *k
     return append_field(b, key, data, off, size) ? MHD_NO : MHD_YES;
 }
 
+/* libmicrohttpd 0.9.75 takes as the boundary all that follows a
+ * case-sensitive "boundary=" in the Content-Type, so that
+ * "boundary=b; charset=UTF-8" (Apache HttpClient's) or "BOUNDARY=b"
+ * (parameter names are case-insensitive, RFC 9110 5.6.6) finds no part.
+ * Rewrites the value of the connection's Content-Type, in place in
+ * libmicrohttpd's read buffer, as "multipart/form-data;boundary=b" (b quoted
+ * if it was), never longer than it was; a type without a boundary parameter
+ * is left as it is. */
+static void put_boundary_last(char *ct) {
+    static const char lead[] = "multipart/form-data;boundary=";
+    char *p = strchr(ct, ';');
+    for (; p; p = strchr(p, ';')) {
+        p++;
+        p += strspn(p, " \t");
+        if (!strncasecmp(p, "boundary=", 9)) break;
+    }
+    if (!p) return;
+    char *value = p + 9, *close = *value == '"' ? strchr(value + 1, '"') : NULL;
+    size_t len = close ? (size_t)(close - value) + 1 : strcspn(value, "; \t");
+    memmove(ct + sizeof lead - 1, value, len); /* value is at least that far in */
+    memcpy(ct, lead, sizeof lead - 1);
+    ct[sizeof lead - 1 + len] = 0;
+}
+
+/* libmicrohttpd's post processor on the connection's multipart body. */
+static struct MHD_PostProcessor *new_post_processor(struct MHD_Connection *conn, ps_body *b) {
+    const char *ct = MHD_lookup_connection_value(conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_TYPE);
+    if (ct) put_boundary_last((char *)(uintptr_t)ct);
+    return MHD_create_post_processor(conn, 65536, on_part, b);
+}
+
 ps_body *ps_body_new(struct MHD_Connection *conn, size_t max_body, size_t reserve,
                      int gzip, int multipart, ps_api_error *err) {
     ps_body *b = calloc(1, sizeof *b);
@@ -115,7 +148,7 @@ ps_body *ps_body_new(struct MHD_Connection *conn, size_t max_body, size_t reserv
         if (!b->chunk || inflateInit2(&b->z, 15 + 32) != Z_OK) goto nomem;
     }
     if (multipart) {
-        b->pp = MHD_create_post_processor(conn, 65536, on_part, b);
+        b->pp = new_post_processor(conn, b);
         if (!b->pp) {
             ps_body_free(b);
             return ps_api_fail(err, 400, "multipart/form-data without a usable boundary"), NULL;

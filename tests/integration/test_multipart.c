@@ -4,7 +4,8 @@
  * body is segmented, a body cut before its closing boundary is a 400 (even
  * when the cut falls between two lines of the file part, which would
  * otherwise decode to fewer points), a body without a `file` part or with
- * an empty one is a 400.
+ * an empty one is a 400, a boundary parameter anywhere in the Content-Type
+ * is found.
  * Starts BUILD/pointsegd (beside BUILD/itests/) on a free port.
  */
 #include "daemon_proc.h"
@@ -32,10 +33,15 @@
 static pid_t daemon_pid;
 static char base_url[64];
 
-static long request(const char *body, size_t len, ps_client_response *r) {
+/* POSTs body to /segment as content_type; the status, or 0. */
+static long request_as(const char *body, size_t len, const char *content_type, ps_client_response *r) {
     ps_client c = {base_url, NULL, 30000};
-    ps_client_body b = {body, len, "multipart/form-data; boundary=" BOUNDARY, NULL};
+    ps_client_body b = {body, len, content_type, NULL};
     return ps_client_segment(&c, &b, NULL, r) == 0 ? r->status : 0;
+}
+
+static long request(const char *body, size_t len, ps_client_response *r) {
+    return request_as(body, len, "multipart/form-data; boundary=" BOUNDARY, r);
 }
 
 /* Starts pointsegd once for every test; 0 or -1. */
@@ -110,6 +116,25 @@ static void test_form_cut_before_closing_boundary_is_400(void) {
         while (i == 0 && form[cut - 1] != '\n') cut++; /* between two lines of the file */
         CHECK_MSG(request(form, cut, &r) == 400 && problem_says(&r, "truncated"),
                   "cut at %zu of %zu: status %ld, %s", cut, len, r.status, r.body ? r.body : "");
+        ps_client_response_free(&r);
+    }
+    free(form);
+}
+
+/* The boundary parameter need not come last, nor in lower case (RFC 9110
+ * 5.6.6): Apache HttpClient sends "boundary=...; charset=UTF-8". */
+static void test_boundary_anywhere_in_the_type(void) {
+    static const char *const types[] = {"multipart/form-data; boundary=" BOUNDARY "; charset=UTF-8",
+                                        "multipart/form-data; BOUNDARY=" BOUNDARY,
+                                        "multipart/form-data; charset=UTF-8; Boundary=\"" BOUNDARY "\"",
+                                        "multipart/form-data;boundary=" BOUNDARY " ;charset=UTF-8"};
+    size_t len, file_end;
+    ps_client_response r;
+    char *form = make_form(&len, &file_end);
+    REQUIRE(form && need_daemon() == 0);
+    for (size_t i = 0; i < sizeof types / sizeof types[0]; i++) {
+        CHECK_MSG(request_as(form, len, types[i], &r) == 200, "%s: status %ld, %s", types[i], r.status,
+                  r.body ? r.body : "");
         ps_client_response_free(&r);
     }
     free(form);
@@ -241,7 +266,8 @@ int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_complete_form_is_segmented), TEST(test_form_cut_before_closing_boundary_is_400),
         TEST(test_form_without_file_is_400), TEST(test_empty_file_part_is_400),
-        TEST(test_fields_split_after_their_value), TEST(test_zz_stop_daemon)};
+        TEST(test_fields_split_after_their_value), TEST(test_boundary_anywhere_in_the_type),
+        TEST(test_zz_stop_daemon)};
     if (ps_client_global_init()) return 1;
     int rc = ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
     if (daemon_pid > 0) kill(daemon_pid, SIGKILL);
