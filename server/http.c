@@ -137,6 +137,16 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *conn, const 
     return ps_respond_problem(r, 500, NULL, "request in an unexpected state");
 }
 
+/* The status a request is logged and counted with: 499 when its client
+ * went away unanswered: before any answer, before a deferred one went out,
+ * while its job ran (the watcher cancelled it: its 503 reached no one), or
+ * while an answer was on its way. */
+static int status_seen(const ps_request *r, enum MHD_RequestTerminationCode toe) {
+    if (!r->status || r->pending || r->cancel_sent) return 499;
+    if (toe != MHD_REQUEST_TERMINATED_COMPLETED_OK && r->status < 400 && !r->sent_direct) return 499;
+    return r->status;
+}
+
 static void on_completed(void *cls, struct MHD_Connection *conn, void **state,
                          enum MHD_RequestTerminationCode toe) {
     ps_server *s = cls;
@@ -144,8 +154,7 @@ static void on_completed(void *cls, struct MHD_Connection *conn, void **state,
     (void)conn;
     if (!r) return;
     double seconds = ps_monotonic_seconds() - r->t0;
-    int status = r->status ? r->status : 499; /* answered nothing: the client went away */
-    if (toe != MHD_REQUEST_TERMINATED_COMPLETED_OK && status < 400 && !r->sent_direct) status = 499;
+    int status = status_seen(r, toe);
     ps_metrics_observe(r->route, status, seconds);
     if (!s->cfg->quiet)
         fprintf(stderr, "%s %s %d %zu %.1fms%s%s\n", r->method, r->path, status, r->bytes,

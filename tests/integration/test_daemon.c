@@ -764,6 +764,10 @@ static void test_client_going_away_cancels(void) {
     ps_client_response_free(&r);
     CHECK_MSG(metrics_show(&d, "pointseg_jobs_finished_total{outcome=\"cancelled\"} 1", 5),
               "the job of a client that went away was not cancelled");
+    CHECK_MSG(metrics_show(&d, "pointseg_http_requests_total{route=\"/segment\",status=\"499\"} 1", 5),
+              "the request of a client that went away is not counted as 499");
+    CHECK(get_status(&d, "/metrics", &r) == 200 && !strstr(r.body, "status=\"503\""));
+    ps_client_response_free(&r);
     free(xyz);
     CHECK_STOPS(d, 10);
 }

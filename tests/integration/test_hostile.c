@@ -289,19 +289,27 @@ static void test_refused_requests_answered_promptly(void) {
 }
 
 /* A body cut short by the end of the client's input can never complete:
- * the connection is closed at once, not after a timeout. */
+ * the connection is closed at once, not after a timeout.  Neither client
+ * got an answer (the second's 415 waits for its body): both are counted
+ * as gone (499), none as answered. */
 static void test_truncated_body_closed_promptly(void) {
     ps_daemon d;
     reply r;
-    static const char cut[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 7\r\n\r\n0 0 0\n";
+    static const char *const cuts[] = {
+        "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Length: 7\r\n\r\n0 0 0\n",
+        "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Type: image/png\r\nContent-Length: 7\r\n\r\n0 0 0\n"};
     REQUIRE_STARTS(d, NULL);
-    int fd = ps_daemon_connect(&d, 5);
-    REQUIRE(fd >= 0);
-    CHECK(send(fd, cut, sizeof cut - 1, MSG_NOSIGNAL) == (ssize_t)(sizeof cut - 1));
-    shutdown(fd, SHUT_WR);
-    read_reply(fd, 5, &r);
-    close(fd);
-    CHECK_MSG(r.closed && r.seconds < 2.5, "a truncated body kept its connection %.1f s", r.seconds);
+    for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
+        int fd = ps_daemon_connect(&d, 5);
+        REQUIRE(fd >= 0);
+        CHECK(send(fd, cuts[i], strlen(cuts[i]), MSG_NOSIGNAL) == (ssize_t)strlen(cuts[i]));
+        shutdown(fd, SHUT_WR);
+        read_reply(fd, 5, &r);
+        close(fd);
+        CHECK_MSG(r.closed && r.seconds < 2.5, "a truncated body kept its connection %.1f s", r.seconds);
+    }
+    CHECK(metric_reaching(&d, "pointseg_http_requests_total{route=\"/segment\",status=\"499\"}", 2, 2) == 2);
+    CHECK(metric(&d, "pointseg_http_requests_total{route=\"/segment\",status=\"415\"}") == -1);
     CHECK(ps_daemon_healthy(&d));
     CHECK_STOPS(d, 10);
 }
