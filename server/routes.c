@@ -265,6 +265,7 @@ static enum MHD_Result collect_query(void *cls, enum MHD_ValueKind kind, const c
                                      const char *value, size_t value_size) {
     query_params *q = cls;
     (void)kind;
+    if (!key_size && !value) return MHD_YES; /* an empty piece, "?&k=7" or "k=7&&output=ply" */
     if (strlen(key) != key_size || (value && strlen(value) != value_size)) {
         q->nul = 1;
         return MHD_NO;

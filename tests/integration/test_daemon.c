@@ -447,7 +447,9 @@ static void test_bad_inputs_get_problems(void) {
 
 /* A parameter given twice, in the query string, in the JSON body's params,
  * in both, as two form fields, a field and the query, or in its two
- * spellings: a 400 naming it, on /segment and /jobs.  Once, it is taken. */
+ * spellings: a 400 naming it, on /segment and /jobs.  Once, it is taken,
+ * also between empty pieces of the query string ("?&k=3&&output=labels",
+ * a script's join of empty parts), which name nothing. */
 static void test_repeated_parameters_are_400(void) {
     static const char json_k_twice[] = "{\"points\": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]], "
                                        "\"params\": {\"k\": 3, \"k\": 2}}";
@@ -488,7 +490,7 @@ static void test_repeated_parameters_are_400(void) {
         }
     const struct { const char *body, *content_type, *query; } once[] = {
         {xyz, NULL, "k=3&output=labels"}, {json_k, "application/json", "output=labels"},
-        {form_k, form, "output=labels"}};
+        {form_k, form, "output=labels"}, {xyz, NULL, "&k=3&&output=labels&"}};
     for (size_t i = 0; i < sizeof once / sizeof once[0]; i++) {
         ps_client_body body = {once[i].body, strlen(once[i].body), once[i].content_type, NULL};
         ps_client_response r;
