@@ -147,6 +147,17 @@ static void read_field(const char *name, const redisReply *v, ps_job_status *st,
     else if (!strcmp(name, "media_type") && media) snprintf(media, cap, "%s", text);
 }
 
+static int no_job(ps_api_error *err, const char *id) {
+    return ps_api_fail(err, 404, "no job '%s' (unknown or expired)", id);
+}
+
+/* An id holding ':' (ids are hex) would name another key of a job, its
+ * body or result, not a job: Redis refuses the calls on it (WRONGTYPE),
+ * which would read as the store being unavailable (503). */
+static int bad_id(const char *id, ps_api_error *err) {
+    return strchr(id, ':') ? no_job(err, id) : 0;
+}
+
 /* The job's status (and media type) from one link; 0, or -1 with err. */
 static int load_status(ps_redis_link *l, const char *id, ps_job_status *st, char *media, size_t cap,
                        ps_api_error *err) {
@@ -161,11 +172,12 @@ static int load_status(ps_redis_link *l, const char *id, ps_job_status *st, char
         if (r->element[i]->type == REDIS_REPLY_STRING)
             read_field(r->element[i]->str, r->element[i + 1], st, media, cap);
     freeReplyObject(r);
-    return found ? 0 : ps_api_fail(err, 404, "no job '%s' (unknown or expired)", id);
+    return found ? 0 : no_job(err, id);
 }
 
 static int status(ps_jobstore *js, const char *id, ps_job_status *st, ps_api_error *err) {
     ps_redis_store *s = store_of(js);
+    if (bad_id(id, err)) return -1;
     ps_redis_link *l = ps_redis_pool_take(s->pool);
     int rc = load_status(l, id, st, NULL, 0, err);
     ps_redis_pool_give(s->pool, l);
@@ -192,6 +204,7 @@ static int result(ps_jobstore *js, const char *id, ps_job_doc *doc, ps_api_error
     ps_redis_store *s = store_of(js);
     ps_job_status st;
     memset(doc, 0, sizeof *doc);
+    if (bad_id(id, err)) return -1;
     ps_redis_link *l = ps_redis_pool_take(s->pool);
     int rc = load_status(l, id, &st, doc->media_type, sizeof doc->media_type, err);
     if (rc == 0 && st.state != PS_JOB_DONE) rc = ps_job_result_error(&st, 409, err);
@@ -203,6 +216,7 @@ static int result(ps_jobstore *js, const char *id, ps_job_doc *doc, ps_api_error
 static int cancel(ps_jobstore *js, const char *id, ps_job_status *st, ps_api_error *err) {
     ps_redis_store *s = store_of(js);
     char hash[160], body[160], now[32], ttl[32], why[512];
+    if (bad_id(id, err)) return -1;
     ps_redis_job_key(id, NULL, hash, sizeof hash);
     ps_redis_job_key(id, ":body", body, sizeof body);
     ps_redis_now_text(now, sizeof now);

@@ -1,5 +1,6 @@
 /* test_jobstore_redis.c: the Redis job store against a real redis-server
- * (started by the test on a free loopback port): any store reads any job,
+ * (started by the test on a free loopback port): any store reads any job
+ * (and an id naming another key of a job, "ID:result", is no job: 404),
  * cancels reach the worker running the job, lapsed leases are taken over,
  * the third loss fails a job, a takeover whose answer is lost and retried
  * counts its loss once (and a lost answer failing a job still counts
@@ -178,6 +179,17 @@ static void test_any_store_serves_any_job(void) {
     CHECK(ps_jobstore_status(front, "0123", &st, &err) == -1 && err.http_status == 404);
     ps_job_doc none;
     CHECK(ps_jobstore_result(front, "0123", &none, &err) == -1 && err.http_status == 404);
+    static const char *const other_keys[] = {":result", ":body"}; /* keys of the job, not jobs */
+    for (size_t i = 0; i < sizeof other_keys / sizeof other_keys[0]; i++) {
+        char other[128];
+        snprintf(other, sizeof other, "%s%s", id, other_keys[i]);
+        CHECK_MSG(ps_jobstore_status(front, other, &st, &err) == -1 && err.http_status == 404,
+                  "status of %s: %d %s", other, err.http_status, err.message);
+        CHECK_MSG(ps_jobstore_result(front, other, &none, &err) == -1 && err.http_status == 404,
+                  "result of %s: %d %s", other, err.http_status, err.message);
+        CHECK_MSG(ps_jobstore_cancel(front, other, &st, &err) == -1 && err.http_status == 404,
+                  "cancel of %s: %d %s", other, err.http_status, err.message);
+    }
     free(want);
     ps_jobstore_free(front);
     ps_jobstore_free(worker);
