@@ -338,7 +338,9 @@ char *ps_openapi_json(size_t *len) {
     cJSON_AddStringToObject(info, "title", "pointsegd");
     cJSON_AddStringToObject(info, "version", PS_VERSION);
     cJSON_AddStringToObject(info, "description", "Segments point-sampled surfaces into parts "
-                            "(Yamazaki et al., Segmenting Point Sets). Errors are RFC 9457 problem+json.");
+                            "(Yamazaki et al., Segmenting Point Sets). Errors are RFC 9457 problem+json, "
+                            "but for libmicrohttpd's own HTML answers to a request it cannot parse "
+                            "(400, 413, 414, 431, 505).");
     cJSON *license = cJSON_AddObjectToObject(info, "license");
     cJSON_AddStringToObject(license, "name", "MIT");
     cJSON_AddStringToObject(license, "identifier", "MIT");
