@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
@@ -63,10 +64,17 @@ static ps_guard_conn *guard_conn_of(struct MHD_Connection *conn) {
     return info ? info->socket_context : NULL;
 }
 
+/* 1 when the client waits for a 100 Continue before sending its body. */
+static int expects_continue(ps_request *r) {
+    const char *expect = MHD_lookup_connection_value(r->conn, MHD_HEADER_KIND, MHD_HTTP_HEADER_EXPECT);
+    return r->http11 && expect && !strcasecmp(expect, "100-continue");
+}
+
 /* The head is in.  A request without a body is answered on the next call:
  * libmicrohttpd closes the connection after an answer queued on the first
  * one.  Early errors on a body of up to DRAIN_LIMIT bytes wait until it is
- * read, for the same reason. */
+ * read, for the same reason, unless the client waits for a 100 Continue:
+ * it gets the error instead of an invitation to send the body in vain. */
 static enum MHD_Result head_received(ps_request *r, const char *url, const char *method, const char *version) {
     unsigned long long declared;
     r->seen = 1;
@@ -81,7 +89,7 @@ static enum MHD_Result head_received(ps_request *r, const char *url, const char 
     if (refused >= 0) return (enum MHD_Result)refused;
     if (!ps_admit_has_body(r, &declared)) return MHD_YES;
     r->routed = 1;
-    r->defer_answer = declared > 0 && declared <= DRAIN_LIMIT;
+    r->defer_answer = declared > 0 && declared <= DRAIN_LIMIT && !expects_continue(r);
     enum MHD_Result rc = ps_routes_begin(r);
     r->defer_answer = 0;
     return rc;

@@ -284,6 +284,13 @@ static void test_refused_requests_answered_promptly(void) {
     CHECK(exchange(&d, gzip_te, sizeof gzip_te - 1, 3, &r) == 0);
     CHECK_MSG(first_status(&r) == 501 && r.seconds < 2, "Transfer-Encoding gzip: '%.40s' after %.1f s",
               r.text, r.seconds);
+    /* A client waiting for 100 Continue is refused at once, not invited to
+     * send a body that would be read in vain. */
+    static const char waits[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Type: image/png\r\n"
+                                "Expect: 100-continue\r\nContent-Length: 500000\r\n\r\n";
+    CHECK(exchange(&d, waits, sizeof waits - 1, 3, &r) == 0);
+    CHECK_MSG(first_status(&r) == 415 && r.closed && r.seconds < 2, "Expect: 100-continue: '%.40s' after %.1f s",
+              r.text, r.seconds);
     CHECK(ps_daemon_healthy(&d));
     CHECK_STOPS(d, 10);
 }
