@@ -4,6 +4,7 @@
 #include "decode.h"
 #include "pointseg.h"
 
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
@@ -40,8 +41,34 @@ int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_p
     return ps_decode(bytes, len, &lim, out, err);
 }
 
+/* The q parameter among the parameters of an Accept entry, [params, end);
+ * 1 when it has none. */
+static double entry_quality(const char *params, const char *end) {
+    for (const char *p = params; (p = memchr(p, ';', (size_t)(end - p)));) {
+        p++;
+        p += strspn(p, " \t");
+        if ((*p == 'q' || *p == 'Q') && p[1] == '=') return strtod(p + 2, NULL);
+    }
+    return 1.0;
+}
+
+/* The quality the Accept header gives media type name by an entry naming
+ * it (RFC 9110 12.5.1), or -1 when no entry does. */
+static double accept_quality(const char *accept, const char *name) {
+    size_t n = strlen(name);
+    for (const char *p = accept; p; p = strchr(p, ',') ? strchr(p, ',') + 1 : NULL) {
+        p += strspn(p, " \t");
+        const char *end = p + strcspn(p, ",");
+        if (!strncasecmp(p, name, n) && strchr(" \t;,", p[n])) return entry_quality(p + n, end);
+    }
+    return -1;
+}
+
+/* PLY when Accept names application/ply with a quality over 0 and not
+ * below JSON's. */
 static int wants_ply(const char *accept) {
-    return accept && strstr(accept, "application/ply") != NULL;
+    double ply = accept ? accept_quality(accept, "application/ply") : -1;
+    return ply > 0 && ply >= accept_quality(accept, "application/json");
 }
 
 /* The k-th text parameter of a request: the body's, then the extra pairs. */

@@ -45,8 +45,9 @@ int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_p
 
 /* The parameters of a request: defaults (threads = 0: the job runner gives
  * the job the cores no other job holds, core_share.h), the Accept header
- * (application/ply: PLY output, unless `output` says otherwise; may be
- * NULL), then the body's own params and the extra pairs (multipart fields,
+ * (PLY output when it names application/ply with a quality over 0 and not
+ * below application/json's, unless `output` says otherwise; may be NULL),
+ * then the body's own params and the extra pairs (multipart fields,
  * the query string), which together give each parameter once.  Returns 0 or
  * -1 with err (400 unknown name or one given twice, in any spelling; 422 bad
  * value). */

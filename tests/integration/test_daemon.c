@@ -256,10 +256,21 @@ static void test_outputs_and_includes(void) {
     CHECK(ps_client_segment(&d.client, &body, "output=ply", &r) == 0 && r.status == 200 &&
           strstr(r.content_type, "application/ply") && r.len > 3 && !memcmp(r.body, "ply", 3));
     ps_client_response_free(&r);
-    const char *const accept[] = {"Accept: application/ply", NULL};
-    CHECK(ps_client_request(&d.client, "POST", "/segment", &body, accept, &r) == 0 && r.status == 200 &&
-          strstr(r.content_type, "application/ply"));
-    ps_client_response_free(&r);
+    /* PLY when Accept ranks it over JSON (RFC 9110 12.5.1 qualities). */
+    const struct { const char *accept, *type; } ranked[] = {
+        {"Accept: application/ply", "application/ply"},
+        {"Accept: Application/PLY", "application/ply"},
+        {"Accept: text/html, application/ply;q=0.9", "application/ply"},
+        {"Accept: application/json, application/ply;q=0.5", "application/json"},
+        {"Accept: application/ply; q=0", "application/json"},
+        {"Accept: application/ply-ish", "application/json"}};
+    for (size_t i = 0; i < sizeof ranked / sizeof ranked[0]; i++) {
+        const char *const accept[] = {ranked[i].accept, NULL};
+        CHECK_MSG(ps_client_request(&d.client, "POST", "/segment", &body, accept, &r) == 0 && r.status == 200 &&
+                      strstr(r.content_type, ranked[i].type),
+                  "%s: %ld %s", ranked[i].accept, r.status, r.content_type);
+        ps_client_response_free(&r);
+    }
     CHECK(ps_client_segment(&d.client, &body, "include=centrality,point_supernode", &r) == 0 &&
           r.status == 200 && strstr(r.body, "\"centrality\"") && strstr(r.body, "\"point_supernode\"") &&
           same_labels(&r, &small));
