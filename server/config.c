@@ -194,6 +194,15 @@ void ps_config_usage(FILE *out) {
     fprintf(out, "  --help, --version\n");
 }
 
+/* A replica name begins the job ids that travel in URLs (/jobs/ID): only
+ * characters that no path splits and no decoding changes. */
+static int check_replica_name(const char *name, FILE *err) {
+    if (!name[strspn(name, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_.")]) return 0;
+    fprintf(err, "pointsegd: --replica-name '%s': letters, digits, '-', '_' and '.' only (it begins job "
+                 "ids in URLs)\n", name);
+    return -1;
+}
+
 int ps_config_load(ps_config *c, int argc, char **argv, FILE *out, FILE *err) {
     if (set_defaults(c, err) || load_environment(c, err)) return -1;
     for (int i = 1; i < argc;) {
@@ -213,5 +222,5 @@ int ps_config_load(ps_config *c, int argc, char **argv, FILE *out, FILE *err) {
         if (used < 0) return -1;
         i += used;
     }
-    return 0;
+    return check_replica_name(c->replica_name, err);
 }

@@ -4,8 +4,9 @@
  * kind (right status, problem+json, daemon healthy afterwards), every
  * core for a job on an idle daemon, --max-memory, 32
  * concurrent clients, a full queue (503), DELETE of a running exact job,
- * token, CORS, static files, and SIGTERM draining (what a request on a
- * connection kept from before it is told, also with --redis).  Each test
+ * token, CORS, static files, SIGTERM draining (what a request on a
+ * connection kept from before it is told, also with --redis), and a
+ * --replica-name no URL can carry refused.  Each test
  * starts pointsegd (BUILD/pointsegd beside BUILD/itests/) on a free port.
  */
 #include "daemon_run.h"
@@ -1061,6 +1062,22 @@ static void test_port_in_use_refused(void) {
     CHECK_STOPS(d, 20);
 }
 
+/* A replica name begins the job ids that travel in URLs: one a path would
+ * split or decode ("eu/1": Location /jobs/eu/1-... is no route) is
+ * refused at start-up (status 2), not taken. */
+static void test_unroutable_replica_name_refused(void) {
+    char path[4200], cmd[4400];
+    REQUIRE(ps_test_daemon_path(path, sizeof path) == 0);
+    const char *const names[] = {"eu/1", "a b", "x%41", "a?b"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        snprintf(cmd, sizeof cmd, "timeout 3 %s --port 0 --bind 127.0.0.1 --quiet --replica-name '%s' "
+                 "2>/dev/null", path, names[i]);
+        int status = system(cmd);
+        CHECK_MSG(WIFEXITED(status) && WEXITSTATUS(status) == 2, "--replica-name '%s': status %d", names[i],
+                  status);
+    }
+}
+
 int main(int argc, char **argv) {
     static const ps_test_case tests[] = {
         TEST(test_help_lists_flags), TEST(test_service_endpoints), TEST(test_content_types_give_library_labels),
@@ -1076,7 +1093,7 @@ int main(int argc, char **argv) {
         TEST(test_drain_seconds_bound_both_queues),
         TEST(test_redis_replica_refuses_work_from_sigterm),
         TEST(test_sigterm_under_incoming_connections),
-        TEST(test_port_in_use_refused)};
+        TEST(test_port_in_use_refused), TEST(test_unroutable_replica_name_refused)};
     signal(SIGPIPE, SIG_IGN);
     if (ps_client_global_init()) return 1;
     int rc = ps_test_main(__FILE__, tests, sizeof tests / sizeof tests[0], argc, argv);
