@@ -6,7 +6,8 @@
  * Content-Length and a Transfer-Encoding (RFC 9112 6.3: a proxy in front
  * may have framed the body otherwise), and only health routes over the
  * connection limit.  Each refusal is answered at once with
- * problem+json, and the connection closes.
+ * problem+json, and the connection closes.  Also counts a header's lines,
+ * for the routes' own checks.
  */
 #ifndef PS_ADMIT_H
 #define PS_ADMIT_H
@@ -25,6 +26,9 @@ int ps_admit_cut_query(const char *uri);
  * (%00): libmicrohttpd decodes it and the path would end there, so that
  * "/healthz%00x" would be served as "/healthz". */
 int ps_admit_path_has_nul(const char *uri);
+
+/* How many times the request's head gives header name (any case). */
+int ps_admit_times_given(ps_request *r, const char *name);
 
 /* MHD_YES/MHD_NO after answering a refused request; -1 when admitted. */
 int ps_admit_check(ps_request *r);

@@ -1,6 +1,7 @@
 /* routes.c: routing, authorization, and the handler of every route. */
 #include "routes.h"
 
+#include "admit.h"
 #include "direct_answer.h"
 #include "respond.h"
 #include "static_files.h"
@@ -211,6 +212,15 @@ static int method_allowed(const ps_request *r) {
     "; curl sends this type with --data-binary unless told otherwise: add -H "            \
     "'Content-Type: application/octet-stream'"
 
+/* What is wrong with the upload's Content-Encoding ce, or NULL for gzip,
+ * identity or none.  One given twice is a list ("gzip, gzip": a body coded
+ * twice) the service does not take either. */
+static const char *encoding_refusal(ps_request *r, const char *ce) {
+    if (!ce) return NULL;
+    if (ps_admit_times_given(r, MHD_HTTP_HEADER_CONTENT_ENCODING) > 1) return "given more than once";
+    return strcasecmp(ce, "gzip") && strcasecmp(ce, "identity") ? "not supported" : NULL;
+}
+
 /* Checks the headers of an upload and prepares its body. */
 static enum MHD_Result begin_upload(ps_request *r) {
     const ps_config *cfg = r->srv->cfg;
@@ -227,9 +237,10 @@ static enum MHD_Result begin_upload(ps_request *r) {
                                   "application/octet-stream, text/plain, model/obj, chemical/x-xyz, "
                                   "application/json or multipart/form-data)%s", ct,
                                   ps_intake_is_form(ct) ? CURL_FORM_ADVICE : "");
+    const char *refusal = encoding_refusal(r, ce);
+    if (refusal)
+        return ps_respond_problem(r, 415, NULL, "Content-Encoding %s is %s (use gzip, once)", ce, refusal);
     int gzip = ce && !strcasecmp(ce, "gzip");
-    if (ce && !gzip && strcasecmp(ce, "identity"))
-        return ps_respond_problem(r, 415, NULL, "Content-Encoding %s is not supported (use gzip)", ce);
     r->body = ps_body_new(r->conn, cfg->max_body, gzip ? 0 : (size_t)declared, gzip,
                           r->media == PS_MEDIA_MULTIPART, &r->error);
     if (!r->body) return ps_respond_error(r, &r->error);

@@ -492,6 +492,13 @@ static void test_strict_parameters_and_headers(void) {
     CHECK_MSG(first_status(&x) == 400 && count_answers(&x) == 1 && x.closed &&
                   strstr(x.text, "application/problem+json"),
               "Content-Length and chunked: %d answers, closed %d: %.200s", count_answers(&x), x.closed, x.text);
+    /* Two codings (a body gzipped twice, or gzip then another): not a
+     * Content-Encoding the service takes, so a 415, not a 400 on bytes
+     * inflated once. */
+    static const char two_codings[] = "POST /segment HTTP/1.1\r\nHost: x\r\nContent-Encoding: gzip\r\n"
+                                      "Content-Encoding: gzip\r\nContent-Length: 6\r\n\r\n0 0 0\n";
+    CHECK(exchange(&d, two_codings, sizeof two_codings - 1, 2, &x) == 0);
+    CHECK_MSG(first_status(&x) == 415 && strstr(x.text, "Content-Encoding"), "two codings: %.300s", x.text);
     static const char no_host[] = "GET /healthz HTTP/1.1\r\n\r\n";
     CHECK(exchange(&d, no_host, sizeof no_host - 1, 2, &x) == 0 && first_status(&x) == 400);
     static const char old_no_host[] = "GET /healthz HTTP/1.0\r\n\r\n";
