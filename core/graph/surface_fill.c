@@ -132,7 +132,9 @@ static double roughness_of(const ps_input *in, const ps_dedup *d, const double *
         for (int c = 0; c < 3; c++)
             for (int k = 0; k < 3; k++) m[k] += corner[3 * corner_of(in, d, t, c) + k];
         double nn = ps_dot3(n, n), mm = ps_dot3(m, m);
-        if (nn > 0 && mm > 0) deviation[count++] = 1 - ps_dot3(n, m) / sqrt(nn * mm);
+        /* at least 0: a regular mesh's cos rounds a hair above 1, and a
+         * negative roughness would read as out of memory */
+        if (nn > 0 && mm > 0) deviation[count++] = fmax(0, 1 - ps_dot3(n, m) / sqrt(nn * mm));
     }
     double median = count ? ps_select_kth(deviation, count, count / 2) : 0;
     free(corner), free(deviation);

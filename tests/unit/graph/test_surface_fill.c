@@ -11,7 +11,8 @@
  * whole (but with exact centrality, which runs on the input as given),
  * the same for any thread count and a moved copy, and the answers cover
  * the caller's points only; a mesh of duplicate points and degenerate
- * triangles is answered, and a face pointing past the points is refused.
+ * triangles is answered, a regular icosahedron (its roughness 0 but for
+ * rounding) is filled, and a face pointing past the points is refused.
  * The tube unwelded (each triangle with copies of its own vertices) is as
  * smooth, as rough when noisy, and as filled and whole as welded, even
  * given over the reference sampling by its copies.
@@ -275,6 +276,14 @@ static ps_result *segment_tube(const tube *t, int threads, const ps_control *ctl
     return r;
 }
 
+/* ps_segment of in with the defaults, CHECKed to succeed; NULL when not. */
+static ps_result *segment_mesh(const ps_input *in) {
+    ps_result *r = NULL;
+    ps_error err;
+    CHECK_MSG(ps_segment(in, NULL, NULL, &r, &err) == PS_OK, "ps_segment: %s", err.message);
+    return r;
+}
+
 /* The mesh is segmented in fills (ensemble.h): the same labels for any
  * thread count and for a moved copy, progress that never goes back. */
 static void test_segment_in_fills_deterministic(void) {
@@ -303,13 +312,32 @@ static void test_degenerate_mesh_in_fills(void) {
                           2, 2, 2, 0.5, 0.5, 0, 3, 0, 0, 3, 0, 0, 0, 3, 0, 1e-9, 0, 0};
     uint32_t faces[3 * 6] = {0, 0, 0, 0, 1, 1, 0, 1, 2, 0, 1, 2, 3, 4, 1, 8, 9, 10};
     ps_input in = {.points = pts, .n = 12, .dim = 3, .faces = faces, .n_faces = 6};
-    ps_result *r = NULL;
-    ps_error err;
-    ps_status st = ps_segment(&in, NULL, NULL, &r, &err);
-    CHECK_MSG(st == PS_OK, "ps_segment: %s", err.message);
-    if (st != PS_OK) return;
+    ps_result *r = segment_mesh(&in);
+    if (!r) return;
     CHECK(r->n_points == 12 && r->n_filled > 0);
     for (size_t i = 0; i < 12; i++) CHECK(r->labels[i] >= 0 && r->labels[i] < r->n_segments);
+    ps_result_free(r);
+}
+
+/* A regular icosahedron: each triangle's normal is its corners' summed
+ * normal but for rounding, which made 1 - cos a hair below 0 and the
+ * roughness, the median, -2e-16: read as out of memory, the mesh was a
+ * PS_ERR_NOMEM (a 500 from the daemon).  Now it is smooth, filled and
+ * whole. */
+static void test_regular_mesh_filled(void) {
+    const double t = (1 + sqrt(5.0)) / 2;
+    double pts[3 * 12] = {-1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t,
+                          0, -1, -t, 0, 1, -t, t, 0, -1, t, 0, 1, -t, 0, -1, -t, 0, 1};
+    uint32_t faces[3 * 20] = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11,
+                              1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
+                              3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9,
+                              4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    ps_input in = {.points = pts, .n = 12, .dim = 3, .faces = faces, .n_faces = 20};
+    CHECK_MSG(roughness(&in) == 0, "roughness %g", roughness(&in));
+    ps_result *r = segment_mesh(&in);
+    if (!r) return;
+    CHECK(r->n_points == 12 && r->n_filled > 10000);
+    CHECK_MSG(r->n_segments == 1, "%d segments", r->n_segments);
     ps_result_free(r);
 }
 
@@ -424,6 +452,7 @@ PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
              TEST(test_nothing_to_add),
              TEST(test_noisy_mesh_not_filled),
              TEST(test_segment_fills_the_faces), TEST(test_segment_in_fills_deterministic),
-             TEST(test_degenerate_mesh_in_fills), TEST(test_exact_centrality_not_filled),
+             TEST(test_degenerate_mesh_in_fills), TEST(test_regular_mesh_filled),
+             TEST(test_exact_centrality_not_filled),
              TEST(test_face_past_the_points_refused), TEST(test_unwelded_roughness),
              TEST(test_unwelded_mesh_filled_as_welded))
