@@ -4,12 +4,15 @@
  * points the boundary cut moved), numbered by decreasing size in input
  * points, ties by their lowest input point, so the labels do not depend on
  * the order the phases visited anything.  A supernode's segment is its
- * sink's (its stand-in's, for a sink among the points added on the faces,
- * surface_fill.h); sizes, feature sizes and supernode lists are counted
- * from the points' groups, sizes over the caller's points only.
+ * sink's, the segment of its points (for a sink among the points added on
+ * the faces, surface_fill.h: of its stand-in, a caller's point of the same
+ * supernode); sizes, feature sizes and supernode lists are counted from
+ * the points' groups, sizes over the caller's points only.
  */
 #include "result.h"
 
+#include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,19 +65,40 @@ static void fill_points(const ps_result_parts *pp, const int *segment_of_group, 
     }
 }
 
-/* The input point that stands for distinct point u: its lowest input
- * index, or for a point added on the faces, its host vertex. */
-static size_t stand_in(const ps_result_parts *pp, uint32_t u) {
-    size_t i = pp->first_of[u];
-    return i < pp->n_input ? i : pp->host_of_added[i - pp->n_input];
+/* nearest #S out: each supernode's caller's point whose f is nearest its
+ * sink's (ties: the lowest), SIZE_MAX for a supernode with none. */
+static void nearest_members(const ps_result_parts *pp, size_t *nearest) {
+    for (int s = 0; s < pp->n_supernodes; s++) nearest[s] = SIZE_MAX;
+    for (size_t i = 0; i < pp->n_input; i++) {
+        uint32_t u = pp->unique_of[i];
+        int s = pp->supernode_of[u];
+        double sink_f = pp->f[pp->sinks[s]];
+        if (nearest[s] == SIZE_MAX ||
+            fabs(pp->f[u] - sink_f) < fabs(pp->f[pp->unique_of[nearest[s]]] - sink_f))
+            nearest[s] = i;
+    }
 }
 
+/* The input point that stands for supernode s's sink: its lowest input
+ * index; for a sink among the points added on the faces, its host vertex
+ * when that is in s (or s holds none of the caller's points), else s's
+ * point nearest it in f (nearest_members), so that a supernode lies in
+ * the segment of its points. */
+static size_t sink_stand_in(const ps_result_parts *pp, int s, const size_t *nearest) {
+    size_t i = pp->first_of[pp->sinks[s]];
+    if (i < pp->n_input) return i;
+    size_t host = pp->host_of_added[i - pp->n_input];
+    int host_in_s = pp->supernode_of[pp->unique_of[host]] == s;
+    return host_in_s || nearest[s] == SIZE_MAX ? host : nearest[s];
+}
+
+/* nearest: nearest_members's, NULL when no point was added on the faces. */
 static void fill_supernodes(const ps_result_parts *pp, const int *segment_of_group,
-                            ps_result *r) {
+                            const size_t *nearest, ps_result *r) {
     for (int s = 0; s < pp->n_supernodes; s++) {
         uint32_t sink = pp->sinks[s];
         ps_supernode *sn = &r->supernodes[s];
-        sn->sink = stand_in(pp, sink);
+        sn->sink = sink_stand_in(pp, s, nearest);
         sn->centrality = pp->f[sink];
         sn->is_minimum = pp->is_minimum[s];
         sn->segment = segment_of_group[pp->group_of_point[pp->unique_of[sn->sink]]];
@@ -132,10 +156,15 @@ ps_status ps_result_build(const ps_result_parts *pp, const ps_params *params,
                           ps_result **out, ps_error *err) {
     ps_result *r = calloc(1, sizeof *r);
     int *segment_of_group = malloc((size_t)pp->n_tree * sizeof *segment_of_group);
+    size_t *nearest = pp->host_of_added
+                          ? malloc(((size_t)pp->n_supernodes + 1) * sizeof *nearest)
+                          : NULL;
     int n_segments = -1;
-    if (r && segment_of_group) n_segments = number_segments(pp, segment_of_group);
+    if (r && segment_of_group && (nearest || !pp->host_of_added))
+        n_segments = number_segments(pp, segment_of_group);
     int ok = n_segments > 0 && allocate(r, pp, n_segments) == 0;
     if (ok) {
+        if (nearest) nearest_members(pp, nearest);
         r->n_points = pp->n_input;
         r->dim = pp->dim;
         r->n_components = pp->n_components;
@@ -145,13 +174,14 @@ ps_status ps_result_build(const ps_result_parts *pp, const ps_params *params,
         r->n_supernodes = pp->n_supernodes;
         r->n_segments = n_segments;
         r->params = *params;
-        fill_supernodes(pp, segment_of_group, r);
+        fill_supernodes(pp, segment_of_group, nearest, r);
         fill_points(pp, segment_of_group, r);
         ok = fill_segments(pp, segment_of_group, r) == 0;
         memcpy(r->merges, pp->merges, (size_t)pp->n_merges * sizeof *r->merges);
         r->n_merges = pp->n_merges;
     }
     free(segment_of_group);
+    free(nearest);
     if (!ok) {
         ps_result_free(r);
         return ps_fail(err, PS_ERR_NOMEM, "out of memory (result)");

@@ -44,7 +44,9 @@ typedef struct ps_surface_fill {
     double *normals;  /* #P+#A by 3 when the input has normals (the added
                          ones interpolated over their triangle), else NULL */
     uint32_t *host;   /* #A: for each added point the input vertex of its
-                         triangle nearest to it (its stand-in in the result) */
+                         triangle nearest to it (its stand-in in the result,
+                         but as a sink outside the vertex's supernode:
+                         result.c) */
     size_t n_added;   /* #A */
 } ps_surface_fill;
 

@@ -12,7 +12,9 @@
  * the same for any thread count and a moved copy, and the answers cover
  * the caller's points only; a mesh of duplicate points and degenerate
  * triangles is answered, a regular icosahedron (its roughness 0 but for
- * rounding) is filled, and a face pointing past the points is refused.
+ * rounding) is filled, a coarse turned part's supernodes lie in their
+ * points' segments though their sinks are added points, and a face
+ * pointing past the points is refused.
  * The tube unwelded (each triangle with copies of its own vertices) is as
  * smooth, as rough when noisy, and as filled and whole as welded, even
  * given over the reference sampling by its copies.
@@ -21,6 +23,7 @@
 #include "graph/surface_fill.h"
 #include "progress_seen.h"
 #include "random_bits.h"
+#include "result_checks.h"
 #include "testlib.h"
 
 #include <math.h>
@@ -341,6 +344,63 @@ static void test_regular_mesh_filled(void) {
     ps_result_free(r);
 }
 
+#define SHAFT_RING 12
+#define SHAFT_RINGS 5
+#define SHAFT_TUBE_POINTS (SHAFT_RING * SHAFT_RINGS + 2)
+#define SHAFT_TUBE_FACES (2 * SHAFT_RING * SHAFT_RINGS)
+
+typedef struct shaft {
+    double points[3 * 2 * SHAFT_TUBE_POINTS];
+    uint32_t faces[3 * 2 * SHAFT_TUBE_FACES];
+} shaft;
+
+/* Tube number `which` of s along x, from x0 to x0 + length, of the given
+ * radius: SHAFT_RINGS rings of SHAFT_RING points, closed at both ends by a
+ * fan around a centre point. */
+static void shaft_tube(shaft *s, int which, double x0, double length, double radius) {
+    uint32_t base = (uint32_t)(which * SHAFT_TUBE_POINTS), ring = base + SHAFT_RING * SHAFT_RINGS;
+    double *p = s->points + 3 * base;
+    for (int r = 0; r < SHAFT_RINGS; r++)
+        for (int i = 0; i < SHAFT_RING; i++, p += 3) {
+            double a = 2 * acos(-1.0) * i / SHAFT_RING;
+            p[0] = x0 + length * r / (SHAFT_RINGS - 1), p[1] = radius * cos(a),
+            p[2] = radius * sin(a);
+        }
+    p[0] = x0, p[3] = x0 + length, p[1] = p[2] = p[4] = p[5] = 0;
+    uint32_t *f = s->faces + 3 * (size_t)(which * SHAFT_TUBE_FACES);
+    for (uint32_t r = 0; r < SHAFT_RINGS; r++)
+        for (uint32_t i = 0; i < SHAFT_RING; i++) {
+            uint32_t a = base + r * SHAFT_RING + i, b = base + r * SHAFT_RING + (i + 1) % SHAFT_RING;
+            if (r + 1 < SHAFT_RINGS) {
+                f[0] = a, f[1] = b, f[2] = a + SHAFT_RING, f += 3;
+                f[0] = b, f[1] = b + SHAFT_RING, f[2] = a + SHAFT_RING, f += 3;
+            } else {
+                uint32_t c = base + i, d = base + (i + 1) % SHAFT_RING;
+                f[0] = ring, f[1] = d, f[2] = c, f += 3;
+                f[0] = ring + 1, f[1] = a, f[2] = b, f += 3;
+            }
+        }
+}
+
+/* A coarse turned part: a shaft 4 long of radius 0.3 and a collar 1 long
+ * of radius 1 beyond it, 124 points on big triangles.  Some sinks of f
+ * fall on points added to the triangles, nearest to a vertex of another
+ * segment; a supernode took that vertex's segment, not its own points',
+ * so two points' supernode lay outside their segment and segments listed
+ * supernodes that were not theirs.  Now every answer is consistent. */
+static void test_added_sinks_in_their_segment(void) {
+    static shaft s;
+    shaft_tube(&s, 0, 0, 4, 0.3);
+    shaft_tube(&s, 1, 4, 1, 1);
+    ps_input in = {.points = s.points, .n = 2 * SHAFT_TUBE_POINTS, .dim = 3, .faces = s.faces,
+                   .n_faces = 2 * SHAFT_TUBE_FACES};
+    ps_result *r = segment_mesh(&in);
+    if (!r) return;
+    CHECK(r->n_filled > 10000 && r->n_segments > 1);
+    ps_check_result_consistent(r);
+    ps_result_free(r);
+}
+
 /* The tube unwelded: each of its triangles, given copies times over,
  * with three copies of its own of its vertices (as a mesh exported
  * triangle by triangle); *n its points. */
@@ -453,6 +513,7 @@ PS_TEST_MAIN(TEST(test_fills_the_tube_evenly), TEST(test_normals_interpolated),
              TEST(test_noisy_mesh_not_filled),
              TEST(test_segment_fills_the_faces), TEST(test_segment_in_fills_deterministic),
              TEST(test_degenerate_mesh_in_fills), TEST(test_regular_mesh_filled),
+             TEST(test_added_sinks_in_their_segment),
              TEST(test_exact_centrality_not_filled),
              TEST(test_face_past_the_points_refused), TEST(test_unwelded_roughness),
              TEST(test_unwelded_mesh_filled_as_welded))
