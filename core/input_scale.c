@@ -56,10 +56,11 @@ static int median_exponent(const double *points, size_t n, int dim, const double
     return median;
 }
 
-int ps_input_scale_exponent(const double *points, size_t n, int dim) {
+int ps_input_scale_exponent(const double *points, size_t n, int dim, int *short_of) {
     size_t *count = calloc(EXPONENT_COUNT, sizeof *count);
     double *column = malloc(n * sizeof *column), center[PS_MAX_DIM];
     int e = 0;
+    if (short_of) *short_of = 0;
     if (count && column) {
         axis_medians(points, n, dim, column, center);
         int spread = median_exponent(points, n, dim, center, count);
@@ -67,6 +68,7 @@ int ps_input_scale_exponent(const double *points, size_t n, int dim) {
             (spread <= PS_SCALE_MIN_EXPONENT || spread > PS_SCALE_MAX_EXPONENT)) {
             int headroom = PS_SCALE_CEILING_EXPONENT - largest_exponent(points, n * (size_t)dim);
             e = -spread > headroom ? (headroom > 0 ? headroom : 0) : -spread;
+            if (short_of) *short_of = spread + e <= PS_SCALE_MIN_EXPONENT;
         }
     }
     free(count);

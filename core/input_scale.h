@@ -31,8 +31,11 @@
  * median|: a few far outliers do not move it, nor does a place far from
  * the origin) in [0.5, 1): 0 when it lies within the range above already,
  * or without memory; a scaling up stops short of moving a coordinate past
- * 2^PS_SCALE_CEILING_EXPONENT. */
-int ps_input_scale_exponent(const double *points, size_t n, int dim);
+ * 2^PS_SCALE_CEILING_EXPONENT.  *short_of (short_of may be NULL): 1 when
+ * it stopped so short that the extent stays below the range (a tiny
+ * extent beside coordinates some 2^514 times larger, where the arithmetic
+ * does not hold: segment.c refuses such a point set), else 0. */
+int ps_input_scale_exponent(const double *points, size_t n, int dim, int *short_of);
 
 /* r's values in the points' units (centralities, feature sizes) times
  * 2^-e: the caller's units again after a run on the points times 2^e. */

@@ -117,7 +117,7 @@ size_t ps_segment_memory_estimate(const ps_input *in, const ps_params *params) {
     /* method auto segments 2-D points as a 3-D copy, and points of extreme
      * extent as a scaled copy (segment.c, input_scale.h) */
     int lift = params->method == PS_METHOD_AUTO && dim == 2;
-    int scaled = in->points && ps_input_scale_exponent(in->points, n, dim) != 0;
+    int scaled = in->points && ps_input_scale_exponent(in->points, n, dim, NULL) != 0;
     if (lift) dim = 3;
     size_t copied = lift || scaled ? n * (size_t)dim * sizeof(double) : 0;
     /* A mesh under the reference sampling is filled up to it; one over it

@@ -120,7 +120,10 @@ typedef struct ps_input {
                               PS_MAX_COORDINATE; a point set whose typical
                               extent is far from 1 (below 2^-16 or above
                               2^64) is segmented as its copy scaled by a
-                              power of two to about 1 (core/input_scale.h) */
+                              power of two to about 1 (core/input_scale.h);
+                              one that cannot be (a tiny extent beside
+                              coordinates some 2^514 times larger) is
+                              refused */
     size_t n;              /* #P */
     int dim;               /* 2 <= dim <= PS_MAX_DIM; method auto segments 2-D
                               points as the plane z = 0 in 3-D (a flat surface,

@@ -4,7 +4,8 @@
  *
  * ps_segment validates the input and the parameters (method auto takes 2-D
  * points as the plane z = 0 in 3-D), scales points of extreme magnitude by
- * a power of two (input_scale.h), removes duplicate points, then runs the
+ * a power of two (input_scale.h; refused when their magnitudes lie too far
+ * apart for that), removes duplicate points, then runs the
  * five phases (ps_phase, pointseg.h) one after the other, each its steps in
  * the table's order: those of every method (the paper's: kNN graph,
  * centrality, flow to sinks, normalized cuts, feature-size merge), those of
@@ -240,8 +241,13 @@ ps_status ps_segment(const ps_input *in, const ps_params *params, const ps_contr
     ps_status st = check_input(in, &pl.params, err);
     if (st != PS_OK) return st;
     ps_input work;
-    int lift = pl.params.method == PS_METHOD_AUTO && in->dim == 2;
-    int e = ps_input_scale_exponent(in->points, in->n, in->dim);
+    int lift = pl.params.method == PS_METHOD_AUTO && in->dim == 2, short_of;
+    int e = ps_input_scale_exponent(in->points, in->n, in->dim, &short_of);
+    if (short_of)
+        return ps_fail(err, PS_ERR_INVALID,
+                       "the points span too many orders of magnitude: their typical extent "
+                       "cannot be scaled up to about 1 without a coordinate passing 2^%d",
+                       PS_SCALE_CEILING_EXPONENT);
     if (lift || e != 0) {
         st = copy_input(in, lift, e, &work, err);
         if (st != PS_OK) return st;

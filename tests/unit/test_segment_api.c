@@ -1,9 +1,10 @@
 /*
  * test_segment_api.c: ps_segment's interface: bad input (non-finite
- * normals too) fails cleanly with a message, statuses and steps have
- * names of their own, ncut_threshold 0 is the method's own, progress is
- * reported (and moves within each phase) and a run can be cancelled,
- * steps are timed, and each merge names the step that made it.
+ * normals too, and magnitudes too far apart to scale) fails cleanly with
+ * a message, statuses and steps have names of their own, ncut_threshold 0
+ * is the method's own, progress is reported (and moves within each phase)
+ * and a run can be cancelled, steps are timed, and each merge names the
+ * step that made it.
  */
 #include "features/centrality.h"
 #include "pointseg.h"
@@ -71,6 +72,28 @@ static void test_non_finite_normals_refused(void) {
     normals[3 * 40] = NAN;
     expect_input_invalid(&in, "NaN normal", "point 40 has a non-finite normal");
     free(pts), free(normals);
+}
+
+/* A ball of extent 2^-600 is segmented as its copy scaled to about 1;
+ * beside one point at 2^497 it cannot be (that point would pass the
+ * ceiling, input_scale.h), and it was segmented as it was: the ball's
+ * squared distances underflowed and it fell into 152 segments.  Now such
+ * a point set is refused, naming why. */
+static void test_unscalable_magnitudes_refused(void) {
+    size_t n;
+    double *ball = ps_shape_sphere(0, &n, NULL);
+    double *pts = malloc(3 * (n + 1) * sizeof *pts);
+    REQUIRE(ball && pts);
+    for (size_t i = 0; i < 3 * n; i++) pts[i] = ldexp(ball[i], -600);
+    ps_input in = {.points = pts, .n = n, .dim = 3};
+    ps_result *r = NULL;
+    ps_error err;
+    CHECK_MSG(ps_segment(&in, NULL, NULL, &r, &err) == PS_OK, "ps_segment: %s", err.message);
+    ps_result_free(r);
+    pts[3 * n] = ldexp(1, 497), pts[3 * n + 1] = pts[3 * n + 2] = 0;
+    in.n = n + 1;
+    expect_input_invalid(&in, "a ball of 2^-600 and a point at 2^497", "orders of magnitude");
+    free(ball), free(pts);
 }
 
 /* Every status has its own name, for messages. */
@@ -234,7 +257,8 @@ static void test_merges_name_their_step(void) {
     }
 }
 
-PS_TEST_MAIN(TEST(test_bad_input), TEST(test_non_finite_normals_refused), TEST(test_status_names),
+PS_TEST_MAIN(TEST(test_bad_input), TEST(test_non_finite_normals_refused),
+             TEST(test_unscalable_magnitudes_refused), TEST(test_status_names),
              TEST(test_ncut_threshold_method_default), TEST(test_progress_and_cancel),
              TEST(test_progress_moves_within_phases), TEST(test_steps_named_and_timed),
              TEST(test_merges_name_their_step))
