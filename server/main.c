@@ -50,8 +50,6 @@ static int wait_for_stop_signal(void) {
     return stop_signal;
 }
 
-/* The store of asynchronous jobs: Redis with --redis, else the in-process
- * queue.  NULL after saying why on stderr. */
 /* Lets the running jobs of both queues (the shared store's and the
  * in-process one's, which run side by side) finish within one budget of
  * `seconds`; the store hands its unfinished jobs back, the rest are
@@ -64,6 +62,8 @@ static void drain(ps_jobs *jobs, ps_jobstore *store, double seconds) {
     ps_jobs_drain(jobs, left > 0 ? left : 0);
 }
 
+/* The store of asynchronous jobs: Redis with --redis, else the in-process
+ * queue.  NULL after saying why on stderr. */
 static ps_jobstore *open_store(const ps_config *cfg, ps_jobs *jobs) {
     char why[512];
     if (!cfg->redis[0]) return ps_jobstore_memory_new(jobs);
