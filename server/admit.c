@@ -38,16 +38,19 @@ static enum MHD_Result count_header(void *cls, enum MHD_ValueKind kind, const ch
     return MHD_YES;
 }
 
-int ps_admit_times_given(ps_request *r, const char *name) {
+/* The lines of the request's head that give header name. */
+static header_count lines_giving(ps_request *r, const char *name) {
     header_count h = {name, "", 0, 0};
     MHD_get_connection_values(r->conn, MHD_HEADER_KIND, count_header, &h);
-    return h.n;
+    return h;
+}
+
+int ps_admit_times_given(ps_request *r, const char *name) {
+    return lines_giving(r, name).n;
 }
 
 static int conflicting_lengths(ps_request *r) {
-    header_count h = {MHD_HTTP_HEADER_CONTENT_LENGTH, "", 0, 0};
-    MHD_get_connection_values(r->conn, MHD_HEADER_KIND, count_header, &h);
-    return h.differ;
+    return lines_giving(r, MHD_HTTP_HEADER_CONTENT_LENGTH).differ;
 }
 
 static int is_health_route(ps_route route) {
