@@ -8,11 +8,17 @@
 #include <string.h>
 #include <strings.h>
 
+/* Whether text p begins with media type name, ended by its end or one of
+ * the characters of ends. */
+static int names_type(const char *p, const char *name, const char *ends) {
+    size_t n = strlen(name);
+    return !strncasecmp(p, name, n) && (p[n] == 0 || strchr(ends, p[n]));
+}
+
 /* Whether header value ct (leading spaces skipped) names media type name. */
 static int media_is(const char *ct, const char *name) {
     while (*ct == ' ') ct++;
-    size_t n = strlen(name);
-    return !strncasecmp(ct, name, n) && (ct[n] == 0 || ct[n] == ';' || ct[n] == ' ');
+    return names_type(ct, name, "; ");
 }
 
 ps_media ps_intake_media(const char *ct) {
@@ -41,10 +47,9 @@ int ps_intake_decode(const char *bytes, size_t len, ps_media media, size_t max_p
     return ps_decode(bytes, len, &lim, out, err);
 }
 
-/* The q parameter among the parameters of an Accept entry, [params, end);
- * 1 when it has none. */
-static double entry_quality(const char *params, const char *end) {
-    for (const char *p = params; (p = memchr(p, ';', (size_t)(end - p)));) {
+/* The q parameter of the Accept entry [entry, end); 1 when it has none. */
+static double entry_quality(const char *entry, const char *end) {
+    for (const char *p = entry; (p = memchr(p, ';', (size_t)(end - p)));) {
         p++;
         p += strspn(p, " \t");
         if ((*p == 'q' || *p == 'Q') && p[1] == '=') return strtod(p + 2, NULL);
@@ -55,13 +60,13 @@ static double entry_quality(const char *params, const char *end) {
 /* The quality the Accept header gives media type name by an entry naming
  * it (RFC 9110 12.5.1), or -1 when no entry does. */
 static double accept_quality(const char *accept, const char *name) {
-    size_t n = strlen(name);
-    for (const char *p = accept; p; p = strchr(p, ',') ? strchr(p, ',') + 1 : NULL) {
+    for (const char *p = accept;; p++) {
         p += strspn(p, " \t");
         const char *end = p + strcspn(p, ",");
-        if (!strncasecmp(p, name, n) && strchr(" \t;,", p[n])) return entry_quality(p + n, end);
+        if (names_type(p, name, " \t;,")) return entry_quality(p, end);
+        if (!*end) return -1;
+        p = end;
     }
-    return -1;
 }
 
 /* PLY when Accept names application/ply with a quality over 0 and not
