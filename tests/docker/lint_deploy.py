@@ -31,7 +31,7 @@ import time
 import urllib.request
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "integration"))
-from http_checks import SUITE, free_port, report  # noqa: E402
+from http_checks import SUITE, call, free_port, report, wait_http  # noqa: E402
 
 import yaml  # noqa: E402  (python3-yaml, a dependency of docker-compose)
 
@@ -226,17 +226,13 @@ def health_status(pid, env):
         return "a timeout"
 
 
-def answers(host, port, tries=50):
-    """True when something answers HTTP at host:port within tries tenths of a second."""
-    for _ in range(tries):
-        try:
-            urllib.request.urlopen("http://%s:%d/healthz" % (host, port), timeout=2)
-            return True
-        except urllib.error.HTTPError:
-            return True
-        except OSError:
-            time.sleep(0.1)
-    return False
+def answers_now(host, port):
+    """True when something answers HTTP at host:port at once."""
+    try:
+        call("http://%s:%d" % (host, port), "GET", "/healthz", timeout=2)
+        return True
+    except OSError:
+        return False
 
 
 def local_address():
@@ -265,7 +261,7 @@ def check_health(name, args, extra_env, host, port, while_up=None):
     daemon = subprocess.Popen([PSD] + entry[1:] + (cmd if args is None else args), env=env,
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        up = answers(host, port)
+        up = wait_http("http://%s:%d" % (host, port), seconds=5)
         status = health_status(daemon.pid, env) if up else None
         report(up and status == 0, "healthcheck-" + name,
                "exit status %s, not 0 (healthy)" % status if up
@@ -291,7 +287,7 @@ if address:
     # the CMD would win over docker run's -e POINTSEG_BIND).
     port = free_port()
     check_health("bind-env", None, {"POINTSEG_BIND": address, "POINTSEG_PORT": str(port)}, address, port,
-                 lambda: report(not answers("127.0.0.1", port, tries=1), "dockerfile-bind-env-honoured",
+                 lambda: report(not answers_now("127.0.0.1", port), "dockerfile-bind-env-honoured",
                                 "-e POINTSEG_BIND=%s: pointsegd answers on 127.0.0.1 too" % address))
     port = free_port()
     check_health("bind-flag", ["--bind=" + address, "--port=%d" % port], {}, address, port)
