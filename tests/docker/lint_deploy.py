@@ -28,7 +28,6 @@ import re
 import subprocess
 import sys
 import time
-import urllib.request
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "integration"))
 from http_checks import SUITE, call, free_port, report, wait_http  # noqa: E402
@@ -113,10 +112,7 @@ try:
         code = 0
         for _ in range(50):
             try:
-                code = urllib.request.urlopen("http://127.0.0.1:%d%s" % (port, path), timeout=5).status
-                break
-            except urllib.error.HTTPError as e:
-                code = e.code
+                code = call("http://127.0.0.1:%d" % port, "GET", path, timeout=5)[0]
                 break
             except OSError:
                 time.sleep(0.1)
